@@ -1,0 +1,15 @@
+#pragma once
+// The shadelab subcommands. Each registers its flags on the CLI11 app and returns the function
+// that runs it; main() only parses and dispatches.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace shadelab::cli {
+
+using Command = std::function<int()>;
+
+Command add_render_command(CLI::App& app);
+Command add_info_command(CLI::App& app);
+
+}  // namespace shadelab::cli

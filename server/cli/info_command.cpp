@@ -1,0 +1,35 @@
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/environment.h"
+#include "egl/headless_context.h"
+
+namespace shadelab::cli {
+
+Command add_info_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("info", "Print the EGL devices and the GL context ShadeLab would render with");
+  auto software = std::make_shared<bool>(software_from_environment());
+  cmd->add_flag("--software", *software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
+  return [software] {
+    for (const auto& d : egl::enumerate_devices())
+      std::cout << "EGL device " << d.index << ": " << d.name << (d.software ? " (software)" : "") << "\n";
+    auto context = egl::HeadlessContext::create({.force_software = *software});
+    if (!context) {
+      std::cerr << "error: " << context.error().format() << "\n";
+      return 1;
+    }
+    const auto& i = context->info();
+    std::cout << "platform:      " << i.platform << " (" << i.device << ")\n"
+              << "software:      " << (i.software ? "yes" : "no") << "\n"
+              << "EGL:           " << i.egl_vendor << " " << i.egl_version << "\n"
+              << "GL vendor:     " << i.gl_vendor << "\n"
+              << "GL renderer:   " << i.gl_renderer << "\n"
+              << "GL version:    " << i.gl_version << "\n"
+              << "GLSL version:  " << i.glsl_version << "\n"
+              << "robust access: " << (i.robust_access ? "yes" : "no") << "\n"
+              << "max samples:   " << i.max_samples << "\n";
+    return 0;
+  };
+}
+
+}  // namespace shadelab::cli

@@ -1,0 +1,15 @@
+// shadelab: renders homework GLSL shaders headless. `shadelab --help` lists the subcommands.
+#include <iostream>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"ShadeLab: renders student WebGL2 shaders headless, as the homework page would"};
+  app.require_subcommand(1);
+  const auto render = shadelab::cli::add_render_command(app);
+  const auto info = shadelab::cli::add_info_command(app);
+  CLI11_PARSE(app, argc, argv);
+  if (app.got_subcommand("render")) return render();
+  if (app.got_subcommand("info")) return info();
+  return 2;
+}

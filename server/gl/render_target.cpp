@@ -1,0 +1,101 @@
+#include "gl/render_target.h"
+
+#include <string>
+
+namespace shadelab::gl {
+
+namespace {
+GLenum internal_format(PixelFormat f) { return f == PixelFormat::rgba8 ? GL_RGBA8 : GL_RGBA32F; }
+
+RenderbufferName make_renderbuffer(GLenum format, int width, int height, int samples) {
+  GLuint id = 0;
+  glGenRenderbuffers(1, &id);
+  RenderbufferName rb(id);
+  glBindRenderbuffer(GL_RENDERBUFFER, id);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
+  return rb;
+}
+
+FramebufferName make_framebuffer() {
+  GLuint id = 0;
+  glGenFramebuffers(1, &id);
+  return FramebufferName(id);
+}
+}  // namespace
+
+int max_samples(PixelFormat format) {
+  GLint n = 0;
+  glGetInternalformativ(GL_RENDERBUFFER, internal_format(format), GL_SAMPLES, 1, &n);
+  return n;
+}
+
+Expected<RenderTarget> RenderTarget::create(int width, int height, int samples, PixelFormat format) {
+  const int max = max_samples(format);
+  if (samples < 0 || samples > max)
+    return make_error(ErrorCode::msaa_unsupported, "this renderer supports at most " + std::to_string(max) +
+                                                       " samples per pixel; " + std::to_string(samples) +
+                                                       " were asked for");
+  RenderTarget t;
+  t.width_ = width;
+  t.height_ = height;
+  t.format_ = format;
+  t.color_ = make_renderbuffer(internal_format(format), width, height, samples);
+  t.depth_ = make_renderbuffer(GL_DEPTH24_STENCIL8, width, height, samples);
+  t.draw_fbo_ = make_framebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, t.draw_fbo_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, t.depth_.get());
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return make_error(ErrorCode::gl_error, "the driver rejected a " + std::to_string(width) + "x" +
+                                               std::to_string(height) + " framebuffer");
+  glBindRenderbuffer(GL_RENDERBUFFER, t.color_.get());
+  glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &t.samples_);
+
+  if (samples > 0) {
+    t.resolve_color_ = make_renderbuffer(internal_format(format), width, height, 0);
+    t.resolve_fbo_ = make_framebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, t.resolve_fbo_.get());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.resolve_color_.get());
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      return make_error(ErrorCode::gl_error, "the driver rejected the resolve framebuffer");
+  }
+  return t;
+}
+
+size_t RenderTarget::bytes_per_frame() const {
+  return static_cast<size_t>(width_) * static_cast<size_t>(height_) * (format_ == PixelFormat::rgba8 ? 4 : 16);
+}
+
+void RenderTarget::begin_frame() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, draw_fbo_.get());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glClearColor(0.f, 0.f, 0.f, 1.f);
+  glClearDepthf(1.f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+}
+
+void RenderTarget::read(void* dst) const {
+  GLuint source = draw_fbo_.get();
+  if (resolve_fbo_) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_.get());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.get());
+    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    source = resolve_fbo_.get();
+  }
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, dst);
+}
+
+}  // namespace shadelab::gl
+
+namespace shadelab::gl {
+void finish() { glFinish(); }
+}  // namespace shadelab::gl

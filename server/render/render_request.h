@@ -1,0 +1,63 @@
+#pragma once
+// A render job as plain data with the homework's defaults, validated completely before any GL call.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/expected.h"
+#include "image/image.h"
+#include "render/uniform_plan.h"
+#include "shader/shader_source.h"
+
+namespace shadelab::render {
+
+struct RenderRequest {
+  shader::ShaderFile vertex;
+  shader::ShaderFile fragment;
+  int width = 640;
+  int height = 480;
+  int frames = 9;
+  double degrees_per_frame = 20.0;  // frame k is rotated exactly k * degrees_per_frame about +Y
+  int msaa = 4;                     // the browser canvas's antialias: true; 0 turns it off
+  std::vector<UniformSetting> uniforms;
+  image::PixelType pixel_type = image::PixelType::u8;  // f32: float target, for EXR
+};
+
+struct RenderLimits {
+  int max_width = 2048;
+  int max_height = 2048;
+  int max_frames = 36;
+  size_t max_source_bytes = 64 * 1024;
+};
+
+Status validate(const RenderRequest& request, const RenderLimits& limits);
+
+// Milliseconds spent in each phase of one job.
+struct PhaseTimes {
+  double compile_ms = 0;       // unwrap + compile + link + reflect (0 when the program was cached)
+  double upload_ms = 0;        // mesh to GPU (0 when cached)
+  double first_frame_ms = 0;   // draw + finish of frame 0 (llvmpipe JIT-compiles the shaders here)
+  double render_ms = 0;        // draw + finish of all frames, first included
+  double readback_ms = 0;      // resolve + glReadPixels + the browser's alpha rule
+  double sink_ms = 0;          // time the frame consumer held the render thread
+  double total_ms = 0;
+};
+
+struct VariableInfo {
+  std::string name;
+  std::string type;  // "vec4"
+  int array_size = 1;
+};
+
+struct RenderReport {
+  std::vector<std::string> warnings;
+  std::vector<VariableInfo> attributes, uniforms;
+  int samples = 0;            // what the driver allocated
+  bool program_cached = false;
+  PhaseTimes times;
+};
+
+// Receives each finished frame in order, rows top-down, as the browser would save it.
+using FrameSink = std::function<void(int index, const image::Image& frame, bool opaque)>;
+
+}  // namespace shadelab::render

@@ -1,0 +1,263 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <list>
+#include <optional>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/mesh_buffer.h"
+#include "gl/program.h"
+#include "gl/render_target.h"
+#include "image/canvas_readback.h"
+#include "render/homework_contract.h"
+#include "shader/driver_log.h"
+
+namespace shadelab::render {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+constexpr gl::AttributeBinding kBindings[] = {{kPositionAttribute, kPositionLocation}, {kNormalAttribute, kNormalLocation}};
+constexpr size_t kProgramCacheSize = 32;
+constexpr size_t kMeshCacheSize = 8;
+
+std::uint64_t fnv1a(const void* data, size_t size, std::uint64_t h = 1469598103934665603ull) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
+
+std::vector<VariableInfo> describe(const std::vector<gl::ActiveVariable>& vars) {
+  std::vector<VariableInfo> out;
+  for (const auto& v : vars) out.push_back({v.name, std::string(v.type.name), v.array_size});
+  return out;
+}
+
+struct CachedProgram {
+  std::string key;  // vertex GLSL + '\0' + fragment GLSL
+  gl::Program program;
+};
+
+struct CachedMesh {
+  std::uint64_t hash;
+  size_t floats;
+  gl::MeshBuffer buffer;
+};
+
+// Moves the entry `it` to the front of an LRU list and returns it.
+template <class T>
+T& touch(std::list<T>& list, typename std::list<T>::iterator it) {
+  list.splice(list.begin(), list, it);
+  return list.front();
+}
+
+}  // namespace
+
+struct Renderer::State {
+  egl::HeadlessContext context;
+  std::list<CachedProgram> programs;
+  std::list<CachedMesh> meshes;
+  std::optional<gl::RenderTarget> target;
+  std::vector<std::uint8_t> staging;
+
+  // Unwraps both stages and builds (or finds) the program; errors carry located diagnostics.
+  struct Built {
+    gl::Program* program;
+    shader::UnwrappedSource vertex, fragment;
+    bool cached;
+  };
+  Expected<Built> build(const shader::ShaderFile& vf, const shader::ShaderFile& ff) {
+    auto vertex = shader::unwrap(vf, shader::Stage::vertex);
+    if (!vertex) return vertex.take_error();
+    auto fragment = shader::unwrap(ff, shader::Stage::fragment);
+    if (!fragment) return fragment.take_error();
+    std::string key = vertex->glsl + '\0' + fragment->glsl;
+    for (auto it = programs.begin(); it != programs.end(); ++it)
+      if (it->key == key) return Built{&touch(programs, it).program, std::move(*vertex), std::move(*fragment), true};
+
+    std::optional<gl::BuildFailure> failure;
+    gl::Program program = gl::Program::build(vertex->glsl, fragment->glsl, kBindings, failure);
+    if (failure) return build_error(*failure, vf, ff, *vertex, *fragment);
+    programs.push_front({std::move(key), std::move(program)});
+    if (programs.size() > kProgramCacheSize) programs.pop_back();
+    return Built{&programs.front().program, std::move(*vertex), std::move(*fragment), false};
+  }
+
+  static Error build_error(const gl::BuildFailure& f, const shader::ShaderFile& vf, const shader::ShaderFile& ff,
+                           const shader::UnwrappedSource& vs, const shader::UnwrappedSource& fs) {
+    Error e;
+    e.driver_log = f.log;
+    switch (f.stage) {
+      case gl::BuildStage::vertex:
+        e.code = ErrorCode::compile_failed;
+        e.diagnostics = shader::parse_driver_log(f.log, "vertex", vf.name, &vs);
+        e.message = "the vertex shader does not compile";
+        break;
+      case gl::BuildStage::fragment:
+        e.code = ErrorCode::compile_failed;
+        e.diagnostics = shader::parse_driver_log(f.log, "fragment", ff.name, &fs);
+        e.message = "the fragment shader does not compile";
+        break;
+      case gl::BuildStage::link:
+        e.code = ErrorCode::link_failed;
+        e.diagnostics = shader::parse_driver_log(f.log, "link", "", nullptr);
+        e.message = "the shaders compile but do not link (do the vertex outputs match the fragment inputs?)";
+        break;
+    }
+    for (const auto& d : e.diagnostics)
+      if (d.severity == "error") {
+        e.message += ": " + d.message.substr(0, d.message.find('\n'));
+        break;
+      }
+    return e;
+  }
+
+  static std::vector<Diagnostic> warning_diagnostics(const Built& built, const shader::ShaderFile& vf,
+                                                     const shader::ShaderFile& ff) {
+    auto out = shader::parse_driver_log(built.program->vertex_log(), "vertex", vf.name, &built.vertex);
+    auto fragment = shader::parse_driver_log(built.program->fragment_log(), "fragment", ff.name, &built.fragment);
+    auto link = shader::parse_driver_log(built.program->link_log(), "link", "", nullptr);
+    out.insert(out.end(), fragment.begin(), fragment.end());
+    out.insert(out.end(), link.begin(), link.end());
+    return out;
+  }
+
+  gl::MeshBuffer& mesh_buffer(const scene::Mesh& mesh, bool& cached) {
+    const std::vector<float> data = mesh.interleaved();
+    const std::uint64_t hash = fnv1a(data.data(), data.size() * sizeof(float));
+    for (auto it = meshes.begin(); it != meshes.end(); ++it)
+      if (it->hash == hash && it->floats == data.size()) {
+        cached = true;
+        return touch(meshes, it).buffer;
+      }
+    cached = false;
+    meshes.push_front({hash, data.size(), gl::MeshBuffer::upload(data)});
+    if (meshes.size() > kMeshCacheSize) meshes.pop_back();
+    return meshes.front().buffer;
+  }
+
+  Expected<gl::RenderTarget*> render_target(const RenderRequest& r) {
+    const auto format = r.pixel_type == image::PixelType::u8 ? gl::PixelFormat::rgba8 : gl::PixelFormat::rgba32f;
+    if (target && target->width() == r.width && target->height() == r.height && target->format() == format &&
+        requested_samples == r.msaa)
+      return &*target;
+    auto created = gl::RenderTarget::create(r.width, r.height, r.msaa, format);
+    if (!created) return created.take_error();
+    target = std::move(*created);
+    requested_samples = r.msaa;
+    return &*target;
+  }
+  int requested_samples = -1;
+};
+
+Renderer::Renderer(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+Renderer::~Renderer() = default;
+
+Expected<Renderer> Renderer::create(const egl::ContextOptions& options) {
+  auto context = egl::HeadlessContext::create(options);
+  if (!context) return context.take_error();
+  return Renderer(std::make_unique<State>(State{std::move(*context), {}, {}, std::nullopt, {}}));
+}
+
+const egl::ContextInfo& Renderer::context_info() const { return state_->context.info(); }
+
+Expected<CompileReport> Renderer::compile(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment) {
+  const auto start = Clock::now();
+  auto built = state_->build(vertex, fragment);
+  if (!built) return built.take_error();
+  CompileReport report;
+  report.compile_ms = ms_since(start);
+  report.cached = built->cached;
+  report.warnings = built->vertex.warnings;
+  report.warnings.insert(report.warnings.end(), built->fragment.warnings.begin(), built->fragment.warnings.end());
+  report.diagnostics = State::warning_diagnostics(*built, vertex, fragment);
+  report.attributes = describe(built->program->attributes());
+  report.uniforms = describe(built->program->uniforms());
+  return report;
+}
+
+Expected<RenderReport> Renderer::render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink) {
+  const auto start = Clock::now();
+  RenderReport report;
+  if (auto valid = validate(request, RenderLimits{}); !valid) return valid.take_error();
+
+  auto built = state_->build(request.vertex, request.fragment);
+  if (!built) return built.take_error();
+  report.program_cached = built->cached;
+  report.times.compile_ms = built->cached ? 0.0 : ms_since(start);
+  const gl::Program& program = *built->program;
+  for (auto* w : {&built->vertex.warnings, &built->fragment.warnings})
+    report.warnings.insert(report.warnings.end(), w->begin(), w->end());
+  report.attributes = describe(program.attributes());
+  report.uniforms = describe(program.uniforms());
+
+  auto plan = plan_uniforms(program.uniforms(), request.uniforms);
+  if (!plan) return plan.take_error();
+  report.warnings.insert(report.warnings.end(), plan->warnings.begin(), plan->warnings.end());
+
+  int position_location = -1, normal_location = -1;
+  for (const auto& a : program.attributes()) {
+    if (a.name == kPositionAttribute) {
+      position_location = a.location;
+    } else if (a.name == kNormalAttribute) {
+      normal_location = a.location;
+    } else {
+      report.warnings.push_back("attribute '" + a.name + "' is not fed by the homework page (only " +
+                                kPositionAttribute + " and " + kNormalAttribute + " are); it reads (0, 0, 0, 1)");
+    }
+  }
+
+  auto target = state_->render_target(request);
+  if (!target) return target.take_error();
+  gl::RenderTarget& rt = **target;
+  report.samples = rt.samples();
+  if (request.msaa > 0 && rt.samples() != request.msaa)
+    report.warnings.push_back("the driver gave " + std::to_string(rt.samples()) + " samples per pixel for the " +
+                              std::to_string(request.msaa) + " asked for");
+
+  const auto upload_start = Clock::now();
+  bool mesh_cached = false;
+  const gl::MeshBuffer& buffer = state_->mesh_buffer(mesh, mesh_cached);
+  report.times.upload_ms = mesh_cached ? 0.0 : ms_since(upload_start);
+
+  program.use();
+  for (const auto& c : plan->constant) program.set_uniform(*c.uniform, c.values);
+
+  state_->staging.resize(rt.bytes_per_frame());
+  image::Image frame = image::Image::blank(request.width, request.height, request.pixel_type);
+  for (int k = 0; k < request.frames; ++k) {
+    const auto draw_start = Clock::now();
+    const FrameTransforms t = homework_transforms(request.width, request.height, k * request.degrees_per_frame);
+    if (plan->world_to_clip) program.set_uniform(*plan->world_to_clip, {glm::value_ptr(t.world_to_clip), 16});
+    if (plan->mesh_to_world) program.set_uniform(*plan->mesh_to_world, {glm::value_ptr(t.mesh_to_world), 16});
+    if (plan->mesh_to_world_rot) program.set_uniform(*plan->mesh_to_world_rot, {glm::value_ptr(t.mesh_to_world_rot), 16});
+    rt.begin_frame();
+    buffer.draw(position_location, normal_location);
+    gl::finish();
+    const double draw_ms = ms_since(draw_start);
+    report.times.render_ms += draw_ms;
+    if (k == 0) report.times.first_frame_ms = draw_ms;
+
+    const auto read_start = Clock::now();
+    rt.read(state_->staging.data());
+    bool opaque = false;
+    if (request.pixel_type == image::PixelType::u8)
+      opaque = image::canvas_blob_from_readback(state_->staging.data(), frame);
+    else
+      image::float_from_readback(reinterpret_cast<const float*>(state_->staging.data()), frame);
+    report.times.readback_ms += ms_since(read_start);
+
+    const auto sink_start = Clock::now();
+    sink(k, frame, opaque);
+    report.times.sink_ms += ms_since(sink_start);
+  }
+  report.times.total_ms = ms_since(start);
+  return report;
+}
+
+}  // namespace shadelab::render

@@ -1,0 +1,41 @@
+#pragma once
+// Turns a request into frames on one headless context. Owns the context and keeps compiled
+// programs and uploaded meshes warm between jobs (a worker process holds one Renderer).
+#include <memory>
+
+#include "core/expected.h"
+#include "egl/headless_context.h"
+#include "render/render_request.h"
+#include "scene/mesh.h"
+
+namespace shadelab::render {
+
+struct CompileReport {
+  std::vector<std::string> warnings;
+  std::vector<Diagnostic> diagnostics;  // warnings from the driver, located in the files
+  std::vector<VariableInfo> attributes, uniforms;
+  double compile_ms = 0;
+  bool cached = false;
+};
+
+class Renderer {
+ public:
+  static Expected<Renderer> create(const egl::ContextOptions& options);
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
+  ~Renderer();
+
+  const egl::ContextInfo& context_info() const;
+
+  // Unwraps, compiles, links and reflects; renders nothing.
+  Expected<CompileReport> compile(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment);
+  // Renders request.frames frames of `mesh`, handing each to `sink` as soon as it is read back.
+  Expected<RenderReport> render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink);
+
+ private:
+  struct State;
+  explicit Renderer(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace shadelab::render

@@ -1,0 +1,40 @@
+#include "scene/mesh.h"
+
+#include <algorithm>
+#include <limits>
+
+#include <glm/common.hpp>
+
+namespace shadelab::scene {
+
+std::vector<float> Mesh::interleaved() const {
+  std::vector<float> out;
+  out.reserve(positions.size() * 6);
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const auto& p = positions[i];
+    const auto& n = normals[i];
+    out.insert(out.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+  }
+  return out;
+}
+
+Bounds bounds(const Mesh& mesh) {
+  if (mesh.positions.empty()) return {};
+  Bounds b{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+  for (const auto& p : mesh.positions) {
+    b.min = glm::min(b.min, p);
+    b.max = glm::max(b.max, p);
+  }
+  return b;
+}
+
+void fit_to_homework(Mesh& mesh) {
+  const Bounds b = bounds(mesh);
+  const float height = b.max.y - b.min.y;
+  // A flat mesh (height 0) keeps its size: there is no height to fit.
+  const float scale = height > 0.f ? kHomeworkHeight / height : 1.f;
+  const glm::vec3 anchor{(b.min.x + b.max.x) / 2, b.min.y, (b.min.z + b.max.z) / 2};
+  for (auto& p : mesh.positions) p = (p - anchor) * scale;
+}
+
+}  // namespace shadelab::scene

@@ -1,0 +1,58 @@
+#pragma once
+// A triangle mesh as the homework page draws it: non-indexed, three corners per triangle in the
+// file's face order (so `flat` varyings take each triangle's last corner, as in the browser).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/expected.h"
+
+namespace shadelab::scene {
+
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;  // 3 per triangle
+  std::vector<glm::vec3> normals;    // same size as positions
+  bool normals_from_file = false;
+  int skipped_primitives = 0;        // points and lines in the file, which a triangle draw ignores
+
+  size_t triangle_count() const { return positions.size() / 3; }
+  // 6 floats per corner: position then normal, as gl::MeshBuffer takes them.
+  std::vector<float> interleaved() const;
+};
+
+struct Bounds {
+  glm::vec3 min{0.f}, max{0.f};
+};
+Bounds bounds(const Mesh& mesh);
+
+// Area-weighted smooth normals, summed per distinct position so that split vertices (UV seams,
+// patch seams) do not crease. Degenerate faces add nothing; a position whose sum is zero takes
+// the normal of its first non-degenerate face, or (0, 0, 0) if it only touches zero-area faces,
+// which rasterise nothing. Never NaN.
+void compute_smooth_normals(Mesh& mesh);
+
+// The homework framing the built-in meshes have: height 3.5, base at y = 0, bounding box centred
+// in x and z; uMeshToWorldMatrix then stands it at y in [-2, 1.5], 7.5 units in front of the eye.
+void fit_to_homework(Mesh& mesh);
+inline constexpr float kHomeworkHeight = 3.5f;
+
+struct MeshLimits {
+  size_t max_triangles = 2'000'000;
+};
+
+// Loads OBJ, PLY, STL, glTF/GLB and the other formats assimp reads, from memory. `format_hint` is
+// the file extension ("obj", "glb", ...). Positions are used as the file has them (node transforms
+// applied); normals from the file when it has them, else computed.
+Expected<Mesh> load_mesh(std::span<const std::uint8_t> bytes, const std::string& format_hint,
+                         const std::string& name, const MeshLimits& limits = {});
+Expected<Mesh> load_mesh_file(const std::string& path, const MeshLimits& limits = {});
+
+// "teapot" or "bunny", compiled into the binary from assets/.
+Expected<Mesh> builtin_mesh(const std::string& name);
+std::vector<std::string> builtin_mesh_names();
+
+}  // namespace shadelab::scene

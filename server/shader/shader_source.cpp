@@ -1,0 +1,273 @@
+#include "shader/shader_source.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace shadelab::shader {
+
+std::string_view to_string(Stage stage) { return stage == Stage::vertex ? "vertex" : "fragment"; }
+
+namespace {
+
+// A cursor over the file that knows its line and column.
+struct Cursor {
+  const std::string& text;
+  size_t pos = 0;
+  int line = 1, column = 1;
+
+  bool done() const { return pos >= text.size(); }
+  char peek(size_t ahead = 0) const { return pos + ahead < text.size() ? text[pos + ahead] : '\0'; }
+  char next() {
+    const char c = text[pos++];
+    if (c == '\n') {
+      ++line;
+      column = 1;
+    } else if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) {
+      ++column;  // continuation bytes of a UTF-8 sequence do not start a column
+    }
+    return c;
+  }
+  bool starts_with(std::string_view s) const { return text.compare(pos, s.size(), s) == 0; }
+};
+
+Error source_error(ErrorCode code, const ShaderFile& file, Stage stage, int line, int column, std::string message) {
+  Error e = make_error(code, message);
+  e.diagnostics.push_back(Diagnostic{std::string(to_string(stage)), file.name, line, column, "error", std::move(message)});
+  return e;
+}
+
+// Returns the byte offset of the first invalid UTF-8 sequence, or npos.
+size_t invalid_utf8_at(const std::string& s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    if (extra < 0 || (extra == 1 && c < 0xC2) || i + static_cast<size_t>(extra) >= s.size())
+      return i;
+    for (int k = 1; k <= extra; ++k)
+      if ((static_cast<unsigned char>(s[i + static_cast<size_t>(k)]) & 0xC0) != 0x80) return i;
+    i += static_cast<size_t>(extra) + 1;
+  }
+  return std::string::npos;
+}
+
+std::pair<int, int> line_column_at(const std::string& s, size_t offset) {
+  Cursor c{s};
+  while (c.pos < offset && !c.done()) c.next();
+  return {c.line, c.column};
+}
+
+// Skips whitespace and JS comments.
+void skip_js_space(Cursor& c) {
+  while (!c.done()) {
+    if (std::isspace(static_cast<unsigned char>(c.peek()))) {
+      c.next();
+    } else if (c.starts_with("//")) {
+      while (!c.done() && c.peek() != '\n') c.next();
+    } else if (c.starts_with("/*")) {
+      c.next(), c.next();
+      while (!c.done() && !c.starts_with("*/")) c.next();
+      if (!c.done()) c.next(), c.next();
+    } else {
+      return;
+    }
+  }
+}
+
+bool looks_like_module(const std::string& text) {
+  Cursor c{text};
+  skip_js_space(c);
+  return c.starts_with("export") && !std::isalnum(static_cast<unsigned char>(c.peek(6))) && c.peek(6) != '_';
+}
+
+// Appends one unwrapped character, opening a new GLSL line in the map after each newline.
+struct Emitter {
+  UnwrappedSource& out;
+  bool at_line_start = true;
+
+  void put(char ch, int file_line, int file_column) {
+    if (at_line_start) {
+      out.lines.push_back({file_line, file_column});
+      at_line_start = false;
+    }
+    out.glsl.push_back(ch);
+    if (ch == '\n') at_line_start = true;
+  }
+  void finish(int file_line, int file_column) {
+    if (at_line_start) out.lines.push_back({file_line, file_column});
+  }
+};
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+void append_utf8(std::string& s, unsigned cp) {
+  if (cp < 0x80) {
+    s.push_back(static_cast<char>(cp));
+  } else if (cp < 0x800) {
+    s.push_back(static_cast<char>(0xC0 | (cp >> 6)));
+    s.push_back(static_cast<char>(0x80 | (cp & 0x3F)));
+  } else {
+    s.push_back(static_cast<char>(0xE0 | (cp >> 12)));
+    s.push_back(static_cast<char>(0x80 | ((cp >> 6) & 0x3F)));
+    s.push_back(static_cast<char>(0x80 | (cp & 0x3F)));
+  }
+}
+
+Expected<UnwrappedSource> unwrap_module(const ShaderFile& file, const std::string& text, Stage stage) {
+  Cursor c{text};
+  skip_js_space(c);
+  c.pos += 6, c.column += 6;  // "export"
+  skip_js_space(c);
+  if (!c.starts_with("default"))
+    return source_error(ErrorCode::shader_source_invalid, file, stage, c.line, c.column,
+                        "expected `export default` followed by the shader string");
+  for (int i = 0; i < 7; ++i) c.next();
+  skip_js_space(c);
+  const char quote = c.peek();
+  if (quote != '`' && quote != '\'' && quote != '"')
+    return source_error(ErrorCode::shader_source_invalid, file, stage, c.line, c.column,
+                        "expected a string after `export default` (a back-tick `...` template or a quoted string)");
+  const int open_line = c.line, open_column = c.column;
+  c.next();
+
+  UnwrappedSource out;
+  out.from_js_module = true;
+  Emitter emit{out};
+  bool warned_newline = false;
+  while (true) {
+    if (c.done())
+      return source_error(ErrorCode::shader_source_invalid, file, stage, open_line, open_column,
+                          std::string("the shader string opened here is never closed (missing ") + quote + ")");
+    const int line = c.line, column = c.column;
+    const char ch = c.next();
+    if (ch == quote) break;
+    if (ch == '\n' && quote != '`' && !warned_newline) {
+      out.warnings.push_back(file.name + ":" + std::to_string(line) +
+                             ": a quoted JS string cannot span lines; browsers reject this module (use back-ticks)");
+      warned_newline = true;
+    }
+    if (quote == '`' && ch == '$' && c.peek() == '{')
+      return source_error(ErrorCode::shader_source_invalid, file, stage, line, column,
+                          "template interpolation ${...} cannot be evaluated here; write the value into the shader");
+    if (ch != '\\') {
+      emit.put(ch, line, column);
+      continue;
+    }
+    if (c.done()) continue;  // reported as unclosed on the next turn
+    const char esc = c.next();
+    switch (esc) {
+      case '\n': break;  // a line continuation: JS drops both characters
+      case 'n': emit.put('\n', line, column); break;
+      case 't': emit.put('\t', line, column); break;
+      case 'r': break;   // GLSL sees line ends as \n only
+      case '0': emit.put('\0', line, column); break;  // rejected below, like any NUL
+      case 'x':
+      case 'u': {
+        unsigned cp = 0;
+        const int digits = esc == 'x' ? 2 : 4;
+        for (int k = 0; k < digits && hex_value(c.peek()) >= 0; ++k) cp = cp * 16 + static_cast<unsigned>(hex_value(c.next()));
+        std::string bytes;
+        append_utf8(bytes, cp);
+        for (char b : bytes) emit.put(b, line, column);
+        break;
+      }
+      default: emit.put(esc, line, column); break;  // \\ \` \' \" \$ and JS's identity escapes
+    }
+  }
+  emit.finish(c.line, c.column);
+  skip_js_space(c);
+  if (c.peek() == ';') c.next();
+  skip_js_space(c);
+  if (!c.done())
+    return source_error(ErrorCode::shader_source_invalid, file, stage, c.line, c.column,
+                        "unexpected text after the shader string; the module should hold only `export default`");
+  return out;
+}
+
+UnwrappedSource identity(const std::string& text) {
+  UnwrappedSource out;
+  out.glsl = text;
+  const auto lines = std::count(text.begin(), text.end(), '\n') + 1;
+  for (int i = 1; i <= lines; ++i) out.lines.push_back({i, 1});
+  return out;
+}
+
+// WebGL2 accepts only GLSL ES 3.00 and insists that `#version 300 es` is on the first line.
+Status check_version(const ShaderFile& file, const UnwrappedSource& src, Stage stage) {
+  const std::string first_line = src.glsl.substr(0, src.glsl.find('\n'));
+  size_t i = first_line.find_first_not_of(" \t");
+  if (i != std::string::npos && first_line.compare(i, 8, "#version") == 0) {
+    std::string rest = first_line.substr(i + 8);
+    rest.erase(0, rest.find_first_not_of(" \t"));
+    if (rest.rfind("300", 0) == 0 && rest.find("es") != std::string::npos) return Ok{};
+    const auto at = src.locate(1, static_cast<int>(i) + 1);
+    return source_error(ErrorCode::missing_version, file, stage, at.file_line, at.file_column,
+                        "WebGL2 shaders must declare `#version 300 es`; found `" + first_line.substr(i) + "`");
+  }
+  const size_t later = src.glsl.find("#version");
+  if (later != std::string::npos) {
+    const int glsl_line = static_cast<int>(std::count(src.glsl.begin(), src.glsl.begin() + static_cast<long>(later), '\n')) + 1;
+    const auto at = src.locate(glsl_line, 1);
+    return source_error(ErrorCode::missing_version, file, stage, at.file_line, at.file_column,
+                        "`#version 300 es` must be on the shader's very first line (WebGL2 rejects anything before "
+                        "it, even a blank line after the opening back-tick)");
+  }
+  const auto at = src.locate(1, 1);
+  return source_error(ErrorCode::missing_version, file, stage, at.file_line, at.file_column,
+                      "the shader has no `#version 300 es` line; WebGL2 shaders must start with it");
+}
+
+}  // namespace
+
+LineOrigin UnwrappedSource::locate(int glsl_line, int glsl_column) const {
+  if (lines.empty() || glsl_line < 1) return {glsl_line, glsl_column};
+  const auto& origin = lines[static_cast<size_t>(std::min<int>(glsl_line, static_cast<int>(lines.size())) - 1)];
+  return {origin.file_line, glsl_column > 0 ? origin.file_column + glsl_column - 1 : 0};
+}
+
+Expected<UnwrappedSource> unwrap(const ShaderFile& file, Stage stage, const SourceLimits& limits) {
+  if (file.text.size() > limits.max_bytes)
+    return source_error(ErrorCode::shader_source_invalid, file, stage, 0, 0,
+                        "the " + std::string(to_string(stage)) + " shader is " + std::to_string(file.text.size()) +
+                            " bytes; the limit is " + std::to_string(limits.max_bytes));
+  std::string text = file.text;
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  // CRLF and lone CR become LF; columns are unaffected because the CR ends its line.
+  std::string normalized;
+  normalized.reserve(text.size());
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\r') {
+      normalized.push_back('\n');
+      if (i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    } else {
+      normalized.push_back(text[i]);
+    }
+  }
+  if (const size_t bad = invalid_utf8_at(normalized); bad != std::string::npos) {
+    const auto [line, column] = line_column_at(normalized, bad);
+    return source_error(ErrorCode::shader_source_invalid, file, stage, line, column,
+                        "the shader is not valid UTF-8 at this point");
+  }
+  if (std::string::npos == normalized.find_first_not_of(" \t\n"))
+    return source_error(ErrorCode::shader_source_invalid, file, stage, 0, 0,
+                        "the " + std::string(to_string(stage)) + " shader is empty");
+
+  Expected<UnwrappedSource> unwrapped = looks_like_module(normalized) ? unwrap_module(file, normalized, stage)
+                                                                      : Expected<UnwrappedSource>(identity(normalized));
+  if (!unwrapped) return unwrapped;
+  if (const size_t nul = unwrapped->glsl.find('\0'); nul != std::string::npos) {
+    const int glsl_line = static_cast<int>(std::count(unwrapped->glsl.begin(), unwrapped->glsl.begin() + static_cast<long>(nul), '\n')) + 1;
+    const auto at = unwrapped->locate(glsl_line, 0);
+    return source_error(ErrorCode::shader_source_invalid, file, stage, at.file_line, 0,
+                        "the shader contains a NUL byte");
+  }
+  if (auto v = check_version(file, *unwrapped, stage); !v) return v.take_error();
+  return unwrapped;
+}
+
+}  // namespace shadelab::shader
