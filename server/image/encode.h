@@ -13,7 +13,7 @@ namespace shadelab::image {
 // bytes. docs/performance.md has the measurements.
 struct PngSettings {
   int compression_level = 1;
-  int filter = 0x10;  // libpng's PNG_FILTER_SUB; 0 lets OIIO/libpng choose adaptively
+  int filter = 0x20;  // libpng's PNG_FILTER_UP: fastest and smallest single filter here; 0 = adaptive
 };
 
 // RGBA8 image -> PNG bytes. Opaque images are written as RGB (lossless: every alpha is 255).

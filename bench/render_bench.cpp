@@ -1,0 +1,134 @@
+// The canonical job (bunny, `specular`, 9 frames 640 x 480, 4x MSAA, grid PNG) in a warm process,
+// as a render worker runs it. Each iteration submits a shader the process has not seen (a unique
+// comment), so compiling it is part of the time, as for a student's fresh submission.
+//
+// Counters are milliseconds per job: compile, first_frame, render (all frames), per_frame,
+// readback, encode_tail (encode time left after the last frame: the encode overlaps rendering),
+// and total. Run: build/bench/render_bench --benchmark_min_time=3
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <iostream>
+#include <optional>
+
+#include "image/encode.h"
+#include "image/grid.h"
+#include "image/grid_png_encoder.h"
+#include "render/presets.h"
+#include "render/renderer.h"
+
+namespace {
+
+using namespace shadelab;
+using Clock = std::chrono::steady_clock;
+
+render::Renderer& renderer() {
+  static render::Renderer r = [] {
+    auto created = render::Renderer::create({});
+    if (!created) {
+      std::cerr << created.error().format() << "\n";
+      std::exit(1);
+    }
+    std::cerr << "renderer: " << created->context_info().gl_renderer << "\n";
+    return std::move(*created);
+  }();
+  return r;
+}
+
+const scene::Mesh& bunny() {
+  static const scene::Mesh m = *scene::builtin_mesh("bunny");
+  return m;
+}
+
+render::RenderRequest canonical(int msaa, int serial) {
+  const auto preset = *render::find_preset("specular");
+  render::RenderRequest r{.vertex = preset.vertex, .fragment = preset.fragment, .msaa = msaa};
+  // Inside the GLSL string, so the driver really sees a new program.
+  const auto close = r.fragment.text.rfind('`');
+  r.fragment.text.insert(close, "// submission " + std::to_string(serial) + "\n");
+  return r;
+}
+
+enum class Output { none, grid_overlapped, grid_serial };
+
+void run_job(benchmark::State& state, int msaa, Output output) {
+  static int serial = 0;
+  double compile = 0, first = 0, render_ms = 0, readback = 0, tail = 0, total = 0;
+  for (auto _ : state) {
+    const auto request = canonical(msaa, ++serial);
+    const auto layout = image::GridLayout::for_frames(request.frames, request.width, request.height);
+    const auto start = Clock::now();
+    std::optional<image::GridPngEncoder> encoder;
+    std::vector<image::Image> frames;
+    if (output == Output::grid_overlapped) encoder.emplace(layout, request.frames);
+    auto report = renderer().render(request, bunny(), [&](int k, const image::Image& f, bool opaque) {
+      if (encoder) encoder->add_frame(k, f, opaque);
+      if (output == Output::grid_serial) frames.push_back(f);
+    });
+    if (!report) {
+      state.SkipWithError(report.error().format().c_str());
+      return;
+    }
+    const auto rendered = Clock::now();
+    if (encoder) benchmark::DoNotOptimize(encoder->finish());
+    if (output == Output::grid_serial) benchmark::DoNotOptimize(image::encode_png(image::compose_grid(layout, frames)));
+    const auto end = Clock::now();
+    compile += report->times.compile_ms;
+    first += report->times.first_frame_ms;
+    render_ms += report->times.render_ms;
+    readback += report->times.readback_ms;
+    tail += std::chrono::duration<double, std::milli>(end - rendered).count();
+    total += std::chrono::duration<double, std::milli>(end - start).count();
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["compile_ms"] = compile / n;
+  state.counters["first_frame_ms"] = first / n;
+  state.counters["render_ms"] = render_ms / n;
+  state.counters["per_frame_ms"] = render_ms / n / 9;
+  state.counters["readback_ms"] = readback / n;
+  state.counters["encode_tail_ms"] = tail / n;
+  state.counters["total_ms"] = total / n;
+}
+
+void BM_CanonicalJob_GridOverlapped(benchmark::State& s) { run_job(s, 4, Output::grid_overlapped); }
+void BM_CanonicalJob_GridSerial(benchmark::State& s) { run_job(s, 4, Output::grid_serial); }
+void BM_RenderOnly_Msaa4(benchmark::State& s) { run_job(s, 4, Output::none); }
+void BM_RenderOnly_NoMsaa(benchmark::State& s) { run_job(s, 0, Output::none); }
+
+// The grid encode alone, for the PNG settings table in docs/performance.md.
+void BM_GridEncode(benchmark::State& state) {
+  const auto request = canonical(4, 0);
+  const auto layout = image::GridLayout::for_frames(9, 640, 480);
+  std::vector<image::Image> frames;
+  (void)renderer().render(request, bunny(), [&](int, const image::Image& f, bool) { frames.push_back(f); });
+  image::Image grid = image::compose_grid(layout, frames);
+  const int level = static_cast<int>(state.range(0));
+  const int filter = static_cast<int>(state.range(1));
+  const bool rgba = state.range(2) != 0;
+  if (rgba) grid.bytes[3] = 254;  // one non-opaque pixel forces RGBA
+  size_t bytes = 0;
+  for (auto _ : state) {
+    auto png = image::encode_png(grid, {.compression_level = level, .filter = filter});
+    bytes = png->size();
+  }
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+
+}  // namespace
+
+BENCHMARK(BM_CanonicalJob_GridOverlapped)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_CanonicalJob_GridSerial)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_RenderOnly_Msaa4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_RenderOnly_NoMsaa)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+// {zlib level, libpng filter (0 = adaptive), force RGBA}
+BENCHMARK(BM_GridEncode)
+    ->Args({6, 0, 1})
+    ->Args({1, 0, 1})
+    ->Args({1, 0x10, 1})
+    ->Args({1, 0x10, 0})
+    ->Args({1, 0x20, 0})
+    ->Args({1, 0x08, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,117 @@
+// The shadelab executable end to end: exit codes, files written, compiler-style diagnostics.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "support/test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Run {
+  int status;
+  std::string output;  // stdout and stderr
+};
+
+Run run_cli(const std::string& args) {
+  const std::string cmd = std::string(SHADELAB_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("shadelab_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+  fs::path dir_;
+};
+
+std::vector<std::uint8_t> read_bytes(const std::string& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+}  // namespace
+
+TEST_F(CliTest, RenderWritesTheThreeByThreeGrid) {
+  const auto run = run_cli("render --preset specular --mesh bunny --grid " + path("g.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto img = shadelab::testkit::decode(read_bytes(path("g.png")));
+  EXPECT_EQ(img.width, 1920);
+  EXPECT_EQ(img.height, 1440);
+}
+
+TEST_F(CliTest, FramesDirGetsTheHandoutsNames) {
+  const auto run = run_cli("render --preset diffuse --mesh teapot --size 64x48 --frames-dir " + path("frames"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (int k = 0; k < 9; ++k) EXPECT_TRUE(fs::exists(path("frames/hw2_diffuse_" + std::to_string(k) + ".png"))) << k;
+  EXPECT_FALSE(fs::exists(path("frames/hw2_diffuse_9.png")));
+}
+
+TEST_F(CliTest, StudentFilesAndUniformsWork) {
+  write("my_vert.js", "export default `#version 300 es\nin vec4 aVertexPosition;\nuniform mat4 uWorldToClipSpaceMatrix;\n"
+                      "uniform mat4 uMeshToWorldMatrix;\nvoid main() { gl_Position = uWorldToClipSpaceMatrix * "
+                      "uMeshToWorldMatrix * aVertexPosition; }\n`;\n");
+  write("my_frag.js", "export default `#version 300 es\nprecision highp float;\nuniform vec4 diffuseColor;\n"
+                      "out vec4 c;\nvoid main() { c = diffuseColor; }\n`;\n");
+  const auto run = run_cli("render --vert " + path("my_vert.js") + " --frag " + path("my_frag.js") +
+                            " --size 64x48 --frames 4 --uniform diffuseColor=0,0,1,1 --grid " + path("g.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto img = shadelab::testkit::decode(read_bytes(path("g.png")));
+  EXPECT_EQ(img.width, 128);  // 4 frames: 2 x 2
+  bool blue = false;
+  for (size_t i = 0; i < img.bytes.size(); i += 4) blue |= img.bytes[i + 2] == 255 && img.bytes[i] == 0;
+  EXPECT_TRUE(blue);
+}
+
+TEST_F(CliTest, BrokenShaderPrintsCompilerStyleDiagnosticsAndFails) {
+  write("broken_frag.js", "export default `#version 300 es\nprecision highp float;\nout vec4 c;\n"
+                          "void main() { c = vec4(1.0) }\n`;\n");
+  const auto run = run_cli("render --vert " + path("broken_frag.js") + " --frag " + path("broken_frag.js") +
+                            " --grid " + path("g.png"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("broken_frag.js:4:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("compile_failed"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(path("g.png")));
+}
+
+TEST_F(CliTest, BadArgumentsFailClearly) {
+  auto run = run_cli("render --preset phong --grid " + path("g.png"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("unknown_preset"), std::string::npos) << run.output;
+  run = run_cli("render --preset smooth --uniform uX=1,abc --grid " + path("g.png"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("not a number"), std::string::npos) << run.output;
+  run = run_cli("render --preset smooth --mesh " + path("missing.obj"));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("mesh_not_found"), std::string::npos) << run.output;
+  run = run_cli("render --preset smooth --size big");
+  EXPECT_EQ(run.status, 1);
+}
+
+TEST_F(CliTest, InfoNamesTheRenderer) {
+  const auto run = run_cli("info");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("GL renderer:"), std::string::npos);
+  EXPECT_NE(run.output.find("OpenGL ES 3"), std::string::npos);
+}
+
+TEST_F(CliTest, ExrOutputIsFloat) {
+  const auto run = run_cli("render --preset smooth --size 32x24 --frames 1 --format exr --grid " + path("g.exr"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto img = shadelab::testkit::decode(read_bytes(path("g.exr")));
+  EXPECT_EQ(img.type, shadelab::image::PixelType::f32);
+  EXPECT_EQ(img.width, 32);
+}

@@ -1,0 +1,299 @@
+// Rendering behaviour on a real EGL context (llvmpipe where there is no GPU).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "image/grid.h"
+#include "image/grid_png_encoder.h"
+#include "image/encode.h"
+#include "support/test_support.h"
+
+using namespace shadelab;
+using testkit::fullscreen_request;
+using testkit::pixel;
+using testkit::render_frames;
+
+namespace {
+const scene::Mesh& bunny() { return testkit::builtin("bunny"); }
+
+bool has_warning(const render::RenderReport& r, const std::string& needle) {
+  for (const auto& w : r.warnings)
+    if (w.find(needle) != std::string::npos) return true;
+  return false;
+}
+
+std::vector<std::uint8_t> grid_png(const render::RenderRequest& request) {
+  const auto layout = image::GridLayout::for_frames(request.frames, request.width, request.height);
+  image::GridPngEncoder encoder(layout, request.frames);
+  auto report = testkit::shared_renderer().render(request, bunny(),
+                                                  [&](int k, const image::Image& f, bool o) { encoder.add_frame(k, f, o); });
+  EXPECT_TRUE(report) << report.error().format();
+  return *encoder.finish();
+}
+}  // namespace
+
+TEST(RenderTest, ContextIsOpenGlEs3) {
+  const auto& info = testkit::shared_renderer().context_info();
+  EXPECT_NE(info.gl_version.find("OpenGL ES 3"), std::string::npos) << info.gl_version;
+  EXPECT_FALSE(info.gl_renderer.empty());
+  EXPECT_GE(info.max_samples, 4);
+}
+
+TEST(RenderTest, SameRequestTwiceGivesIdenticalBytes) {
+  auto request = testkit::preset_request("specular");
+  request.width = 320;
+  request.height = 240;
+  const auto first = grid_png(request);
+  const auto second = grid_png(request);
+  EXPECT_GT(first.size(), 1000u);
+  EXPECT_EQ(first, second);
+}
+
+TEST(RenderTest, CompileErrorInJsModulePointsAtTheStudentsLine) {
+  auto request = testkit::preset_request("specular");
+  // Line 1 is a comment, the back-tick opens on line 2; the typo sits on file line 9.
+  request.fragment = {"phong_frag.js",
+                      "// my phong shader\nexport default `#version 300 es\nprecision highp float;\n"
+                      "uniform vec4 uAmbientColor;\nin vec4 vPosition;\nin vec4 vNormal;\nout vec4 fragColor;\n"
+                      "void main(void) {\n    fragColor = uAmbientColr;\n}\n`;\n"};
+  auto r = render_frames(request, bunny());
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::compile_failed);
+  ASSERT_FALSE(r.error().diagnostics.empty()) << r.error().driver_log;
+  const auto& d = r.error().diagnostics[0];
+  EXPECT_EQ(d.file, "phong_frag.js");
+  EXPECT_EQ(d.stage, "fragment");
+  EXPECT_EQ(d.line, 9);
+  EXPECT_GT(d.column, 0);
+  EXPECT_NE(d.message.find("uAmbientColr"), std::string::npos);
+  EXPECT_FALSE(r.error().driver_log.empty());
+}
+
+TEST(RenderTest, VertexSyntaxErrorAndMissingMainAreCompileErrors) {
+  auto request = testkit::preset_request("smooth");
+  request.vertex.text = "#version 300 es\nin vec4 aVertexPosition;\nvoid main() { gl_Position = aVertexPosition }\n";
+  auto r = render_frames(request, bunny());
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::compile_failed);
+  EXPECT_EQ(r.error().diagnostics.at(0).stage, "vertex");
+  EXPECT_EQ(r.error().diagnostics.at(0).line, 3);
+
+  request = testkit::preset_request("smooth");
+  request.fragment.text = "#version 300 es\nprecision highp float;\nout vec4 c;\n";
+  r = render_frames(request, bunny());
+  ASSERT_FALSE(r);
+  EXPECT_TRUE(r.error().code == ErrorCode::compile_failed || r.error().code == ErrorCode::link_failed);
+}
+
+TEST(RenderTest, VaryingMismatchIsALinkError) {
+  auto request = testkit::preset_request("gouraud");
+  request.fragment.text = "#version 300 es\nprecision highp float;\nin vec4 vColour;\nout vec4 c;\nvoid main() { c = vColour; }\n";
+  auto r = render_frames(request, bunny());
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::link_failed);
+  EXPECT_FALSE(r.error().driver_log.empty());
+  EXPECT_NE(r.error().message.find("link"), std::string::npos);
+}
+
+TEST(RenderTest, OneMegabyteSourceIsRejectedBeforeTheDriver) {
+  auto request = testkit::preset_request("smooth");
+  request.fragment.text = "#version 300 es\n" + std::string(1 << 20, '/');
+  auto r = render_frames(request, bunny());
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::shader_source_invalid);
+}
+
+TEST(RenderTest, BothUniformNamingStylesReceiveTheDefaults) {
+  for (const std::string name : {"uDiffuseColor", "diffuseColor"}) {
+    auto r = render_frames(fullscreen_request("c = " + name + ";", "uniform vec4 " + name + ";"), bunny());
+    ASSERT_TRUE(r) << r.error().format();
+    // (0.7, 0.5, 0.1, 1.0) as 8-bit, within llvmpipe's rounding.
+    const auto p = pixel(r->frames[0], 4, 4);
+    EXPECT_NEAR(p[0], 179, 1) << name;
+    EXPECT_NEAR(p[1], 128, 1) << name;
+    EXPECT_NEAR(p[2], 26, 1) << name;
+    EXPECT_EQ(p[3], 255);
+  }
+}
+
+TEST(RenderTest, RequestValuesOverrideDefaultsAndAreTypeChecked) {
+  auto request = fullscreen_request("c = uDiffuseColor;", "uniform vec4 uDiffuseColor;");
+  request.uniforms = {{"uDiffuseColor", {0.0, 1.0, 0.0, 1.0}}};
+  auto r = render_frames(request, bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  EXPECT_EQ(pixel(r->frames[0], 1, 1), (std::array<int, 4>{0, 255, 0, 255}));
+
+  request.uniforms = {{"uDiffuseColor", {0.0, 1.0, 0.0}}};
+  r = render_frames(request, bunny());
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::uniform_type_mismatch);
+  EXPECT_NE(r.error().message.find("vec4"), std::string::npos);
+
+  auto ints = fullscreen_request("c = vec4(vec3(float(uCount) / 4.0), 1.0);", "uniform int uCount;");
+  ints.uniforms = {{"uCount", {1.5}}};
+  r = render_frames(ints, bunny());
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::uniform_type_mismatch);
+  ints.uniforms = {{"uCount", {2}}};
+  r = render_frames(ints, bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  EXPECT_NEAR(pixel(r->frames[0], 0, 0)[0], 128, 1);
+}
+
+TEST(RenderTest, UnusedUniformIsAWarningNotAnError) {
+  auto request = fullscreen_request("c = vec4(1.0);");
+  request.uniforms = {{"uShininess", {32.0}}};
+  auto r = render_frames(request, bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  EXPECT_TRUE(has_warning(r->report, "uShininess"));
+}
+
+TEST(RenderTest, DefaultDeclaredWithAnotherTypeStaysZeroAsInTheBrowser) {
+  auto r = render_frames(fullscreen_request("c = vec4(uAmbientColor + 0.5, 1.0);", "uniform vec3 uAmbientColor;"), bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  EXPECT_NEAR(pixel(r->frames[0], 0, 0)[0], 128, 1);
+  EXPECT_TRUE(has_warning(r->report, "uAmbientColor"));
+}
+
+TEST(RenderTest, AlphaBelowOneIsSavedAsCanvasToBlobDoes) {
+  auto r = render_frames(fullscreen_request("c = vec4(0.4, 0.2, 0.1, 0.5);"), bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  EXPECT_FALSE(r->opaque[0]);
+  EXPECT_EQ(pixel(r->frames[0], 3, 3), (std::array<int, 4>{203, 102, 52, 128}));
+  r = render_frames(fullscreen_request("c = vec4(0.8, 0.6, 0.4, 0.5);"), bunny());
+  ASSERT_TRUE(r);
+  EXPECT_EQ(pixel(r->frames[0], 3, 3), (std::array<int, 4>{255, 255, 203, 128}));
+}
+
+TEST(RenderTest, NanAndInfinityEndUpAsTheBrowserStoresThem) {
+  const std::string decl = "uniform float uZero;";
+  auto all_nan = render_frames(fullscreen_request("c = vec4(uZero / uZero);", decl), bunny());
+  ASSERT_TRUE(all_nan) << all_nan.error().format();
+  EXPECT_EQ(pixel(all_nan->frames[0], 2, 2), (std::array<int, 4>{0, 0, 0, 0}));
+  auto mixed = render_frames(fullscreen_request("c = vec4(uZero / uZero, 1.0 / uZero, -1.0 / uZero, 1.0);", decl), bunny());
+  ASSERT_TRUE(mixed);
+  EXPECT_EQ(pixel(mixed->frames[0], 2, 2), (std::array<int, 4>{0, 255, 0, 255}));
+}
+
+TEST(RenderTest, FloatTargetKeepsValuesBeyondOneAndNan) {
+  auto request = fullscreen_request("c = vec4(2.5, 0.25, uZero / uZero, 1.0);", "uniform float uZero;");
+  request.pixel_type = image::PixelType::f32;
+  auto r = render_frames(request, bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  float px[4];
+  std::memcpy(px, r->frames[0].row(1), sizeof px);
+  EXPECT_EQ(px[0], 2.5f);
+  EXPECT_EQ(px[1], 0.25f);
+  EXPECT_TRUE(std::isnan(px[2]));
+  auto exr = image::encode_exr(r->frames[0]);
+  ASSERT_TRUE(exr) << exr.error().format();
+  const auto decoded = testkit::decode(*exr);
+  std::memcpy(px, decoded.row(1), sizeof px);
+  EXPECT_EQ(px[0], 2.5f);
+  EXPECT_TRUE(std::isnan(px[2]));
+}
+
+TEST(RenderTest, FlatVaryingsTakeTheLastCornerOfEachTriangle) {
+  // One triangle whose three corners carry different normals; flat shading must show the third.
+  scene::Mesh tri;
+  tri.positions = {{-1, 0, 0}, {1, 0, 0}, {0, 2, 0}};
+  tri.normals = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  auto request = testkit::preset_request("starter");
+  request.frames = 1;
+  request.msaa = 0;
+  auto r = render_frames(request, tri);
+  ASSERT_TRUE(r) << r.error().format();
+  // Placed at (0, -2, -7.5), the triangle spans rows ~240 to ~395 of the frame.
+  const auto p = pixel(r->frames[0], 320, 330);
+  EXPECT_EQ(p, (std::array<int, 4>{0, 0, 255, 255}));
+}
+
+TEST(RenderTest, MultisamplingIsOnByDefaultAndCanBeTurnedOff) {
+  auto request = testkit::preset_request("smooth");
+  request.frames = 1;
+  auto with = render_frames(request, bunny());
+  ASSERT_TRUE(with) << with.error().format();
+  EXPECT_EQ(with->report.samples, 4);
+  request.msaa = 0;
+  auto without = render_frames(request, bunny());
+  ASSERT_TRUE(without);
+  EXPECT_EQ(without->report.samples, 0);
+  EXPECT_NE(with->frames[0].bytes, without->frames[0].bytes);  // edges differ
+
+  request.msaa = 64;
+  auto too_many = render_frames(request, bunny());
+  ASSERT_FALSE(too_many);
+  EXPECT_EQ(too_many.error().code, ErrorCode::msaa_unsupported);
+}
+
+TEST(RenderTest, FrameKIsRotatedByExactlyKTimesTheStep) {
+  // A full turn later the mesh is where it started: frame 18 of 20-degree steps equals frame 0.
+  auto request = testkit::preset_request("specular");
+  request.width = 160;
+  request.height = 120;
+  request.frames = 19;
+  auto r = render_frames(request, bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  EXPECT_EQ(r->frames[18].bytes, r->frames[0].bytes);
+  EXPECT_NE(r->frames[9].bytes, r->frames[0].bytes);
+}
+
+TEST(RenderTest, BuiltinMeshesStayInViewAtEveryAngle) {
+  for (const std::string name : {"bunny", "teapot"}) {
+    auto request = testkit::preset_request("smooth");
+    request.width = 160;
+    request.height = 120;
+    request.frames = 36;
+    request.degrees_per_frame = 10;
+    auto r = render_frames(request, testkit::builtin(name));
+    ASSERT_TRUE(r) << r.error().format();
+    for (size_t k = 0; k < r->frames.size(); ++k) {
+      const auto& f = r->frames[k];
+      bool lit = false;
+      for (int x = 0; x < f.width; ++x)
+        for (int y : {0, f.height - 1}) ASSERT_EQ(pixel(f, x, y)[0] + pixel(f, x, y)[1] + pixel(f, x, y)[2], 0) << name << " frame " << k;
+      for (int y = 0; y < f.height; ++y) {
+        for (int x : {0, f.width - 1}) ASSERT_EQ(pixel(f, x, y)[0] + pixel(f, x, y)[1] + pixel(f, x, y)[2], 0) << name << " frame " << k;
+        for (int x = 0; x < f.width && !lit; ++x) lit = pixel(f, x, y)[0] > 0;
+      }
+      EXPECT_TRUE(lit) << name << " frame " << k << " is empty";
+    }
+  }
+}
+
+TEST(RenderTest, InvalidRequestsAreRejectedBeforeRendering) {
+  auto request = testkit::preset_request("smooth");
+  request.width = 5000;
+  EXPECT_EQ(render_frames(request, bunny()).error().code, ErrorCode::invalid_argument);
+  request = testkit::preset_request("smooth");
+  request.frames = 0;
+  EXPECT_EQ(render_frames(request, bunny()).error().code, ErrorCode::invalid_argument);
+  request = testkit::preset_request("smooth");
+  request.degrees_per_frame = std::nan("");
+  EXPECT_EQ(render_frames(request, bunny()).error().code, ErrorCode::invalid_argument);
+}
+
+TEST(RenderTest, CompileReportsActiveAttributesAndUniforms) {
+  const auto p = testkit::preset_request("specular");
+  auto report = testkit::shared_renderer().compile(p.vertex, p.fragment);
+  ASSERT_TRUE(report) << report.error().format();
+  std::vector<std::string> names;
+  for (const auto& u : report->uniforms) names.push_back(u.name + ":" + u.type);
+  EXPECT_NE(std::find(names.begin(), names.end(), "uSpecularColor:vec4"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "uLightPosition:vec3"), names.end());
+  ASSERT_EQ(report->attributes.size(), 2u);
+  EXPECT_EQ(report->attributes[0].name, "aVertexNormal");
+}
+
+TEST(RenderTest, AttributesThePageDoesNotFeedAreWarnedAbout) {
+  auto request = testkit::preset_request("smooth");
+  request.vertex.text = "#version 300 es\nin vec4 aVertexPosition;\nin vec2 aTexCoord;\nout vec4 vNormal;\n"
+                        "uniform mat4 uWorldToClipSpaceMatrix;\nuniform mat4 uMeshToWorldMatrix;\n"
+                        "void main() { vNormal = vec4(aTexCoord, 1.0, 0.0); gl_Position = uWorldToClipSpaceMatrix * "
+                        "uMeshToWorldMatrix * aVertexPosition; }\n";
+  request.frames = 1;
+  auto r = render_frames(request, bunny());
+  ASSERT_TRUE(r) << r.error().format();
+  EXPECT_TRUE(has_warning(r->report, "aTexCoord"));
+}

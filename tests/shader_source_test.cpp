@@ -1,0 +1,126 @@
+#include <gtest/gtest.h>
+
+#include "shader/shader_source.h"
+
+using namespace shadelab;
+using shader::Stage;
+
+namespace {
+Expected<shader::UnwrappedSource> unwrap(const std::string& text, Stage stage = Stage::fragment) {
+  return shader::unwrap({"f.js", text}, stage);
+}
+constexpr const char* kBody = "#version 300 es\nprecision highp float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+}  // namespace
+
+TEST(ShaderSourceTest, RawGlslPassesThroughWithIdentityLines) {
+  auto s = unwrap(kBody);
+  ASSERT_TRUE(s) << s.error().format();
+  EXPECT_EQ(s->glsl, kBody);
+  EXPECT_FALSE(s->from_js_module);
+  EXPECT_EQ(s->locate(3, 5).file_line, 3);
+  EXPECT_EQ(s->locate(3, 5).file_column, 5);
+}
+
+TEST(ShaderSourceTest, BacktickModuleUnwrapsAndMapsLinesToTheFile) {
+  const std::string file = "// phong_frag.js\nexport default `" + std::string(kBody) + "`;\n";
+  auto s = unwrap(file);
+  ASSERT_TRUE(s) << s.error().format();
+  EXPECT_TRUE(s->from_js_module);
+  EXPECT_EQ(s->glsl, kBody);
+  // GLSL line 1 starts after the back-tick on file line 2, column 17.
+  EXPECT_EQ(s->locate(1, 1).file_line, 2);
+  EXPECT_EQ(s->locate(1, 1).file_column, 17);
+  EXPECT_EQ(s->locate(4, 3).file_line, 5);
+  EXPECT_EQ(s->locate(4, 3).file_column, 3);
+}
+
+TEST(ShaderSourceTest, CrlfAndBomAreNormalised) {
+  const std::string file = "\xEF\xBB\xBF" "export default `#version 300 es\r\nprecision highp float;\r\nout vec4 c;\r\nvoid main() { c = vec4(1.0); }\r\n`\r\n";
+  auto s = unwrap(file);
+  ASSERT_TRUE(s) << s.error().format();
+  EXPECT_EQ(s->glsl, kBody);
+}
+
+TEST(ShaderSourceTest, QuotedStringsWithEscapesUnwrap) {
+  auto s = unwrap("export default '#version 300 es\\nprecision highp float;\\nout vec4 c;\\nvoid main() { c = vec4(1.0); }\\n';");
+  ASSERT_TRUE(s) << s.error().format();
+  EXPECT_EQ(s->glsl, kBody);
+  EXPECT_TRUE(s->warnings.empty());
+}
+
+TEST(ShaderSourceTest, QuotedStringAcrossLinesIsAcceptedWithAWarning) {
+  // The handout's own listing does this; browsers reject it, so the student hears about it.
+  auto s = unwrap(std::string("export default '") + kBody + "'\n");
+  ASSERT_TRUE(s) << s.error().format();
+  EXPECT_EQ(s->glsl, kBody);
+  ASSERT_EQ(s->warnings.size(), 1u);
+  EXPECT_NE(s->warnings[0].find("back-ticks"), std::string::npos);
+}
+
+TEST(ShaderSourceTest, TemplateEscapesAndLineContinuationsFollowJavaScript) {
+  auto s = unwrap("export default `#version 300 es\n// a \\` tick and \\\\ slash\n#define A 1 \\\n+ 2\n`");
+  ASSERT_TRUE(s) << s.error().format();
+  EXPECT_EQ(s->glsl, "#version 300 es\n// a ` tick and \\ slash\n#define A 1 + 2\n");
+}
+
+TEST(ShaderSourceTest, InterpolationIsAnErrorAtItsLine) {
+  auto s = unwrap("export default `#version 300 es\nfloat x = ${value};\n`");
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().code, ErrorCode::shader_source_invalid);
+  ASSERT_EQ(s.error().diagnostics.size(), 1u);
+  EXPECT_EQ(s.error().diagnostics[0].line, 2);
+  EXPECT_EQ(s.error().diagnostics[0].column, 11);
+}
+
+TEST(ShaderSourceTest, UnclosedStringPointsAtItsOpening) {
+  auto s = unwrap("\nexport default `#version 300 es\nvoid main() {}\n");
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().diagnostics[0].line, 2);
+  EXPECT_EQ(s.error().diagnostics[0].column, 16);
+}
+
+TEST(ShaderSourceTest, TextAfterTheStringIsAnError) {
+  auto s = unwrap("export default `" + std::string(kBody) + "`;\nconsole.log('hi');\n");
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().code, ErrorCode::shader_source_invalid);
+  EXPECT_EQ(s.error().diagnostics[0].line, 6);  // the back-tick closes on line 5
+}
+
+TEST(ShaderSourceTest, MissingVersionIsAnError) {
+  auto s = unwrap("precision highp float;\nvoid main() {}\n");
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().code, ErrorCode::missing_version);
+}
+
+TEST(ShaderSourceTest, VersionNotOnTheFirstLineIsAnErrorAtThatLine) {
+  // A newline straight after the back-tick: the mistake WebGL2 reports as "must occur on the first line".
+  auto s = unwrap("export default `\n#version 300 es\nvoid main() {}\n`");
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().code, ErrorCode::missing_version);
+  EXPECT_EQ(s.error().diagnostics[0].line, 2);
+  EXPECT_NE(s.error().message.find("first line"), std::string::npos);
+}
+
+TEST(ShaderSourceTest, WrongVersionIsAnError) {
+  auto s = unwrap("#version 100\nvoid main() {}\n");
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().code, ErrorCode::missing_version);
+}
+
+TEST(ShaderSourceTest, EmptyNulInvalidUtf8AndOversizedSourcesAreErrors) {
+  EXPECT_EQ(unwrap("").error().code, ErrorCode::shader_source_invalid);
+  EXPECT_EQ(unwrap("  \n\t\n").error().code, ErrorCode::shader_source_invalid);
+  EXPECT_EQ(unwrap(std::string("#version 300 es\nvoid main() {}\0", 32)).error().code, ErrorCode::shader_source_invalid);
+  auto bad_utf8 = unwrap("#version 300 es\n// caf\xC3\n");
+  ASSERT_FALSE(bad_utf8);
+  EXPECT_EQ(bad_utf8.error().diagnostics[0].line, 2);
+  const std::string huge = "#version 300 es\n" + std::string(1 << 20, ' ');
+  auto big = unwrap(huge);
+  ASSERT_FALSE(big);
+  EXPECT_NE(big.error().message.find("limit"), std::string::npos);
+}
+
+TEST(ShaderSourceTest, Utf8InCommentsIsFine) {
+  auto s = unwrap("#version 300 es\n// café — ünïcode\nvoid main() {}\n");
+  EXPECT_TRUE(s) << s.error().format();
+}

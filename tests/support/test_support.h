@@ -1,0 +1,33 @@
+#pragma once
+// Shared by the tests: one real EGL renderer per test binary (llvmpipe where there is no GPU),
+// rendering helpers and PNG decoding through OpenImageIO.
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "render/renderer.h"
+
+namespace shadelab::testkit {
+
+render::Renderer& shared_renderer();
+
+struct Rendered {
+  std::vector<image::Image> frames;
+  std::vector<bool> opaque;
+  render::RenderReport report;
+};
+// Renders `request` on `mesh`; fails the test (and returns no frames) on an error.
+Expected<Rendered> render_frames(const render::RenderRequest& request, const scene::Mesh& mesh);
+
+render::RenderRequest preset_request(const std::string& preset);
+const scene::Mesh& builtin(const std::string& name);
+
+// A request whose vertex shader covers the viewport with one triangle and whose fragment shader
+// is `fragment_body` inside main() writing `out vec4 c`.
+render::RenderRequest fullscreen_request(const std::string& fragment_body, const std::string& declarations = "");
+
+// PNG/EXR bytes -> RGBA image, alpha as stored (no premultiplication on read).
+image::Image decode(const std::vector<std::uint8_t>& bytes);
+std::array<int, 4> pixel(const image::Image& img, int x, int y);
+
+}  // namespace shadelab::testkit

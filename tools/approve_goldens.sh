@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Re-approves the golden images in tests/golden/ from the current renderer. Deliberate: look at
+# the new images (git diff shows which changed) before committing them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/build.sh
+SHADELAB_APPROVE_GOLDENS=1 build/tests/golden_test
+git status --short tests/golden

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Quick start, command 2: set up, build, and run every test (CTest; real EGL on llvmpipe where
+# there is no GPU). .ci/run calls this and nothing else.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/setup.sh
+tools/build.sh -DSHADELAB_WERROR=ON
+cd build
+ctest --output-on-failure -j "$(nproc)" --timeout 300
