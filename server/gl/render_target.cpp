@@ -81,15 +81,15 @@ void RenderTarget::begin_frame() const {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
 }
 
+void RenderTarget::resolve() const {
+  if (!resolve_fbo_) return;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.get());
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
 void RenderTarget::read(void* dst) const {
-  GLuint source = draw_fbo_.get();
-  if (resolve_fbo_) {
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_.get());
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.get());
-    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    source = resolve_fbo_.get();
-  }
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_.get() : draw_fbo_.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, dst);
 }

@@ -22,7 +22,11 @@ class RenderTarget {
   // Binds the target and sets the homework's frame state: viewport, clear colour (0,0,0,1),
   // clear depth 1, depth test LEQUAL, no blending, no culling; then clears.
   void begin_frame() const;
-  // Resolves the samples and reads the frame into `dst` (bytes_per_frame() bytes), bottom row first.
+  // Queues the multisample resolve (no-op when single-sampled). Returns at once: the driver works
+  // on it while the caller submits the next frame to another target.
+  void resolve() const;
+  // Reads the resolved frame into `dst` (bytes_per_frame() bytes), bottom row first; waits only
+  // for the commands this target's frame depends on.
   void read(void* dst) const;
 
  private:

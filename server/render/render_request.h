@@ -36,9 +36,9 @@ Status validate(const RenderRequest& request, const RenderLimits& limits);
 struct PhaseTimes {
   double compile_ms = 0;       // unwrap + compile + link + reflect (0 when the program was cached)
   double upload_ms = 0;        // mesh to GPU (0 when cached)
-  double first_frame_ms = 0;   // draw + finish of frame 0 (llvmpipe JIT-compiles the shaders here)
-  double render_ms = 0;        // draw + finish of all frames, first included
-  double readback_ms = 0;      // resolve + glReadPixels + the browser's alpha rule
+  double first_frame_ms = 0;   // submitting frame 0 (llvmpipe JIT-compiles the shaders here)
+  double render_ms = 0;        // the frame loop less readback and sink: submission and waiting for the driver
+  double readback_ms = 0;      // glReadPixels + the browser's alpha rule (overlaps the next frame's raster)
   double sink_ms = 0;          // time the frame consumer held the render thread
   double total_ms = 0;
 };
