@@ -10,7 +10,7 @@ packages=(
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   # libraries
   libglm-dev libopenimageio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
-  libcpp-httplib-dev libzip-dev
+  libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
 )

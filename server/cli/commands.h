@@ -11,5 +11,7 @@ using Command = std::function<int()>;
 
 Command add_render_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
+Command add_serve_command(CLI::App& app);
+Command add_worker_command(CLI::App& app);
 
 }  // namespace shadelab::cli

@@ -28,6 +28,16 @@ constexpr CodeInfo kCodes[] = {
     {ErrorCode::egl_unavailable, "egl_unavailable", 503},
     {ErrorCode::gl_error, "gl_error", 500},
     {ErrorCode::io_error, "io_error", 500},
+    {ErrorCode::queue_full, "queue_full", 503},
+    {ErrorCode::compile_timeout, "compile_timeout", 422},
+    {ErrorCode::render_timeout, "render_timeout", 422},
+    {ErrorCode::compile_crashed, "compile_crashed", 422},
+    {ErrorCode::render_crashed, "render_crashed", 422},
+    {ErrorCode::out_of_memory, "out_of_memory", 422},
+    {ErrorCode::not_ready, "not_ready", 503},
+    {ErrorCode::payload_too_large, "payload_too_large", 413},
+    {ErrorCode::not_found, "not_found", 404},
+    {ErrorCode::worker_protocol, "worker_protocol", 500},
 };
 
 const CodeInfo& info(ErrorCode code) {

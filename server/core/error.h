@@ -25,6 +25,17 @@ enum class ErrorCode {
   egl_unavailable,
   gl_error,
   io_error,
+  // What the HTTP process reports about a worker (server/worker/pool.cpp).
+  queue_full,              // 503 with Retry-After
+  compile_timeout,
+  render_timeout,
+  compile_crashed,
+  render_crashed,
+  out_of_memory,
+  not_ready,               // no worker could be started
+  payload_too_large,
+  not_found,
+  worker_protocol,         // a worker sent something we cannot read (a bug)
 };
 
 std::string_view to_string(ErrorCode code);

@@ -1,0 +1,98 @@
+#include <signal.h>
+
+#include <iostream>
+#include <thread>
+
+#include "cli/commands.h"
+#include "cli/environment.h"
+#include "http/service.h"
+#include "worker/worker_main.h"
+
+namespace shadelab::cli {
+
+Command add_serve_command(CLI::App& app) {
+  auto config = std::make_shared<http::ServiceConfig>();
+  config->web_root = SHADELAB_DEFAULT_WEB_ROOT;
+  config->pool.force_software = software_from_environment();
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  config->pool.workers = static_cast<int>(std::max(1u, cores));
+  auto compile_ms = std::make_shared<long>(config->pool.compile_deadline.count());
+  auto render_ms = std::make_shared<long>(config->pool.render_deadline.count());
+  auto memory_mb = std::make_shared<size_t>(config->pool.memory_limit_bytes >> 20);
+  auto cache_mb = std::make_shared<size_t>(config->cache_bytes >> 20);
+  auto body_mb = std::make_shared<size_t>(config->limits.max_body_bytes >> 20);
+  auto lp_threads = std::make_shared<int>(0);
+
+  auto* cmd = app.add_subcommand("serve", "Serve the render API and the web page over HTTP");
+  cmd->add_option("--host", config->host, "Address to listen on")->envname("SHADELAB_HOST")->capture_default_str();
+  cmd->add_option("--port", config->port, "Port (0: any free port)")->envname("SHADELAB_PORT")->capture_default_str();
+  cmd->add_option("--workers", config->pool.workers, "Render worker processes (default: one per core)")
+      ->envname("SHADELAB_WORKERS")->capture_default_str();
+  cmd->add_option("--lp-threads", *lp_threads, "LP_NUM_THREADS per worker (default: cores / workers, at least 1)")
+      ->envname("SHADELAB_LP_THREADS");
+  cmd->add_option("--queue", config->pool.max_queue, "Jobs that may wait for a worker before 503")
+      ->envname("SHADELAB_QUEUE")->capture_default_str();
+  cmd->add_option("--compile-timeout-ms", *compile_ms, "Deadline for compiling and linking a shader pair")
+      ->envname("SHADELAB_COMPILE_TIMEOUT_MS")->capture_default_str();
+  cmd->add_option("--render-timeout-ms", *render_ms, "Deadline for rendering and encoding a job")
+      ->envname("SHADELAB_RENDER_TIMEOUT_MS")->capture_default_str();
+  cmd->add_option("--memory-mb", *memory_mb, "Memory cap per worker (cgroup v2 memory.max, else resident-set watchdog)")
+      ->envname("SHADELAB_MEMORY_MB")->capture_default_str();
+  cmd->add_option("--cpu-limit-s", config->pool.cpu_limit_seconds, "RLIMIT_CPU per worker process (a backstop)")
+      ->envname("SHADELAB_CPU_LIMIT_S")->capture_default_str();
+  cmd->add_option("--cache-mb", *cache_mb, "Response cache size")->envname("SHADELAB_CACHE_MB")->capture_default_str();
+  cmd->add_option("--max-body-mb", *body_mb, "Largest request body")->envname("SHADELAB_MAX_BODY_MB")->capture_default_str();
+  cmd->add_option("--max-size", config->limits.render.max_width, "Largest frame width and height")
+      ->envname("SHADELAB_MAX_SIZE")->capture_default_str();
+  cmd->add_option("--max-frames", config->limits.render.max_frames, "Most frames per job")
+      ->envname("SHADELAB_MAX_FRAMES")->capture_default_str();
+  cmd->add_option("--http-threads", config->http_threads, "HTTP handler threads")->envname("SHADELAB_HTTP_THREADS")->capture_default_str();
+  cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
+  cmd->add_flag("--software", config->pool.force_software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
+
+  return [=] {
+    config->pool.compile_deadline = std::chrono::milliseconds(*compile_ms);
+    config->pool.render_deadline = std::chrono::milliseconds(*render_ms);
+    config->pool.memory_limit_bytes = *memory_mb << 20;
+    config->cache_bytes = *cache_mb << 20;
+    config->limits.max_body_bytes = *body_mb << 20;
+    config->limits.max_mesh_bytes = config->limits.max_body_bytes;
+    config->limits.render.max_height = config->limits.render.max_width;
+    config->pool.llvmpipe_threads = *lp_threads > 0 ? *lp_threads
+                                                    : std::max(1, static_cast<int>(cores) / std::max(1, config->pool.workers));
+    // SIGINT/SIGTERM are taken by a thread that stops the server cleanly (workers reaped).
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGINT);
+    sigaddset(&stop_signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+    http::Service service(*config);
+    auto port = service.start();
+    if (!port) {
+      std::cerr << "error: " << port.error().message << "\n";
+      return 1;
+    }
+    std::cerr << "shadelab: serving on http://" << config->host << ":" << *port << " with " << config->pool.workers
+              << " render workers\n";
+    std::thread([&service, stop_signals] {
+      int sig = 0;
+      sigwait(&stop_signals, &sig);
+      service.stop();
+    }).detach();
+    service.wait();
+    return 0;
+  };
+}
+
+Command add_worker_command(CLI::App& app) {
+  auto fd = std::make_shared<int>(3);
+  auto software = std::make_shared<bool>(false);
+  auto* cmd = app.add_subcommand("worker", "");  // internal: started by `serve`, not listed in --help
+  cmd->group("");
+  cmd->add_option("--fd", *fd, "socket to the server");
+  cmd->add_flag("--software", *software);
+  return [fd, software] { return worker::run_worker(*fd, {.force_software = *software}); };
+}
+
+}  // namespace shadelab::cli

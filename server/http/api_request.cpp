@@ -1,0 +1,205 @@
+#include "http/api_request.h"
+
+#include <cmath>
+#include <regex>
+#include <set>
+
+#include "render/presets.h"
+
+namespace shadelab::http {
+
+using nlohmann::json;
+
+namespace {
+
+Error bad(std::string message) { return make_error(ErrorCode::invalid_argument, std::move(message)); }
+
+// A string from a form: JSON literal where it is one ("640", "true", "[1,2]"), else the string.
+json form_value(const std::string& text) {
+  json parsed = json::parse(text, nullptr, false);
+  if (!parsed.is_discarded() && !parsed.is_string()) return parsed;
+  return text;
+}
+
+Expected<int> integer(const json& fields, const char* name, int fallback) {
+  if (!fields.contains(name)) return fallback;
+  const json& v = fields[name];
+  if (!v.is_number() || (v.is_number_float() && std::trunc(v.get<double>()) != v.get<double>()))
+    return bad(std::string("'") + name + "' must be a whole number; got " + v.dump());
+  const double d = v.get<double>();
+  if (d < -1e9 || d > 1e9) return bad(std::string("'") + name + "' is out of range");
+  return static_cast<int>(d);
+}
+
+Expected<double> number(const json& fields, const char* name, double fallback) {
+  if (!fields.contains(name)) return fallback;
+  if (!fields[name].is_number()) return bad(std::string("'") + name + "' must be a number; got " + fields[name].dump());
+  return fields[name].get<double>();
+}
+
+Expected<std::string> text(const json& fields, const char* name, const std::string& fallback) {
+  if (!fields.contains(name)) return fallback;
+  if (!fields[name].is_string()) return bad(std::string("'") + name + "' must be a string; got " + fields[name].dump());
+  return fields[name].get<std::string>();
+}
+
+Expected<std::vector<render::UniformSetting>> uniforms(const json& fields) {
+  std::vector<render::UniformSetting> out;
+  if (!fields.contains("uniforms")) return out;
+  const json& u = fields["uniforms"];
+  if (!u.is_object()) return bad("'uniforms' must be an object of GLSL name -> number, boolean or array of numbers");
+  for (const auto& [name, value] : u.items()) {
+    render::UniformSetting s{name, {}};
+    const auto add = [&](const json& v) -> Status {
+      if (v.is_boolean()) s.values.push_back(v.get<bool>() ? 1.0 : 0.0);
+      else if (v.is_number()) s.values.push_back(v.get<double>());
+      else return bad("uniform '" + name + "' must be numbers or booleans; got " + v.dump());
+      return Ok{};
+    };
+    if (value.is_array()) {
+      for (const auto& v : value)
+        if (auto st = add(v); !st) return st.take_error();
+    } else if (auto st = add(value); !st) {
+      return st.take_error();
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+const std::set<std::string> kKnownFields = {"vertex",  "fragment", "vertexName", "fragmentName", "preset",
+                                            "mesh",    "fit",      "width",      "height",       "frames",
+                                            "degreesPerFrame", "msaa", "uniforms", "prefix",     "output",
+                                            "format"};
+
+}  // namespace
+
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t h) {
+  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+std::string mesh_id(const std::string& bytes) {
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(bytes)));
+  return std::string("m") + hex;
+}
+
+Expected<RawRequest> from_json_body(const std::string& body) {
+  RawRequest raw;
+  raw.fields = json::parse(body, nullptr, false);
+  if (raw.fields.is_discarded()) return bad("the request body is not valid JSON");
+  if (!raw.fields.is_object()) return bad("the request body must be a JSON object");
+  return raw;
+}
+
+RawRequest from_form(const std::multimap<std::string, std::string>& fields, std::map<std::string, UploadedFile> files) {
+  RawRequest raw;
+  for (const auto& [k, v] : fields) {
+    // Shader sources and names stay strings whatever they look like.
+    const bool verbatim = k == "vertex" || k == "fragment" || k == "preset" || k == "mesh" || k == "prefix" ||
+                          k == "vertexName" || k == "fragmentName" || k == "output" || k == "format";
+    raw.fields[k] = verbatim ? json(v) : form_value(v);
+  }
+  raw.files = std::move(files);
+  return raw;
+}
+
+Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits) {
+  ParsedJob out;
+  auto& job = out.job;
+  job.kind = kind;
+  const json& f = raw.fields;
+  for (const auto& [k, v] : f.items())
+    if (!kKnownFields.count(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
+
+  // Shaders: uploaded files, inline sources, or a preset.
+  auto preset = text(f, "preset", "");
+  if (!preset) return preset.take_error();
+  const auto source = [&](const char* field, const char* name_field) -> Expected<shader::ShaderFile> {
+    if (auto it = raw.files.find(field); it != raw.files.end())
+      return shader::ShaderFile{it->second.filename.empty() ? std::string(field) : it->second.filename, it->second.content};
+    auto t = text(f, field, "");
+    if (!t) return t.take_error();
+    auto n = text(f, name_field, std::string(field) + ".glsl");
+    if (!n) return n.take_error();
+    return shader::ShaderFile{*n, *t};
+  };
+  auto vertex = source("vertex", "vertexName");
+  if (!vertex) return vertex.take_error();
+  auto fragment = source("fragment", "fragmentName");
+  if (!fragment) return fragment.take_error();
+  const bool has_sources = !vertex->text.empty() || !fragment->text.empty() || raw.files.count("vertex") ||
+                           raw.files.count("fragment") || f.contains("vertex") || f.contains("fragment");
+  if (!preset->empty()) {
+    if (has_sources) return bad("give either 'preset' or 'vertex' and 'fragment', not both");
+    const auto p = render::find_preset(*preset);
+    if (!p) return make_error(ErrorCode::unknown_preset, "no preset '" + *preset + "' (presets: starter, smooth, gouraud, diffuse, specular)");
+    job.request.vertex = p->vertex;
+    job.request.fragment = p->fragment;
+    job.prefix = *preset;
+  } else if (kind != worker::JobKind::mesh_check) {
+    if (!has_sources) return bad("give 'vertex' and 'fragment' shader sources, or a 'preset'");
+    job.request.vertex = std::move(*vertex);
+    job.request.fragment = std::move(*fragment);
+    for (const auto* s : {&job.request.vertex, &job.request.fragment})
+      if (s->text.size() > limits.render.max_source_bytes)
+        return make_error(ErrorCode::payload_too_large, "shader '" + s->name + "' is " + std::to_string(s->text.size()) +
+                                                            " bytes; the limit is " + std::to_string(limits.render.max_source_bytes));
+  }
+
+  auto& r = job.request;
+  auto width = integer(f, "width", r.width);
+  auto height = integer(f, "height", r.height);
+  auto frames = integer(f, "frames", r.frames);
+  auto msaa = integer(f, "msaa", r.msaa);
+  auto degrees = number(f, "degreesPerFrame", r.degrees_per_frame);
+  for (const Error* e : {width ? nullptr : &width.error(), height ? nullptr : &height.error(),
+                         frames ? nullptr : &frames.error(), msaa ? nullptr : &msaa.error(), degrees ? nullptr : &degrees.error()})
+    if (e) return *e;
+  r.width = *width;
+  r.height = *height;
+  r.frames = *frames;
+  r.msaa = *msaa;
+  r.degrees_per_frame = *degrees;
+  auto u = uniforms(f);
+  if (!u) return u.take_error();
+  r.uniforms = std::move(*u);
+
+  if (f.contains("fit") && !f["fit"].is_boolean()) return bad("'fit' must be true or false");
+  job.fit = f.value("fit", false);
+  auto prefix = text(f, "prefix", job.prefix);
+  if (!prefix) return prefix.take_error();
+  static const std::regex safe_prefix("[A-Za-z0-9_-]{1,64}");
+  if (!std::regex_match(*prefix, safe_prefix)) return bad("'prefix' may hold only letters, digits, '_' and '-' (at most 64)");
+  job.prefix = *prefix;
+  auto output = text(f, "output", "grid");
+  if (!output) return output.take_error();
+  if (*output != "grid" && *output != "frames" && *output != "json") return bad("'output' must be grid, frames or json");
+  job.output = *output == "grid" ? worker::Output::grid : *output == "frames" ? worker::Output::frames : worker::Output::json;
+  auto format = text(f, "format", "png");
+  if (!format) return format.take_error();
+  if (*format != "png" && *format != "exr") return bad("'format' must be png or exr");
+  job.format = *format == "png" ? worker::Format::png : worker::Format::exr;
+  r.pixel_type = job.format == worker::Format::png ? image::PixelType::u8 : image::PixelType::f32;
+
+  // Mesh: a file in this request, or a name (built-in or uploaded id, resolved by the caller).
+  if (auto it = raw.files.find("mesh"); it != raw.files.end()) {
+    if (it->second.content.size() > limits.max_mesh_bytes)
+      return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
+    out.mesh_upload = it->second;
+    job.mesh = mesh_id(it->second.content);
+    const auto dot = it->second.filename.find_last_of('.');
+    job.mesh_format = dot == std::string::npos ? "obj" : it->second.filename.substr(dot + 1);
+  } else {
+    auto mesh = text(f, "mesh", "bunny");
+    if (!mesh) return mesh.take_error();
+    job.mesh = *mesh;
+  }
+
+  if (kind != worker::JobKind::mesh_check)
+    if (auto valid = render::validate(r, limits.render); !valid) return valid.take_error();
+  return out;
+}
+
+}  // namespace shadelab::http

@@ -1,0 +1,43 @@
+#pragma once
+// Turns what a client sent (a JSON body, multipart/form-data, or a GET query) into a validated
+// worker job. Every field is type-checked here; nothing invalid reaches a worker.
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/expected.h"
+#include "http/limits.h"
+#include "worker/job.h"
+
+namespace shadelab::http {
+
+// A request in neutral form: field name -> JSON value, plus uploaded files.
+struct UploadedFile {
+  std::string filename;
+  std::string content;
+};
+struct RawRequest {
+  nlohmann::json fields = nlohmann::json::object();
+  std::map<std::string, UploadedFile> files;  // "vertex", "fragment", "mesh"
+};
+
+struct ParsedJob {
+  worker::Job job;
+  UploadedFile mesh_upload;  // a mesh sent with the request (content empty when none)
+  std::vector<std::string> warnings;
+};
+
+// Fields of a JSON body; a 400 for anything but an object.
+Expected<RawRequest> from_json_body(const std::string& body);
+// Multipart text fields arrive as strings: numbers, booleans and the uniforms object are parsed.
+RawRequest from_form(const std::multimap<std::string, std::string>& fields, std::map<std::string, UploadedFile> files);
+
+Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits);
+
+// A mesh id: content-addressed ("m" + 16 hex digits of a 64-bit FNV-1a of the bytes).
+std::string mesh_id(const std::string& bytes);
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t seed = 1469598103934665603ull);
+
+}  // namespace shadelab::http

@@ -1,0 +1,16 @@
+#pragma once
+// What the HTTP edge accepts. Defaults are sized for a 2-core machine serving a class.
+#include <cstddef>
+
+#include "render/render_request.h"
+
+namespace shadelab::http {
+
+struct Limits {
+  render::RenderLimits render;          // width, height <= 2048; frames <= 36; 64 KiB source per stage
+  size_t max_body_bytes = 16u << 20;    // 16 MiB
+  size_t max_mesh_bytes = 16u << 20;
+  size_t max_stored_meshes = 64;
+};
+
+}  // namespace shadelab::http

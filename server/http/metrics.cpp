@@ -1,0 +1,55 @@
+#include "http/metrics.h"
+
+#include <sstream>
+
+namespace shadelab::http {
+
+void Metrics::Histogram::observe(double v) {
+  for (size_t i = 0; i < kBuckets.size(); ++i)
+    if (v <= kBuckets[i]) ++counts[i];
+  ++count;
+  sum += v;
+}
+
+void Metrics::request(const std::string& route, int status, double seconds) {
+  std::lock_guard lock(mutex_);
+  ++requests_[{route, status}];
+  durations_[route].observe(seconds);
+}
+
+void Metrics::phase(const std::string& phase, double seconds) {
+  std::lock_guard lock(mutex_);
+  phases_[phase].observe(seconds);
+}
+
+std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
+  std::lock_guard lock(mutex_);
+  std::ostringstream out;
+  const auto histogram = [&](const char* name, const char* label, const std::map<std::string, Histogram>& hs) {
+    out << "# TYPE " << name << " histogram\n";
+    for (const auto& [key, h] : hs) {
+      for (size_t i = 0; i < kBuckets.size(); ++i)
+        out << name << "_bucket{" << label << "=\"" << key << "\",le=\"" << kBuckets[i] << "\"} " << h.counts[i] << "\n";
+      out << name << "_bucket{" << label << "=\"" << key << "\",le=\"+Inf\"} " << h.count << "\n";
+      out << name << "_sum{" << label << "=\"" << key << "\"} " << h.sum << "\n";
+      out << name << "_count{" << label << "=\"" << key << "\"} " << h.count << "\n";
+    }
+  };
+  out << "# TYPE shadelab_requests_total counter\n";
+  for (const auto& [key, n] : requests_)
+    out << "shadelab_requests_total{route=\"" << key.first << "\",status=\"" << key.second << "\"} " << n << "\n";
+  histogram("shadelab_request_duration_seconds", "route", durations_);
+  histogram("shadelab_phase_duration_seconds", "phase", phases_);
+  out << "# TYPE shadelab_compile_failures_total counter\nshadelab_compile_failures_total " << compile_failures_ << "\n"
+      << "# TYPE shadelab_worker_crashes_total counter\nshadelab_worker_crashes_total " << pool.crashes << "\n"
+      << "# TYPE shadelab_worker_timeouts_total counter\nshadelab_worker_timeouts_total " << pool.timeouts << "\n"
+      << "# TYPE shadelab_worker_out_of_memory_total counter\nshadelab_worker_out_of_memory_total " << pool.out_of_memory << "\n"
+      << "# TYPE shadelab_worker_restarts_total counter\nshadelab_worker_restarts_total " << pool.restarts << "\n"
+      << "# TYPE shadelab_queue_depth gauge\nshadelab_queue_depth " << pool.queue_depth << "\n"
+      << "# TYPE shadelab_cache_hits_total counter\nshadelab_cache_hits_total " << cache_hits_ << "\n"
+      << "# TYPE shadelab_cache_misses_total counter\nshadelab_cache_misses_total " << cache_misses_ << "\n"
+      << "# TYPE shadelab_ready gauge\nshadelab_ready " << (ready ? 1 : 0) << "\n";
+  return out.str();
+}
+
+}  // namespace shadelab::http

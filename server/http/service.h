@@ -1,0 +1,41 @@
+#pragma once
+// The HTTP service: routes, admission control, the response cache, and the worker pool behind it.
+// HTTP code never sees GL: rendering happens in the workers.
+#include <memory>
+#include <string>
+
+#include "core/expected.h"
+#include "http/limits.h"
+#include "worker/pool.h"
+
+namespace shadelab::http {
+
+struct ServiceConfig {
+  std::string host = "127.0.0.1";
+  int port = 8889;  // 0: any free port (tests)
+  int http_threads = 8;
+  worker::PoolConfig pool;
+  Limits limits;
+  size_t cache_bytes = 64u << 20;
+  std::string web_root;  // served at /; empty: no static files
+};
+
+class Service {
+ public:
+  explicit Service(ServiceConfig config);
+  ~Service();
+  Service(const Service&) = delete;
+  Service& operator=(const Service&) = delete;
+
+  // Binds and starts serving on a background thread; returns the bound port.
+  Expected<int> start();
+  void stop();
+  void wait();  // until stop()
+  worker::WorkerPool& pool();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace shadelab::http

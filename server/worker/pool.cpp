@@ -1,0 +1,294 @@
+#include "worker/pool.h"
+#include "worker/job.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace shadelab::worker {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
+
+// Resident memory of a process, from /proc (0 if it is gone).
+size_t resident_bytes(pid_t pid) {
+  std::ifstream statm("/proc/" + std::to_string(pid) + "/statm");
+  size_t pages_total = 0, pages_resident = 0;
+  statm >> pages_total >> pages_resident;
+  return pages_resident * static_cast<size_t>(sysconf(_SC_PAGESIZE));
+}
+
+// cgroup v2: a child cgroup of our own with memory.max, where the hierarchy is delegated to us.
+// Returns false where that is not possible (cgroup v1, no write access, no memory controller);
+// the resident-memory watchdog then enforces the limit instead.
+bool cap_with_cgroup(pid_t pid, int slot, size_t limit) {
+  namespace fs = std::filesystem;
+  std::ifstream self("/proc/self/cgroup");
+  std::string line, own;
+  while (std::getline(self, line))
+    if (line.rfind("0::", 0) == 0) own = line.substr(3);
+  const fs::path root = "/sys/fs/cgroup";
+  std::error_code ec;
+  if (own.empty() || !fs::exists(root / "cgroup.controllers", ec)) return false;
+  const fs::path dir = root / fs::path(own).relative_path() / ("shadelab-worker-" + std::to_string(slot));
+  fs::create_directories(dir, ec);
+  std::ofstream max(dir / "memory.max");
+  if (!max || !(max << limit) || !max.flush()) return false;
+  std::ofstream procs(dir / "cgroup.procs");
+  return procs && (procs << pid) && procs.flush();
+}
+
+Error worker_error(ErrorCode code, std::string message) { return make_error(code, std::move(message)); }
+}  // namespace
+
+struct WorkerPool::Slot {
+  WorkerPool& pool;
+  int index;
+  std::atomic<pid_t> pid{-1};  // read by ready() and worker_pids() on other threads
+  int fd = -1;
+  bool cgroup_capped = false;
+  std::thread thread;
+
+  Slot(WorkerPool& p, int i) : pool(p), index(i) {}
+
+  bool alive() const { return pid > 0; }
+
+  // Kills (if asked) and reaps the worker; returns its wait status.
+  int reap(bool kill_it) {
+    if (pid <= 0) return 0;
+    if (kill_it) ::kill(pid, SIGKILL);
+    int status = 0;
+    while (::waitpid(pid.load(), &status, 0) < 0 && errno == EINTR) {
+    }
+    ::close(fd);
+    pid = -1;
+    fd = -1;
+    return status;
+  }
+
+  Status spawn() {
+    int sv[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
+      return worker_error(ErrorCode::not_ready, std::string("socketpair: ") + std::strerror(errno));
+    // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
+    const PoolConfig& c = pool.config_;
+    std::vector<std::string> args = {c.executable, "worker", "--fd", "3"};
+    if (c.force_software) args.push_back("--software");
+    std::vector<std::string> env;
+    for (char** e = environ; *e; ++e)
+      if (std::strncmp(*e, "LP_NUM_THREADS=", 15) != 0) env.emplace_back(*e);
+    env.push_back("LP_NUM_THREADS=" + std::to_string(c.llvmpipe_threads));
+    std::vector<char*> argv, envp;
+    for (auto& a : args) argv.push_back(a.data());
+    for (auto& e : env) envp.push_back(e.data());
+    argv.push_back(nullptr);
+    envp.push_back(nullptr);
+    const rlimit cpu{static_cast<rlim_t>(c.cpu_limit_seconds), static_cast<rlim_t>(c.cpu_limit_seconds + 5)};
+    const rlimit files{64, 64};
+
+    const pid_t child = ::fork();
+    if (child < 0) {
+      ::close(sv[0]);
+      ::close(sv[1]);
+      return worker_error(ErrorCode::not_ready, std::string("fork: ") + std::strerror(errno));
+    }
+    if (child == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the server
+      ::dup2(sv[1], 3);                     // dup2 clears close-on-exec on fd 3
+      ::setrlimit(RLIMIT_CPU, &cpu);
+      ::setrlimit(RLIMIT_NOFILE, &files);
+      ::execve(argv[0], argv.data(), envp.data());
+      ::_exit(127);
+    }
+    ::close(sv[1]);
+    fd = sv[0];
+    pid = child;
+    cgroup_capped = cap_with_cgroup(pid, index, c.memory_limit_bytes);
+
+    Message ready;
+    const auto status = read_message(fd, ready, Clock::now() + c.start_deadline);
+    if (status != ReadStatus::ok || ready.header.value("event", "") != "ready" || !ready.header.value("ok", false)) {
+      std::string why = status == ReadStatus::timeout ? "it did not start in time" : "it exited while starting";
+      if (status == ReadStatus::ok && ready.header.contains("error")) why = ready.header["error"].value("message", why);
+      reap(true);
+      return worker_error(ErrorCode::not_ready, "a render worker could not start: " + why);
+    }
+    std::lock_guard lock(pool.mutex_);
+    pool.renderer_ = ready.header.value("renderer", "");
+    return Ok{};
+  }
+
+  // Why a worker died, as the error the client gets.
+  Error death(int status, const std::string& phase, bool over_memory) {
+    // Under a cgroup cap the kernel's OOM killer ends the worker with SIGKILL (we only send
+    // SIGKILL after reaping, so a SIGKILL we did not send is the cap's).
+    const bool cgroup_oom = cgroup_capped && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+    if (over_memory || cgroup_oom) {
+      pool.out_of_memory_++;
+      return worker_error(ErrorCode::out_of_memory, "the " + phase + " used more than the worker's memory limit of " +
+                                                         std::to_string(pool.config_.memory_limit_bytes >> 20) + " MiB");
+    }
+    pool.crashes_++;
+    std::string how = WIFSIGNALED(status) ? std::string("signal ") + ::strsignal(WTERMSIG(status))
+                                          : "exit status " + std::to_string(WEXITSTATUS(status));
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) how = "its CPU time limit";
+    return worker_error(phase == "compile" ? ErrorCode::compile_crashed : ErrorCode::render_crashed,
+                        "the graphics driver crashed while " + std::string(phase == "compile" ? "compiling" : "rendering") +
+                            " this shader (" + how + "); other requests are not affected");
+  }
+
+  JobResult run_job(const Message& job) {
+    JobResult result;
+    if (!write_message(fd, job)) {
+      result.error = death(reap(true), "compile", false);
+      return result;
+    }
+    const PoolConfig& c = pool.config_;
+    std::string phase = "compile";
+    auto deadline = Clock::now() + c.compile_deadline;
+    while (true) {
+      Message in;
+      // Short slices, so the memory watchdog runs while the worker is busy.
+      const auto slice = std::min(deadline, Clock::now() + std::chrono::milliseconds(50));
+      const auto status = read_message(fd, in, slice);
+      if (status == ReadStatus::ok) {
+        const std::string event = in.header.value("event", "");
+        if (event == "phase") {
+          phase = in.header.value("phase", "render");
+          deadline = Clock::now() + c.render_deadline;
+          continue;
+        }
+        result.ok = in.header.value("ok", false);
+        if (!result.ok) result.error = error_from_json(in.header.value("error", nlohmann::json::object()));
+        result.header = std::move(in.header);
+        result.payload = std::move(in.payload);
+        return result;
+      }
+      if (status == ReadStatus::timeout) {
+        if (!cgroup_capped && resident_bytes(pid) > c.memory_limit_bytes) {
+          result.error = death(reap(true), phase, true);
+          return result;
+        }
+        if (Clock::now() < deadline) continue;
+        reap(true);
+        pool.timeouts_++;
+        const auto limit = phase == "compile" ? c.compile_deadline : c.render_deadline;
+        result.error = worker_error(phase == "compile" ? ErrorCode::compile_timeout : ErrorCode::render_timeout,
+                                    "the shader took longer than " + std::to_string(limit.count()) + " ms to " +
+                                        (phase == "compile" ? "compile" : "render") + "; the worker was stopped");
+        return result;
+      }
+      if (status == ReadStatus::malformed) {
+        reap(true);
+        result.error = worker_error(ErrorCode::worker_protocol, "a render worker sent a malformed message");
+        return result;
+      }
+      result.error = death(reap(false), phase, false);
+      return result;
+    }
+  }
+
+  void run() {
+    while (true) {
+      if (!alive()) {
+        auto started = spawn();
+        if (!started) {
+          // Fail the next job with the reason rather than leave it queued forever.
+          Pending p;
+          if (!pool.pop(p)) return;
+          JobResult r;
+          r.error = started.error();
+          p.promise.set_value(std::move(r));
+          std::this_thread::sleep_for(std::chrono::milliseconds(200));
+          continue;
+        }
+      }
+      Pending p;
+      if (!pool.pop(p)) return;
+      const auto start = Clock::now();
+      JobResult r = run_job(p.job);
+      r.queue_ms = ms_between(p.queued, start);
+      r.worker_ms = ms_between(start, Clock::now());
+      if (!alive()) pool.restarts_++;
+      p.promise.set_value(std::move(r));
+    }
+  }
+};
+
+WorkerPool::WorkerPool(PoolConfig config) : config_(std::move(config)) {
+  for (int i = 0; i < config_.workers; ++i) slots_.push_back(std::make_unique<Slot>(*this, i));
+  for (auto& s : slots_) s->thread = std::thread([slot = s.get()] { slot->run(); });
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  changed_.notify_all();
+  for (auto& s : slots_) {
+    if (s->thread.joinable()) s->thread.join();
+    s->reap(true);
+  }
+  for (auto& p : queue_) {
+    JobResult r;
+    r.error = worker_error(ErrorCode::not_ready, "the server is shutting down");
+    p.promise.set_value(std::move(r));
+  }
+}
+
+Expected<std::future<JobResult>> WorkerPool::submit(Message job) {
+  std::lock_guard lock(mutex_);
+  if (queue_.size() >= config_.max_queue)
+    return worker_error(ErrorCode::queue_full, "all render workers are busy and " + std::to_string(queue_.size()) +
+                                                   " jobs are waiting; try again shortly");
+  Pending p{std::move(job), {}, Clock::now()};
+  auto future = p.promise.get_future();
+  queue_.push_back(std::move(p));
+  changed_.notify_one();
+  return future;
+}
+
+bool WorkerPool::pop(Pending& out) {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+  if (stopping_) return false;
+  out = std::move(queue_.front());
+  queue_.pop_front();
+  return true;
+}
+
+bool WorkerPool::ready() const {
+  std::lock_guard lock(mutex_);
+  for (const auto& s : slots_)
+    if (s->pid > 0) return true;
+  return false;
+}
+
+PoolStats WorkerPool::stats() const {
+  std::lock_guard lock(mutex_);
+  return {queue_.size(), crashes_.load(), timeouts_.load(), restarts_.load(), out_of_memory_.load()};
+}
+
+std::string WorkerPool::renderer() const {
+  std::lock_guard lock(mutex_);
+  return renderer_;
+}
+
+std::vector<int> WorkerPool::worker_pids() const {
+  std::lock_guard lock(mutex_);
+  std::vector<int> pids;
+  for (const auto& s : slots_) pids.push_back(s->pid);
+  return pids;
+}
+
+}  // namespace shadelab::worker

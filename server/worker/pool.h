@@ -1,0 +1,83 @@
+#pragma once
+// The HTTP process's side of the render workers: a bounded queue, and per worker slot a manager
+// thread that starts the worker process, hands it one job at a time, enforces the compile and
+// render deadlines and the memory cap, and kills, reaps and replaces a worker that hangs or dies.
+// The HTTP process itself never makes an EGL or GL call.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/expected.h"
+#include "worker/protocol.h"
+
+namespace shadelab::worker {
+
+struct PoolConfig {
+  int workers = 2;
+  std::chrono::milliseconds compile_deadline{10'000};
+  std::chrono::milliseconds render_deadline{20'000};
+  std::chrono::milliseconds start_deadline{15'000};
+  size_t max_queue = 64;
+  size_t memory_limit_bytes = size_t{2} << 30;  // per worker
+  int cpu_limit_seconds = 600;                  // RLIMIT_CPU backstop over a worker's whole life
+  int llvmpipe_threads = 1;                     // LP_NUM_THREADS per worker
+  bool force_software = false;
+  std::string executable = "/proc/self/exe";    // started as `<executable> worker`
+};
+
+struct JobResult {
+  bool ok = false;
+  nlohmann::json header;  // the worker's result (ok) ...
+  std::string payload;
+  Error error{ErrorCode::io_error, "", {}, {}};  // ... or what went wrong
+  double queue_ms = 0;    // waiting for a worker
+  double worker_ms = 0;   // in the worker, from hand-over to result
+};
+
+struct PoolStats {
+  size_t queue_depth = 0;
+  std::uint64_t crashes = 0, timeouts = 0, restarts = 0, out_of_memory = 0;
+};
+
+class WorkerPool {
+ public:
+  explicit WorkerPool(PoolConfig config);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  // A queue_full error when the bounded queue is full (the caller answers 503).
+  Expected<std::future<JobResult>> submit(Message job);
+  bool ready() const;
+  PoolStats stats() const;
+  std::string renderer() const;   // GL_RENDERER as the workers report it
+  std::vector<int> worker_pids() const;
+  const PoolConfig& config() const { return config_; }
+
+ private:
+  struct Slot;
+  struct Pending {
+    Message job;
+    std::promise<JobResult> promise;
+    std::chrono::steady_clock::time_point queued;
+  };
+  bool pop(Pending& out);  // false when stopping
+
+  PoolConfig config_;
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Pending> queue_;
+  bool stopping_ = false;
+  std::string renderer_;
+  std::atomic<std::uint64_t> crashes_{0}, timeouts_{0}, restarts_{0}, out_of_memory_{0};
+  std::vector<std::unique_ptr<Slot>> slots_;
+};
+
+}  // namespace shadelab::worker

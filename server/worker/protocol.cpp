@@ -1,0 +1,76 @@
+#include "worker/protocol.h"
+
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace shadelab::worker {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+bool write_all(int fd, const char* data, size_t size) {
+  while (size > 0) {
+    // send() with MSG_NOSIGNAL: a worker that died must not take this process down with SIGPIPE.
+    const ssize_t n = ::send(fd, data, size, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+  return true;
+}
+
+// Reads exactly `size` bytes before `deadline`.
+ReadStatus read_all(int fd, char* data, size_t size, Clock::time_point deadline) {
+  while (size > 0) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    if (left <= 0) return ReadStatus::timeout;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, 1000)));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready < 0) return ReadStatus::closed;
+    if (ready == 0) continue;
+    const ssize_t n = ::read(fd, data, size);
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (n <= 0) return ReadStatus::closed;
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+  return ReadStatus::ok;
+}
+}  // namespace
+
+bool write_message(int fd, const Message& message) {
+  const std::string header = message.header.dump();
+  char prefix[12];
+  const auto header_size = static_cast<std::uint32_t>(header.size());
+  const auto payload_size = static_cast<std::uint64_t>(message.payload.size());
+  std::memcpy(prefix, &header_size, 4);
+  std::memcpy(prefix + 4, &payload_size, 8);
+  return write_all(fd, prefix, sizeof prefix) && write_all(fd, header.data(), header.size()) &&
+         write_all(fd, message.payload.data(), message.payload.size());
+}
+
+ReadStatus read_message(int fd, Message& message, Clock::time_point deadline) {
+  char prefix[12];
+  if (auto s = read_all(fd, prefix, sizeof prefix, deadline); s != ReadStatus::ok) return s;
+  std::uint32_t header_size = 0;
+  std::uint64_t payload_size = 0;
+  std::memcpy(&header_size, prefix, 4);
+  std::memcpy(&payload_size, prefix + 4, 8);
+  if (header_size > kMaxHeaderBytes || payload_size > kMaxPayloadBytes) return ReadStatus::malformed;
+  std::string header(header_size, '\0');
+  // Once a message has begun, the rest follows at once: allow it past the caller's deadline.
+  const auto rest = std::max(deadline, Clock::now() + std::chrono::seconds(10));
+  if (auto s = read_all(fd, header.data(), header.size(), rest); s != ReadStatus::ok) return s;
+  message.payload.assign(payload_size, '\0');
+  if (auto s = read_all(fd, message.payload.data(), message.payload.size(), rest); s != ReadStatus::ok) return s;
+  message.header = nlohmann::json::parse(header, nullptr, false);
+  return message.header.is_discarded() ? ReadStatus::malformed : ReadStatus::ok;
+}
+
+}  // namespace shadelab::worker

@@ -1,0 +1,27 @@
+#pragma once
+// Messages between the HTTP process and a render worker over a socketpair: a JSON header and an
+// optional binary payload (a mesh file going in; an image or a zip coming back), length-prefixed:
+//   u32 header bytes | u64 payload bytes | header (UTF-8 JSON) | payload
+#include <chrono>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace shadelab::worker {
+
+struct Message {
+  nlohmann::json header;
+  std::string payload;
+};
+
+// Blocking; false when the peer is gone.
+bool write_message(int fd, const Message& message);
+
+enum class ReadStatus { ok, timeout, closed, malformed };
+// Waits until `deadline` for a whole message.
+ReadStatus read_message(int fd, Message& message, std::chrono::steady_clock::time_point deadline);
+
+inline constexpr size_t kMaxHeaderBytes = 16u << 20;
+inline constexpr size_t kMaxPayloadBytes = 512u << 20;
+
+}  // namespace shadelab::worker

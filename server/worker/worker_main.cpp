@@ -1,0 +1,207 @@
+#include "worker/worker_main.h"
+
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <list>
+#include <map>
+#include <optional>
+
+#include <OpenImageIO/strutil.h>
+
+#include "image/encode.h"
+#include "image/grid.h"
+#include "image/grid_png_encoder.h"
+#include "render/renderer.h"
+#include "worker/job.h"
+#include "worker/protocol.h"
+#include "worker/zip_archive.h"
+
+namespace shadelab::worker {
+
+namespace {
+
+using nlohmann::json;
+
+json describe(const std::vector<render::VariableInfo>& vars) {
+  json out = json::array();
+  for (const auto& v : vars) out.push_back({{"name", v.name}, {"type", v.type}, {"arraySize", v.array_size}});
+  return out;
+}
+
+json timings(const render::PhaseTimes& t) {
+  return {{"compile", t.compile_ms}, {"upload", t.upload_ms}, {"firstFrame", t.first_frame_ms},
+          {"render", t.render_ms},   {"readback", t.readback_ms}, {"encode", t.sink_ms}};
+}
+
+std::string base64(const std::vector<std::uint8_t>& bytes) {
+  return OIIO::Strutil::base64_encode({reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+}
+
+// A frame that is one colour throughout: the most common "my render is blank" complaint.
+std::optional<std::array<int, 4>> constant_colour(const image::Image& f) {
+  if (f.type != image::PixelType::u8 || f.bytes.size() < 4) return std::nullopt;
+  for (size_t i = 4; i < f.bytes.size(); i += 4)
+    if (std::memcmp(&f.bytes[i], &f.bytes[0], 4) != 0) return std::nullopt;
+  return std::array<int, 4>{f.bytes[0], f.bytes[1], f.bytes[2], f.bytes[3]};
+}
+
+class Worker {
+ public:
+  Worker(int fd, render::Renderer renderer) : fd_(fd), renderer_(std::move(renderer)) {}
+
+  void serve() {
+    while (true) {
+      Message in;
+      const auto status = read_message(fd_, in, std::chrono::steady_clock::now() + std::chrono::hours(24 * 365));
+      if (status == ReadStatus::closed) return;
+      if (status != ReadStatus::ok) continue;
+      Message out = handle(in);
+      out.header["event"] = "result";
+      if (!write_message(fd_, out)) return;
+    }
+  }
+
+ private:
+  Message failure(const Error& e) { return {{{"ok", false}, {"error", to_json(e)}}, {}}; }
+
+  Expected<const scene::Mesh*> mesh(const Job& job, const std::string& payload) {
+    if (auto it = meshes_.find(job.mesh); it != meshes_.end()) return &it->second;
+    Expected<scene::Mesh> loaded = payload.empty()
+                                       ? scene::builtin_mesh(job.mesh)
+                                       : scene::load_mesh({reinterpret_cast<const std::uint8_t*>(payload.data()), payload.size()},
+                                                          job.mesh_format, job.mesh);
+    if (!loaded) return loaded.take_error();
+    if (meshes_.size() >= 16) meshes_.erase(meshes_.begin());
+    return &meshes_.emplace(job.mesh, std::move(*loaded)).first->second;
+  }
+
+  Message handle(const Message& in) {
+    auto parsed = job_from_json(in.header);
+    if (!parsed) return failure(parsed.error());
+    Job& job = *parsed;
+
+    if (job.kind == JobKind::mesh_check) {
+      auto m = mesh(job, in.payload);
+      if (!m) return failure(m.error());
+      const auto b = scene::bounds(**m);
+      return {{{"ok", true},
+               {"triangles", (*m)->triangle_count()},
+               {"normalsFromFile", (*m)->normals_from_file},
+               {"bounds", {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}}}},
+              {}};
+    }
+
+    auto compiled = renderer_.compile(job.request.vertex, job.request.fragment);
+    if (!compiled) return failure(compiled.error());
+    json diagnostics = json::array();
+    for (const auto& d : compiled->diagnostics) diagnostics.push_back(to_json(d));
+    if (job.kind == JobKind::compile)
+      return {{{"ok", true},
+               {"warnings", compiled->warnings},
+               {"diagnostics", diagnostics},
+               {"attributes", describe(compiled->attributes)},
+               {"uniforms", describe(compiled->uniforms)},
+               {"timings", {{"compile", compiled->compile_ms}}}},
+              {}};
+
+    // From here a hang or a crash is the render's, not the compiler's.
+    if (!write_message(fd_, {{{"event", "phase"}, {"phase", "render"}}, {}})) return failure(make_error(ErrorCode::io_error, "lost the server"));
+    return render(job, in.payload, diagnostics, compiled->compile_ms);
+  }
+
+  Message render(Job& job, const std::string& payload, const json& diagnostics, double compile_ms) {
+    auto m = mesh(job, payload);
+    if (!m) return failure(m.error());
+    if (job.fit) {
+      fitted_ = **m;
+      scene::fit_to_homework(fitted_);
+    }
+    const scene::Mesh& mesh_ref = job.fit ? fitted_ : **m;
+    const auto& r = job.request;
+    const auto layout = image::GridLayout::for_frames(r.frames, r.width, r.height);
+    const bool png = job.format == Format::png;
+    const bool overlapped_grid = job.output == Output::grid && png;
+
+    std::optional<image::GridPngEncoder> grid_png;
+    if (overlapped_grid) grid_png.emplace(layout, r.frames);
+    std::vector<image::Image> frames;
+    json constant = json::array();
+    auto report = renderer_.render(r, mesh_ref, [&](int k, const image::Image& f, bool opaque) {
+      if (grid_png) grid_png->add_frame(k, f, opaque);
+      else frames.push_back(f);
+      if (auto c = constant_colour(f)) constant.push_back({{"frame", k}, {"rgba", *c}});
+    });
+    if (!report) return failure(report.error());
+
+    json header = {{"ok", true},
+                   {"warnings", report->warnings},
+                   {"diagnostics", diagnostics},
+                   {"samples", report->samples},
+                   {"constantFrames", constant},
+                   {"attributes", describe(report->attributes)},
+                   {"uniforms", describe(report->uniforms)}};
+    const auto encode_start = std::chrono::steady_clock::now();
+    const auto encode = [&](const image::Image& img) { return png ? image::encode_png(img) : image::encode_exr(img); };
+    const auto name = [&](int k) { return "hw2_" + job.prefix + "_" + std::to_string(k) + (png ? ".png" : ".exr"); };
+    Message out;
+    if (job.output == Output::grid) {
+      auto bytes = grid_png ? grid_png->finish() : encode(image::compose_grid(layout, frames));
+      if (!bytes) return failure(bytes.error());
+      out.payload.assign(bytes->begin(), bytes->end());
+      header["contentType"] = png ? "image/png" : "image/x-exr";
+    } else if (job.output == Output::frames) {
+      std::vector<std::pair<std::string, std::vector<std::uint8_t>>> files;
+      for (size_t k = 0; k < frames.size(); ++k) {
+        auto bytes = encode(frames[k]);
+        if (!bytes) return failure(bytes.error());
+        files.emplace_back(name(static_cast<int>(k)), std::move(*bytes));
+      }
+      auto zip = zip_stored(files);
+      if (!zip) return failure(zip.error());
+      out.payload = std::move(*zip);
+      header["contentType"] = "application/zip";
+    } else {
+      auto grid = encode(image::compose_grid(layout, frames));
+      if (!grid) return failure(grid.error());
+      json images = {{"grid", base64(*grid)}, {"frames", json::array()}};
+      for (size_t k = 0; k < frames.size(); ++k) {
+        auto bytes = encode(frames[k]);
+        if (!bytes) return failure(bytes.error());
+        images["frames"].push_back({{"name", name(static_cast<int>(k))}, {"data", base64(*bytes)}});
+      }
+      header["images"] = std::move(images);
+      header["contentType"] = "application/json";
+    }
+    auto t = timings(report->times);
+    t["compile"] = compile_ms;  // compiled just before; the render found the program cached
+    t["encode"] = report->times.sink_ms +
+                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - encode_start).count();
+    header["timings"] = t;
+    out.header = std::move(header);
+    return out;
+  }
+
+  int fd_;
+  render::Renderer renderer_;
+  std::map<std::string, scene::Mesh> meshes_;
+  scene::Mesh fitted_;
+};
+
+}  // namespace
+
+int run_worker(int fd, const egl::ContextOptions& options) {
+  auto renderer = render::Renderer::create(options);
+  if (!renderer) {
+    write_message(fd, {{{"event", "ready"}, {"ok", false}, {"error", to_json(renderer.error())}}, {}});
+    return 1;
+  }
+  const auto& info = renderer->context_info();
+  if (!write_message(fd, {{{"event", "ready"}, {"ok", true}, {"renderer", info.gl_renderer}, {"version", info.gl_version},
+                           {"software", info.software}}, {}}))
+    return 1;
+  Worker(fd, std::move(*renderer)).serve();
+  return 0;
+}
+
+}  // namespace shadelab::worker
