@@ -197,8 +197,14 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
     job.mesh = *mesh;
   }
 
-  if (kind != worker::JobKind::mesh_check)
+  if (kind != worker::JobKind::mesh_check) {
     if (auto valid = render::validate(r, limits.render); !valid) return valid.take_error();
+    // The source checks need no GL (UTF-8, NUL, the module's syntax, #version): answer them here.
+    // They must run before the job is sent, too: the JSON that carries it cannot hold invalid UTF-8.
+    const shader::SourceLimits source_limits{limits.render.max_source_bytes};
+    if (auto vs = shader::unwrap(r.vertex, shader::Stage::vertex, source_limits); !vs) return vs.take_error();
+    if (auto fs = shader::unwrap(r.fragment, shader::Stage::fragment, source_limits); !fs) return fs.take_error();
+  }
   return out;
 }
 

@@ -27,12 +27,12 @@ thread_local Clock::time_point request_start;
 void send_problem(httplib::Response& res, const Error& e, const std::string& instance) {
   res.status = http_status(e.code);
   if (e.code == ErrorCode::queue_full || e.code == ErrorCode::not_ready) res.set_header("Retry-After", "1");
-  res.set_content(problem(e, instance).dump(2), "application/problem+json");
+  res.set_content(problem(e, instance).dump(2, ' ', false, json::error_handler_t::replace), "application/problem+json");
 }
 
 void send_json(httplib::Response& res, int status, const json& body) {
   res.status = status;
-  res.set_content(body.dump(2), "application/json");
+  res.set_content(body.dump(2, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 std::string hex(std::uint64_t v) {
@@ -129,7 +129,7 @@ struct Service::Impl {
     if (auto s = attach_mesh(*parsed, message); !s) return send_problem(res, s.error(), req.path);
 
     // Same job, same mesh bytes, same renderer: same bytes out. That makes a strong ETag.
-    const std::string key = message.header.dump() + '\0' + message.payload + '\0' + pool->renderer();
+    const std::string key = message.header.dump(-1, ' ', false, json::error_handler_t::replace) + '\0' + message.payload + '\0' + pool->renderer();
     const std::string etag = "\"" + hex(fnv1a64(key)) + hex(fnv1a64(key, 0x9e3779b97f4a7c15ull)) + "\"";
     if (req.get_header_value("If-None-Match") == etag) {
       res.status = 304;
@@ -178,7 +178,7 @@ struct Service::Impl {
                    {"images", h["images"]}};
       body["timings"]["queue"] = result->queue_ms;
       response.content_type = "application/json";
-      response.body = body.dump();
+      response.body = body.dump(-1, ' ', false, json::error_handler_t::replace);
     } else {
       response.content_type = h.value("contentType", "application/octet-stream");
       response.body = std::move(result->payload);

@@ -53,7 +53,8 @@ Error worker_error(ErrorCode code, std::string message) { return make_error(code
 struct WorkerPool::Slot {
   WorkerPool& pool;
   int index;
-  std::atomic<pid_t> pid{-1};  // read by ready() and worker_pids() on other threads
+  std::atomic<pid_t> pid{-1};        // read by worker_pids() on other threads
+  std::atomic<bool> reported_ready{false};  // the worker holds a context and said so
   int fd = -1;
   bool cgroup_capped = false;
   std::thread thread;
@@ -70,6 +71,7 @@ struct WorkerPool::Slot {
     while (::waitpid(pid.load(), &status, 0) < 0 && errno == EINTR) {
     }
     ::close(fd);
+    reported_ready = false;
     pid = -1;
     fd = -1;
     return status;
@@ -122,8 +124,11 @@ struct WorkerPool::Slot {
       reap(true);
       return worker_error(ErrorCode::not_ready, "a render worker could not start: " + why);
     }
-    std::lock_guard lock(pool.mutex_);
-    pool.renderer_ = ready.header.value("renderer", "");
+    {
+      std::lock_guard lock(pool.mutex_);
+      pool.renderer_ = ready.header.value("renderer", "");
+    }
+    reported_ready = true;
     return Ok{};
   }
 
@@ -270,7 +275,7 @@ bool WorkerPool::pop(Pending& out) {
 bool WorkerPool::ready() const {
   std::lock_guard lock(mutex_);
   for (const auto& s : slots_)
-    if (s->pid > 0) return true;
+    if (s->reported_ready) return true;
   return false;
 }
 

@@ -45,7 +45,8 @@ ReadStatus read_all(int fd, char* data, size_t size, Clock::time_point deadline)
 }  // namespace
 
 bool write_message(int fd, const Message& message) {
-  const std::string header = message.header.dump();
+  // Student text (file names, driver logs) may hold invalid UTF-8: replace it, never throw.
+  const std::string header = message.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   char prefix[12];
   const auto header_size = static_cast<std::uint32_t>(header.size());
   const auto payload_size = static_cast<std::uint64_t>(message.payload.size());
