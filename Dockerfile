@@ -5,7 +5,6 @@ COPY tools/setup.sh tools/setup.sh
 RUN tools/setup.sh && rm -rf /var/lib/apt/lists/*
 COPY . .
 RUN tools/build.sh -DSHADELAB_BUILD_TESTS=OFF -DSHADELAB_BUILD_BENCH=OFF
-# Until the HTTP service lands, the container renders the default grid into /out.
-VOLUME /out
+EXPOSE 8889
 ENTRYPOINT ["/src/shadelab/build/shadelab"]
-CMD ["render", "--preset", "specular", "--mesh", "bunny", "--grid", "/out/grid.png"]
+CMD ["serve", "--host", "0.0.0.0", "--port", "8889"]

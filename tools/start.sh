@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Quick start, command 1: set up, build, and run the main job.
-# Until the HTTP service lands this renders the default grid (specular bunny) to grid.png.
+# Quick start, command 1: set up, build, and serve ShadeLab on port 8889 (the handout's port).
+# Extra arguments go to `shadelab serve` (see `build/shadelab serve --help`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh
 tools/build.sh
-exec build/shadelab render --preset specular --mesh bunny --grid grid.png --timings "$@"
+exec build/shadelab serve --port "${SHADELAB_PORT:-8889}" "$@"

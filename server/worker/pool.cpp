@@ -96,6 +96,9 @@ struct WorkerPool::Slot {
     envp.push_back(nullptr);
     const rlimit cpu{static_cast<rlim_t>(c.cpu_limit_seconds), static_cast<rlim_t>(c.cpu_limit_seconds + 5)};
     const rlimit files{64, 64};
+    // Threads count against RLIMIT_NPROC (per user): generous enough for llvmpipe's threads,
+    // low enough to stop a fork bomb should one ever get code execution. Root is exempt.
+    const rlimit processes{4096, 4096};
 
     const pid_t child = ::fork();
     if (child < 0) {
@@ -108,6 +111,7 @@ struct WorkerPool::Slot {
       ::dup2(sv[1], 3);                     // dup2 clears close-on-exec on fd 3
       ::setrlimit(RLIMIT_CPU, &cpu);
       ::setrlimit(RLIMIT_NOFILE, &files);
+      ::setrlimit(RLIMIT_NPROC, &processes);
       ::execve(argv[0], argv.data(), envp.data());
       ::_exit(127);
     }

@@ -1,0 +1,108 @@
+// Load benchmark against the running service (a small client; wrk is not needed).
+//   build/bench/load_bench [path/to/shadelab] [requests per level]
+// Starts `shadelab serve` on a free loopback port and reports:
+//   - process start to the first 200 from /readyz;
+//   - the canonical grid job (bunny, specular, 9 frames 640 x 480, 4x MSAA), each request a shader
+//     the workers have not seen, with 1, 2 and 8 concurrent clients: p50, p99, throughput;
+//   - a cache hit (the same GET twice): p50, p99.
+#include <httplib.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/presets.h"
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
+
+double percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
+}
+
+std::string fresh_job(unsigned serial) {
+  auto p = *shadelab::render::find_preset("specular");
+  // Mesa caches programs by IR, so only a real code change makes a fresh shader (see render_bench).
+  const std::string from = "void main(void) {";
+  p.fragment.text.insert(p.fragment.text.find(from) + from.size(),
+                         "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;");
+  return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"mesh", "bunny"}}.dump();
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string server = argc > 1 ? argv[1] : "build/shadelab";
+  const int per_level = argc > 2 ? std::atoi(argv[2]) : 24;
+  const int port = 18000 + static_cast<int>(getpid() % 1000);
+
+  const auto start = Clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl(server.c_str(), server.c_str(), "serve", "--port", std::to_string(port).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  httplib::Client client("127.0.0.1", port);
+  client.set_read_timeout(120, 0);
+  double ready_ms = -1;
+  for (int i = 0; i < 2000 && ready_ms < 0; ++i) {
+    if (auto r = client.Get("/readyz"); r && r->status == 200) ready_ms = ms(Clock::now() - start);
+    else std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  std::printf("start to /readyz: %.0f ms\n", ready_ms);
+  const std::string renderer = client.Get("/readyz") ? nlohmann::json::parse(client.Get("/readyz")->body).value("renderer", "") : "";
+  std::printf("renderer: %s, %u cores\n\n", renderer.c_str(), std::thread::hardware_concurrency());
+
+  std::atomic<unsigned> serial{std::random_device{}() % 100000000u};
+  std::printf("| clients | requests | p50 ms | p99 ms | jobs/s |\n| --- | --- | --- | --- | --- |\n");
+  for (int clients : {1, 2, 8}) {
+    std::vector<double> latencies;
+    std::mutex m;
+    std::atomic<int> left{per_level}, failures{0};
+    const auto level_start = Clock::now();
+    std::vector<std::thread> threads;
+    for (int c = 0; c < clients; ++c)
+      threads.emplace_back([&] {
+        httplib::Client cl("127.0.0.1", port);
+        cl.set_read_timeout(120, 0);
+        while (left-- > 0) {
+          const std::string body = fresh_job(serial++);
+          const auto t = Clock::now();
+          auto r = cl.Post("/api/render", body, "application/json");
+          const double l = ms(Clock::now() - t);
+          if (!r || r->status != 200) ++failures;
+          std::lock_guard lock(m);
+          latencies.push_back(l);
+        }
+      });
+    for (auto& t : threads) t.join();
+    const double seconds = ms(Clock::now() - level_start) / 1000;
+    std::printf("| %d | %d | %.0f | %.0f | %.2f |%s\n", clients, per_level, percentile(latencies, 0.5),
+                percentile(latencies, 0.99), per_level / seconds, failures ? " (failures!)" : "");
+  }
+
+  const char* url = "/api/render?preset=specular&mesh=bunny";
+  client.Get(url);  // fill the cache
+  std::vector<double> hits;
+  for (int i = 0; i < 200; ++i) {
+    const auto t = Clock::now();
+    auto r = client.Get(url);
+    hits.push_back(ms(Clock::now() - t));
+    if (!r || r->get_header_value("X-ShadeLab-Cache") != "hit") std::printf("not a cache hit!\n");
+  }
+  std::printf("\ncache hit (541 KB grid): p50 %.2f ms, p99 %.2f ms\n", percentile(hits, 0.5), percentile(hits, 0.99));
+
+  kill(pid, SIGTERM);
+  waitpid(pid, nullptr, 0);
+  return 0;
+}
