@@ -338,6 +338,22 @@ TEST_F(HttpTest, HostileShadersAreStoppedWhileNormalRequestsGoOn) {
   EXPECT_EQ(metrics->body.find("shadelab_worker_timeouts_total 0\n"), std::string::npos);
 }
 
+TEST_F(HttpTest, HugeLocalArrayIsStoppedWithoutHarm) {
+  // Compiles, then at draw time either aborts the driver, exhausts memory or runs past the
+  // deadline, depending on the Mesa version: each is a 422 naming what happened.
+  auto r = post_json("/api/render", small_job(fragment("float a[2000000];\nfor (int i = 0; i < 2000000; i++) a[i] = float(i);\n"
+                                                       "c = vec4(a[int(gl_FragCoord.x)]);")));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 422) << r->body.substr(0, 300);
+  const std::string code = body_json(r).value("code", "");
+  EXPECT_TRUE(code == "render_timeout" || code == "render_crashed" || code == "out_of_memory" || code == "compile_failed" ||
+              code == "compile_timeout" || code == "compile_crashed")
+      << code;
+  auto after = post_json("/api/render", {{"preset", "smooth"}, {"width", 32}, {"height", 24}, {"frames", 1}});
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->status, 200);
+}
+
 TEST_F(HttpTest, SameRequestGivesIdenticalBytesFromAnyWorker) {
   // Distinct servers, so neither the cache nor a warm worker can make them equal.
   auto config = testkit::test_config();
