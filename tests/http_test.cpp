@@ -236,9 +236,13 @@ TEST_F(HttpTest, PresetsHealthMetricsAndOpenApiAreServed) {
 }
 
 TEST_F(HttpTest, StaticFilesAreServedWithoutAWayOut) {
-  auto readme = client().Get("/README.md");
-  ASSERT_TRUE(readme);
-  EXPECT_EQ(readme->status, 200);
+  for (const auto& [path, type] : std::vector<std::pair<std::string, std::string>>{
+           {"/", "text/html"}, {"/js/main.js", "javascript"}, {"/style.css", "text/css"}}) {
+    auto r = client().Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 200) << path;
+    EXPECT_NE(r->get_header_value("Content-Type").find(type), std::string::npos) << path << ": " << r->get_header_value("Content-Type");
+  }
   for (const char* path : {"/../CMakeLists.txt", "/..%2fCMakeLists.txt", "/%2e%2e/%2e%2e/etc/passwd", "/web/../../CMakeLists.txt"}) {
     auto r = client().Get(path);
     ASSERT_TRUE(r) << path;

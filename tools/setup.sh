@@ -11,9 +11,13 @@ packages=(
   # libraries
   libglm-dev libopenimageio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
   libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks; the browser tests drive Debian's chromium with playwright-core
+  libgtest-dev libgmock-dev libbenchmark-dev chromium fonts-dejavu-core
 )
+# Node.js runs the browser tests; use the machine's own if it has one, else Debian's.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

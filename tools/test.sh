@@ -5,5 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh
 tools/build.sh -DSHADELAB_WERROR=ON
+# playwright-core for the browser tests, pinned by tests/browser/package-lock.json (no browser
+# download: the tests drive Debian's chromium).
+(cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 cd build
 ctest --output-on-failure -j "$(nproc)" --timeout 300

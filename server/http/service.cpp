@@ -242,6 +242,13 @@ struct Service::Impl {
       for (const auto& n : scene::builtin_mesh_names()) builtin.push_back({{"id", n}, {"builtin", true}});
       send_json(res, 200, {{"builtin", builtin}, {"uploaded", meshes.list()}});
     });
+    // The built-in meshes as OBJ text, for the page's own WebGL canvas.
+    server.Get(R"(/api/meshes/([a-z]+)\.obj)", [](const httplib::Request& req, httplib::Response& res) {
+      const auto obj = embedded_file("assets/" + std::string(req.matches[1]) + ".obj");
+      if (!obj) return send_problem(res, make_error(ErrorCode::mesh_not_found, "no built-in mesh '" + std::string(req.matches[1]) + "'"), req.path);
+      res.set_header("Cache-Control", "public, max-age=3600");
+      res.set_content(std::string(*obj), "text/plain; charset=utf-8");
+    });
     server.Get("/api/presets", [](const auto&, auto& res) {
       json out = json::array();
       for (const auto& p : render::presets())
