@@ -13,5 +13,6 @@ Command add_render_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 Command add_serve_command(CLI::App& app);
 Command add_worker_command(CLI::App& app);
+Command add_grade_command(CLI::App& app);
 
 }  // namespace shadelab::cli

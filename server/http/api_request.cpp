@@ -4,6 +4,7 @@
 #include <regex>
 #include <set>
 
+#include "grade/checkpoints.h"
 #include "render/presets.h"
 
 namespace shadelab::http {
@@ -70,7 +71,8 @@ Expected<std::vector<render::UniformSetting>> uniforms(const json& fields) {
 const std::set<std::string> kKnownFields = {"vertex",  "fragment", "vertexName", "fragmentName", "preset",
                                             "mesh",    "fit",      "width",      "height",       "frames",
                                             "degreesPerFrame", "msaa", "uniforms", "prefix",     "output",
-                                            "format"};
+                                            "format", "reference", "referenceVertex", "referenceFragment",
+                                            "threshold", "maxFailingFraction", "spatialTolerance", "maxScore"};
 
 }  // namespace
 
@@ -205,6 +207,64 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
     if (auto vs = shader::unwrap(r.vertex, shader::Stage::vertex, source_limits); !vs) return vs.take_error();
     if (auto fs = shader::unwrap(r.fragment, shader::Stage::fragment, source_limits); !fs) return fs.take_error();
   }
+  return out;
+}
+
+}  // namespace shadelab::http
+
+namespace shadelab::http {
+
+Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits) {
+  ParsedGrade out;
+  auto format = text(raw.fields, "format", "json");
+  if (!format) return format.take_error();
+  if (*format != "json" && *format != "gradescope") return bad("'format' must be json or gradescope");
+  out.result_format = *format;
+  raw.fields.erase("format");
+  const json f = raw.fields;
+  auto parsed = parse_job(raw, worker::JobKind::grade, limits);
+  if (!parsed) return parsed.take_error();
+  out.parsed = std::move(*parsed);
+  auto& spec = out.parsed.job.grade;
+
+  auto reference = text(f, "reference", "");
+  if (!reference) return reference.take_error();
+  const bool custom = raw.files.count("referenceVertex") || f.contains("referenceVertex");
+  if (!reference->empty() == custom) return bad("give either 'reference' (smooth, gouraud, diffuse, specular) or 'referenceVertex' and 'referenceFragment'");
+  if (custom) {
+    const auto source = [&](const char* field) -> Expected<shader::ShaderFile> {
+      if (auto it = raw.files.find(field); it != raw.files.end()) return shader::ShaderFile{it->second.filename, it->second.content};
+      auto t = text(f, field, "");
+      if (!t) return t.take_error();
+      return shader::ShaderFile{field, *t};
+    };
+    auto v = source("referenceVertex");
+    if (!v) return v.take_error();
+    auto fr = source("referenceFragment");
+    if (!fr) return fr.take_error();
+    spec.reference_name = "custom";
+    spec.reference_vertex = std::move(*v);
+    spec.reference_fragment = std::move(*fr);
+  } else {
+    auto checkpoint = grade::find_checkpoint(*reference);
+    if (!checkpoint) return make_error(ErrorCode::unknown_preset, "no checkpoint '" + *reference + "' (checkpoints: smooth, gouraud, diffuse, specular)");
+    spec.reference_name = checkpoint->name;
+    spec.reference_vertex = checkpoint->vertex;
+    spec.reference_fragment = checkpoint->fragment;
+    spec.mistakes = std::move(checkpoint->mistakes);
+  }
+  auto threshold = number(f, "threshold", spec.options.compare.threshold);
+  auto failing = number(f, "maxFailingFraction", spec.options.max_failing_fraction);
+  auto max_score = number(f, "maxScore", spec.options.max_score);
+  for (const Error* e : {threshold ? nullptr : &threshold.error(), failing ? nullptr : &failing.error(), max_score ? nullptr : &max_score.error()})
+    if (e) return *e;
+  if (*threshold < 0 || *threshold > 1 || *failing < 0 || *failing > 1 || *max_score < 0)
+    return bad("'threshold' and 'maxFailingFraction' must be in [0, 1], 'maxScore' not negative");
+  if (f.contains("spatialTolerance") && !f["spatialTolerance"].is_boolean()) return bad("'spatialTolerance' must be true or false");
+  spec.options.compare.threshold = *threshold;
+  spec.options.max_failing_fraction = *failing;
+  spec.options.max_score = *max_score;
+  spec.options.compare.spatial_tolerance = f.value("spatialTolerance", false);
   return out;
 }
 

@@ -36,6 +36,16 @@ RawRequest from_form(const std::multimap<std::string, std::string>& fields, std:
 
 Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits);
 
+// A grade request: a render request for the submission, plus `reference` (a checkpoint: smooth,
+// gouraud, diffuse, specular) or `referenceVertex` + `referenceFragment`, and the tolerance
+// (`threshold`, `maxFailingFraction`, `spatialTolerance`, `maxScore`). `format` here is the result's:
+// json or gradescope, returned in `result_format`.
+struct ParsedGrade {
+  ParsedJob parsed;
+  std::string result_format = "json";
+};
+Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits);
+
 // A mesh id: content-addressed ("m" + 16 hex digits of a 64-bit FNV-1a of the bytes).
 std::string mesh_id(const std::string& bytes);
 std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t seed = 1469598103934665603ull);

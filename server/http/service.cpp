@@ -7,7 +7,9 @@
 #include <thread>
 
 #include "core/embedded_files.h"
+#include "grade/report.h"
 #include "http/api_request.h"
+#include "worker/grade_client.h"
 #include "http/mesh_store.h"
 #include "http/metrics.h"
 #include "http/problem.h"
@@ -205,6 +207,36 @@ struct Service::Impl {
                          {"timings", h["timings"]}});
   }
 
+  void grade(const httplib::Request& req, httplib::Response& res) {
+    auto raw = read(req);
+    if (!raw) return send_problem(res, raw.error(), req.path);
+    const std::string checkpoint = raw->fields.value("reference", std::string("custom"));
+    const std::string format = raw->fields.value("format", std::string("json"));
+    auto parsed = parse_grade_job(*raw, config.limits);
+    json result;
+    std::string heatmap;
+    double seconds = 0;
+    if (!parsed) {
+      // The submission's own source problems are its grade; a malformed request is not.
+      const auto code = parsed.error().code;
+      if (code != ErrorCode::shader_source_invalid && code != ErrorCode::missing_version)
+        return send_problem(res, parsed.error(), req.path);
+      result = grade::failed_submission(parsed.error(), checkpoint, raw->fields.value("maxScore", 1.0));
+    } else {
+      worker::Message message;
+      if (auto s = attach_mesh(parsed->parsed, message); !s) return send_problem(res, s.error(), req.path);
+      auto outcome = worker::grade_with_pool(*pool, parsed->parsed.job, message.payload);
+      if (outcome.service_error) return send_problem(res, *outcome.service_error, req.path);
+      result = std::move(outcome.result);
+      heatmap = std::move(outcome.heatmap_png);
+      seconds = outcome.seconds;
+      for (const auto& w : parsed->parsed.warnings) result["warnings"].push_back(w);
+    }
+    if (format == "gradescope") return send_json(res, 200, grade::to_gradescope(result, seconds));
+    if (!heatmap.empty()) result["heatmap"] = heatmap;
+    send_json(res, 200, result);
+  }
+
   void upload_mesh(const httplib::Request& req, httplib::Response& res) {
     UploadedFile file;
     if (req.is_multipart_form_data()) {
@@ -236,6 +268,7 @@ struct Service::Impl {
     server.Post("/api/render", [this](const auto& req, auto& res) { render(req, res); });
     server.Get("/api/render", [this](const auto& req, auto& res) { render(req, res); });
     server.Post("/api/compile", [this](const auto& req, auto& res) { compile(req, res); });
+    server.Post("/api/grade", [this](const auto& req, auto& res) { grade(req, res); });
     server.Post("/api/meshes", [this](const auto& req, auto& res) { upload_mesh(req, res); });
     server.Get("/api/meshes", [this](const auto&, auto& res) {
       json builtin = json::array();

@@ -29,11 +29,38 @@ Error error_from_json(const json& j) {
   return e;
 }
 
+namespace {
+json file_json(const shader::ShaderFile& f) { return {{"name", f.name}, {"text", f.text}}; }
+shader::ShaderFile file_from(const json& j) { return {j.at("name"), j.at("text")}; }
+const char* kind_name(JobKind k) {
+  switch (k) {
+    case JobKind::render: return "render";
+    case JobKind::compile: return "compile";
+    case JobKind::mesh_check: return "mesh_check";
+    case JobKind::grade: return "grade";
+  }
+  return "render";
+}
+}  // namespace
+
 json to_json(const Job& job) {
   const auto& r = job.request;
   json uniforms = json::array();
   for (const auto& u : r.uniforms) uniforms.push_back({{"name", u.name}, {"values", u.values}});
-  return {{"kind", job.kind == JobKind::render ? "render" : job.kind == JobKind::compile ? "compile" : "mesh_check"},
+  json mistakes = json::array();
+  for (const auto& m : job.grade.mistakes)
+    mistakes.push_back({{"id", m.id}, {"message", m.message}, {"vertex", file_json(m.vertex)}, {"fragment", file_json(m.fragment)}});
+  const auto& o = job.grade.options;
+  const json grade = {{"referenceName", job.grade.reference_name},
+                      {"referenceVertex", file_json(job.grade.reference_vertex)},
+                      {"referenceFragment", file_json(job.grade.reference_fragment)},
+                      {"mistakes", mistakes},
+                      {"threshold", o.compare.threshold},
+                      {"spatialTolerance", o.compare.spatial_tolerance},
+                      {"maxFailingFraction", o.max_failing_fraction},
+                      {"maxScore", o.max_score}};
+  return {{"kind", kind_name(job.kind)},
+          {"grade", grade},
           {"vertex", r.vertex.text},
           {"vertexName", r.vertex.name},
           {"fragment", r.fragment.text},
@@ -56,7 +83,18 @@ Expected<Job> job_from_json(const json& j) {
   try {
     Job job;
     const std::string kind = j.at("kind");
-    job.kind = kind == "render" ? JobKind::render : kind == "compile" ? JobKind::compile : JobKind::mesh_check;
+    for (auto k : {JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade})
+      if (kind == kind_name(k)) job.kind = k;
+    const json& g = j.at("grade");
+    job.grade.reference_name = g.at("referenceName");
+    job.grade.reference_vertex = file_from(g.at("referenceVertex"));
+    job.grade.reference_fragment = file_from(g.at("referenceFragment"));
+    for (const auto& m : g.at("mistakes"))
+      job.grade.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
+    job.grade.options.compare.threshold = g.at("threshold");
+    job.grade.options.compare.spatial_tolerance = g.at("spatialTolerance");
+    job.grade.options.max_failing_fraction = g.at("maxFailingFraction");
+    job.grade.options.max_score = g.at("maxScore");
     auto& r = job.request;
     r.vertex = {j.at("vertexName"), j.at("vertex")};
     r.fragment = {j.at("fragmentName"), j.at("fragment")};

@@ -7,13 +7,23 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "grade/checkpoints.h"
+#include "grade/grader.h"
 #include "render/render_request.h"
 
 namespace shadelab::worker {
 
-enum class JobKind { render, compile, mesh_check };
+enum class JobKind { render, compile, mesh_check, grade };
 enum class Output { grid, frames, json };
 enum class Format { png, exr };
+
+// What a grade job compares the submission (the job's shaders) against.
+struct GradeSpec {
+  std::string reference_name;  // a checkpoint, or "custom"
+  shader::ShaderFile reference_vertex, reference_fragment;
+  std::vector<grade::Mistake> mistakes;
+  grade::GradeOptions options;
+};
 
 struct Job {
   JobKind kind = JobKind::render;
@@ -24,6 +34,7 @@ struct Job {
   std::string prefix = "render";
   Output output = Output::grid;
   Format format = Format::png;
+  GradeSpec grade;  // for JobKind::grade
 };
 
 nlohmann::json to_json(const Job& job);

@@ -12,6 +12,8 @@
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
+#include "image/metrics.h"
+#include "grade/report.h"
 #include "render/renderer.h"
 #include "worker/job.h"
 #include "worker/protocol.h"
@@ -91,6 +93,8 @@ class Worker {
                {"bounds", {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}}}},
               {}};
     }
+
+    if (job.kind == JobKind::grade) return grade(job, in.payload);
 
     auto compiled = renderer_.compile(job.request.vertex, job.request.fragment);
     if (!compiled) return failure(compiled.error());
@@ -182,8 +186,85 @@ class Worker {
     return out;
   }
 
+  using Frames = std::vector<image::Image>;
+
+  Expected<Frames> frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
+    Frames out;
+    auto report = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(f); });
+    if (!report) return report.take_error();
+    return out;
+  }
+
+  // Reference and mistake renders depend only on their shaders and the job's parameters: a batch
+  // grading a class renders them once per worker.
+  Expected<Frames> cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const Job& job) {
+    json key_parts = to_json(job);
+    key_parts["vertex"] = r.vertex.text;
+    key_parts["fragment"] = r.fragment.text;
+    key_parts.erase("grade");
+    key_parts.erase("vertexName");
+    key_parts.erase("fragmentName");
+    const std::string key = key_parts.dump();
+    if (auto it = references_.find(key); it != references_.end()) return it->second;
+    auto frames = frames_of(r, m);
+    if (!frames) return frames;
+    if (references_.size() > 64) references_.clear();
+    return references_.emplace(key, std::move(*frames)).first->second;
+  }
+
+  Message grade(Job& job, const std::string& payload) {
+    const auto& spec = job.grade;
+    const auto graded = [](json result) { return Message{{{"ok", true}, {"result", std::move(result)}}, {}}; };
+    auto compiled = renderer_.compile(job.request.vertex, job.request.fragment);
+    if (!compiled) return graded(grade::failed_submission(compiled.error(), spec.reference_name, spec.options.max_score));
+    if (!write_message(fd_, {{{"event", "phase"}, {"phase", "render"}}, {}})) return failure(make_error(ErrorCode::io_error, "lost the server"));
+
+    auto m = mesh(job, payload);
+    if (!m) return failure(m.error());
+    if (job.fit) {
+      fitted_ = **m;
+      scene::fit_to_homework(fitted_);
+    }
+    const scene::Mesh& mesh_ref = job.fit ? fitted_ : **m;
+    render::RenderRequest r = job.request;
+    r.pixel_type = image::PixelType::u8;
+    auto student = frames_of(r, mesh_ref);
+    if (!student) return graded(grade::failed_submission(student.error(), spec.reference_name, spec.options.max_score));
+    // The canvas stores NaN as 0: render to floats as well to find it. No multisampling needed.
+    render::RenderRequest as_float = r;
+    as_float.pixel_type = image::PixelType::f32;
+    as_float.msaa = 0;
+    auto student_float = frames_of(as_float, mesh_ref);
+    if (!student_float) return graded(grade::failed_submission(student_float.error(), spec.reference_name, spec.options.max_score));
+
+    render::RenderRequest ref = r;
+    ref.vertex = spec.reference_vertex;
+    ref.fragment = spec.reference_fragment;
+    // The reference gets the same uniform values as the submission: a grader that changes the
+    // colours grades against the reference with those colours.
+    auto reference = cached_frames(ref, mesh_ref, job);
+    if (!reference) return failure(make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message));
+    std::vector<grade::RenderedMistake> mistakes;
+    for (const auto& mk : spec.mistakes) {
+      render::RenderRequest mr = ref;
+      mr.vertex = mk.vertex;
+      mr.fragment = mk.fragment;
+      auto frames = cached_frames(mr, mesh_ref, job);
+      if (frames) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
+    }
+    const auto result = grade::grade(*student, *student_float, *reference, mistakes, spec.options);
+    json out = grade::to_json(result, spec.reference_name);
+    out["warnings"] = compiled->warnings;
+    Frames heat;
+    for (size_t k = 0; k < student->size(); ++k) heat.push_back(image::heatmap((*student)[k], (*reference)[k]));
+    auto heat_png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat));
+    if (heat_png) out["heatmap"] = base64(*heat_png);
+    return graded(std::move(out));
+  }
+
   int fd_;
   render::Renderer renderer_;
+  std::map<std::string, Frames> references_;
   std::map<std::string, scene::Mesh> meshes_;
   scene::Mesh fitted_;
 };

@@ -1,0 +1,202 @@
+// shadelab grade: one submission, or a folder of them (one folder per student), graded against a
+// checkpoint through render workers, so a submission that hangs or crashes is scored 0 with the
+// reason while the batch goes on.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <thread>
+
+#include "core/base64.h"
+
+#include "cli/commands.h"
+#include "cli/environment.h"
+#include "grade/report.h"
+#include "http/api_request.h"
+#include "worker/grade_client.h"
+
+namespace shadelab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct GradeFlags {
+  std::string vert, frag, submissions, reference = "specular", mesh = "bunny", out = "grades", output, heatmap;
+  std::string format = "json", size = "640x480";
+  int frames = 9, workers = 0;
+  double threshold = 0.016, max_failing = 0.01, max_score = 1.0;
+  bool spatial = false;
+  long timeout_ms = 10000;
+  bool software = software_from_environment();
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// The submission's shader pair: the homework's file names for the checkpoint first, else the only
+// *_vert.js / *_frag.js pair in the folder.
+std::optional<std::pair<fs::path, fs::path>> find_pair(const fs::path& dir, const std::string& checkpoint) {
+  std::vector<fs::path> verts, frags;
+  for (const auto& e : fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied)) {
+    const std::string name = e.path().filename().string();
+    if (name.ends_with("_vert.js")) verts.push_back(e.path());
+    if (name.ends_with("_frag.js")) frags.push_back(e.path());
+  }
+  const std::string stem = checkpoint == "smooth" || checkpoint == "gouraud" ? "starter" : "phong";
+  for (const auto& v : verts)
+    for (const auto& f : frags)
+      if (v.filename() == stem + "_vert.js" && f.filename() == stem + "_frag.js") return std::pair{v, f};
+  if (verts.size() == 1 && frags.size() == 1) return std::pair{verts[0], frags[0]};
+  return std::nullopt;
+}
+
+http::RawRequest raw_request(const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+  http::RawRequest raw;
+  int w = 640, h = 480;
+  std::sscanf(f.size.c_str(), "%dx%d", &w, &h);
+  raw.fields = {{"reference", f.reference}, {"mesh", f.mesh},  {"width", w}, {"height", h}, {"frames", f.frames},
+                {"threshold", f.threshold}, {"maxFailingFraction", f.max_failing}, {"spatialTolerance", f.spatial},
+                {"maxScore", f.max_score}};
+  raw.files["vertex"] = {vert.filename().string(), read_text(vert)};
+  raw.files["fragment"] = {frag.filename().string(), read_text(frag)};
+  return raw;
+}
+
+// One submission to a result (grade::to_json shape), whatever goes wrong with it.
+worker::GradeOutcome grade_one(worker::WorkerPool& pool, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+  auto parsed = http::parse_grade_job(raw_request(f, vert, frag), http::Limits{});
+  if (!parsed) return {grade::failed_submission(parsed.error(), f.reference, f.max_score), "", 0, std::nullopt};
+  auto outcome = worker::grade_with_pool(pool, parsed->parsed.job, "");
+  if (outcome.service_error) outcome.result = grade::failed_submission(*outcome.service_error, f.reference, f.max_score);
+  return outcome;
+}
+
+void write(const fs::path& path, const std::string& text) {
+  if (path.has_parent_path()) fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string csv(std::string s) {
+  for (auto& c : s)
+    if (c == '\n') c = ' ';
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
+  worker::PoolConfig c;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  c.workers = f.workers > 0 ? f.workers : std::min(cores, std::max(1, jobs));
+  c.llvmpipe_threads = std::max(1, cores / c.workers);
+  c.compile_deadline = c.render_deadline = std::chrono::milliseconds(f.timeout_ms);
+  c.max_queue = static_cast<size_t>(std::max(jobs, 1));
+  c.force_software = f.software;
+  return c;
+}
+
+int run_single(const GradeFlags& f) {
+  worker::WorkerPool pool(pool_config(f, 1));
+  auto outcome = grade_one(pool, f, f.vert, f.frag);
+  const json out = f.format == "gradescope" ? grade::to_gradescope(outcome.result, outcome.seconds) : outcome.result;
+  if (f.output.empty()) std::cout << out.dump(2) << "\n";
+  else write(f.output, out.dump(2) + "\n");
+  if (!f.heatmap.empty() && !outcome.heatmap_png.empty()) write(f.heatmap, base64_decode(outcome.heatmap_png));
+  for (const auto& m : outcome.result.value("messages", json::array())) std::cerr << m.get<std::string>() << "\n";
+  return 0;
+}
+
+int run_batch(const GradeFlags& f) {
+  std::vector<fs::path> students;
+  for (const auto& e : fs::directory_iterator(f.submissions))
+    if (e.is_directory()) students.push_back(e.path());
+  std::sort(students.begin(), students.end());
+  if (students.empty()) {
+    std::cerr << "error: no submission folders in " << f.submissions << "\n";
+    return 2;
+  }
+  worker::WorkerPool pool(pool_config(f, static_cast<int>(students.size())));
+  std::vector<worker::GradeOutcome> outcomes(students.size());
+  std::atomic<size_t> done{0};
+  std::mutex print;
+  const auto progress = [&](const std::string& who) {
+    std::lock_guard lock(print);
+    const size_t n = done, total = students.size(), width = 30;
+    std::cerr << "\r[" << std::string(n * width / total, '#') << std::string(width - n * width / total, ' ') << "] " << n << "/"
+              << total << " " << who << std::string(20, ' ') << std::flush;
+  };
+  // One thread per submission just waits on the pool, which runs them `workers` at a time.
+  std::vector<std::thread> threads;
+  for (size_t i = 0; i < students.size(); ++i)
+    threads.emplace_back([&, i] {
+      const auto pair = find_pair(students[i], f.reference);
+      if (!pair) {
+        outcomes[i].result = grade::failed_submission(
+            make_error(ErrorCode::invalid_argument, "no shader pair found (expected *_vert.js and *_frag.js)"), f.reference, f.max_score);
+      } else {
+        outcomes[i] = grade_one(pool, f, pair->first, pair->second);
+      }
+      ++done;
+      progress(students[i].filename().string());
+    });
+  for (auto& t : threads) t.join();
+  std::cerr << "\n";
+
+  std::string summary = "student,score,max_score,pass,diagnosis,message\n";
+  double total = 0;
+  for (size_t i = 0; i < students.size(); ++i) {
+    const auto& r = outcomes[i].result;
+    const std::string who = students[i].filename().string();
+    write(fs::path(f.out) / who / "results.json", grade::to_gradescope(r, outcomes[i].seconds).dump(2) + "\n");
+    const auto messages = r.value("messages", json::array());
+    summary += csv(who) + "," + std::to_string(r.value("score", 0.0)) + "," + std::to_string(r.value("maxScore", 1.0)) + "," +
+               (r.value("pass", false) ? "true" : "false") + "," + csv(r.value("diagnosis", "")) + "," +
+               csv(messages.empty() ? "" : messages[0].get<std::string>()) + "\n";
+    total += r.value("score", 0.0);
+  }
+  write(fs::path(f.out) / "summary.csv", summary);
+  std::cerr << "graded " << students.size() << " submissions, mean score " << total / static_cast<double>(students.size())
+            << "; results in " << f.out << "/\n";
+  return 0;
+}
+
+}  // namespace
+
+Command add_grade_command(CLI::App& app) {
+  auto f = std::make_shared<GradeFlags>();
+  auto* cmd = app.add_subcommand("grade", "Grade shaders against a checkpoint (one submission, or a folder of them)");
+  cmd->add_option("--vert", f->vert, "Submission's vertex shader");
+  cmd->add_option("--frag", f->frag, "Submission's fragment shader");
+  cmd->add_option("--submissions", f->submissions, "A folder with one folder per student holding their shaders/*.js");
+  cmd->add_option("--reference", f->reference, "Checkpoint: smooth, gouraud, diffuse, specular")->capture_default_str();
+  cmd->add_option("--mesh", f->mesh, "Built-in mesh")->capture_default_str();
+  cmd->add_option("--frames", f->frames, "Frames")->capture_default_str();
+  cmd->add_option("--size", f->size, "Frame size")->capture_default_str();
+  cmd->add_option("--threshold", f->threshold, "Per-channel difference a pixel may have")->capture_default_str();
+  cmd->add_option("--max-failing", f->max_failing, "Share of failing pixels a frame may have")->capture_default_str();
+  cmd->add_flag("--spatial", f->spatial, "Accept a pixel matching the reference within one pixel");
+  cmd->add_option("--max-score", f->max_score, "Points for the checkpoint")->capture_default_str();
+  cmd->add_option("--format", f->format, "json or gradescope (single submission)")->check(CLI::IsMember({"json", "gradescope"}));
+  cmd->add_option("-o,--output", f->output, "Write the result here instead of stdout (single submission)");
+  cmd->add_option("--heatmap", f->heatmap, "Write the difference heat map grid PNG here (single submission)");
+  cmd->add_option("--out", f->out, "Batch: folder for <student>/results.json and summary.csv")->capture_default_str();
+  cmd->add_option("--workers", f->workers, "Render workers (default: one per core)");
+  cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission")->capture_default_str();
+  cmd->add_flag("--software", f->software, "Force Mesa's software renderer");
+  return [f] {
+    if (!f->submissions.empty()) return run_batch(*f);
+    if (f->vert.empty() || f->frag.empty()) {
+      std::cerr << "error: give --vert and --frag, or --submissions DIR\n";
+      return 2;
+    }
+    return run_single(*f);
+  };
+}
+
+}  // namespace shadelab::cli

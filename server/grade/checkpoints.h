@@ -1,0 +1,28 @@
+#pragma once
+// The homework's checkpoints as grading references, each with the mistakes students make on it.
+// A mistake is the reference shader with one deliberate change; a submission that matches a
+// mistake's render better than the reference's is told, in those words, what it got wrong.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shader/shader_source.h"
+
+namespace shadelab::grade {
+
+struct Mistake {
+  std::string id;       // "missing_specular"
+  std::string message;  // what the student reads
+  shader::ShaderFile vertex, fragment;
+};
+
+struct Checkpoint {
+  std::string name;  // smooth, gouraud, diffuse, specular
+  shader::ShaderFile vertex, fragment;
+  std::vector<Mistake> mistakes;
+};
+
+std::optional<Checkpoint> find_checkpoint(const std::string& name);
+std::vector<std::string> checkpoint_names();
+
+}  // namespace shadelab::grade

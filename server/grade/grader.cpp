@@ -1,0 +1,116 @@
+#include "grade/grader.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+
+#include "core/check.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+std::string percent(double f) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, f < 0.001 ? "%.3f%%" : "%.1f%%", f * 100);
+  return buf;
+}
+
+// Share of frames that pass when `candidate` stands in for the reference.
+double frames_matching(const std::vector<image::Image>& student, const std::vector<image::Image>& candidate,
+                       const GradeOptions& options) {
+  int matching = 0;
+  for (size_t k = 0; k < student.size(); ++k)
+    matching += image::compare(student[k], candidate[k], options.compare).failing_fraction <= options.max_failing_fraction;
+  return static_cast<double>(matching) / static_cast<double>(student.size());
+}
+
+double mean_failing(const std::vector<image::Image>& student, const std::vector<image::Image>& candidate,
+                    const GradeOptions& options) {
+  double sum = 0;
+  for (size_t k = 0; k < student.size(); ++k) sum += image::compare(student[k], candidate[k], options.compare).failing_fraction;
+  return sum / static_cast<double>(student.size());
+}
+
+// The student's frames with RGB permuted: does some order other than R, G, B match the reference?
+std::string swapped_channels(const std::vector<image::Image>& student, const std::vector<image::Image>& reference,
+                             const GradeOptions& options) {
+  constexpr std::array<std::array<int, 3>, 5> orders = {{{0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+  const char* names = "RGB";
+  for (const auto& order : orders) {
+    std::vector<image::Image> permuted = student;
+    for (auto& f : permuted)
+      for (size_t i = 0; i < f.bytes.size(); i += 4) {
+        const std::uint8_t rgb[3] = {f.bytes[i], f.bytes[i + 1], f.bytes[i + 2]};
+        for (int c = 0; c < 3; ++c) f.bytes[i + c] = rgb[order[c]];
+      }
+    if (frames_matching(permuted, reference, options) == 1.0)
+      return std::string("colour channels swapped: your (") + names[order[0]] + ", " + names[order[1]] + ", " +
+             names[order[2]] + ") would match the reference's (R, G, B)";
+  }
+  return "";
+}
+
+}  // namespace
+
+GradeResult grade(const std::vector<image::Image>& student, const std::vector<image::Image>& student_float,
+                  const std::vector<image::Image>& reference, const std::vector<RenderedMistake>& mistakes,
+                  const GradeOptions& options) {
+  SHADELAB_CHECK(!student.empty() && student.size() == reference.size(), "grade needs matching frame lists");
+  GradeResult r;
+  r.max_score = options.max_score;
+  std::size_t nan = 0, inf = 0, pixels = 0;
+  int passing = 0, worst = 0;
+  for (size_t k = 0; k < student.size(); ++k) {
+    FrameGrade f;
+    f.metrics = image::compare(student[k], reference[k], options.compare);
+    if (k < student_float.size()) f.non_finite = image::count_non_finite(student_float[k]);
+    f.pass = f.metrics.failing_fraction <= options.max_failing_fraction && f.non_finite.nan == 0 && f.non_finite.inf == 0;
+    passing += f.pass;
+    nan += f.non_finite.nan;
+    inf += f.non_finite.inf;
+    pixels += static_cast<std::size_t>(student[k].width) * student[k].height;
+    r.frames.push_back(f);
+  }
+  for (size_t k = 1; k < r.frames.size(); ++k)
+    if (r.frames[k].metrics.failing_fraction > r.frames[static_cast<size_t>(worst)].metrics.failing_fraction) worst = static_cast<int>(k);
+  r.pass = passing == static_cast<int>(student.size());
+  r.score = options.max_score * passing / static_cast<double>(student.size());
+  const auto& w = r.frames[static_cast<size_t>(worst)].metrics;
+
+  if (nan > 0) {
+    r.diagnosis = "nan";
+    r.messages.push_back("NaN in " + percent(static_cast<double>(nan) / pixels) +
+                         " of pixels: the browser shows them black or transparent (a division by zero, or normalize() "
+                         "of a zero vector?)");
+  }
+  if (inf > 0) r.messages.push_back("infinity in " + percent(static_cast<double>(inf) / pixels) + " of pixels");
+  if (r.pass) {
+    r.messages.push_back(w.identical ? "matches the reference exactly"
+                                     : "matches the reference: at worst " + percent(w.failing_fraction) +
+                                           " of pixels differ by more than the tolerance (frame " + std::to_string(worst) + ")");
+    return r;
+  }
+  // Which known mistake explains the frames best, if one explains them at all?
+  const RenderedMistake* best = nullptr;
+  double best_failing = mean_failing(student, reference, options);
+  for (const auto& m : mistakes) {
+    if (frames_matching(student, m.frames, options) < 1.0) continue;
+    const double failing = mean_failing(student, m.frames, options);
+    if (failing < best_failing) best = &m, best_failing = failing;
+  }
+  if (best) {
+    if (r.diagnosis.empty()) r.diagnosis = best->id;
+    r.messages.push_back(best->message);
+  } else if (const std::string swap = swapped_channels(student, reference, options); !swap.empty()) {
+    if (r.diagnosis.empty()) r.diagnosis = "swapped_channels";
+    r.messages.push_back(swap);
+  }
+  r.messages.push_back(std::to_string(student.size() - static_cast<size_t>(passing)) + " of " + std::to_string(student.size()) +
+                       " frames differ from the reference; worst frame " + std::to_string(worst) + ": " +
+                       percent(w.failing_fraction) + " of pixels off by more than " +
+                       std::to_string(static_cast<int>(options.compare.threshold * 255 + 1e-9)) + "/255");
+  return r;
+}
+
+}  // namespace shadelab::grade

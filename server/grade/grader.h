@@ -1,0 +1,43 @@
+#pragma once
+// From rendered frames to a verdict, a score and messages a student understands. Pure CPU work
+// on images: the worker renders, this decides.
+#include <string>
+#include <vector>
+
+#include "image/metrics.h"
+
+namespace shadelab::grade {
+
+struct GradeOptions {
+  image::CompareOptions compare;        // per-channel threshold 0.016, spatial tolerance off
+  double max_failing_fraction = 0.01;   // a frame fails past 1% failing pixels (Blender's tests)
+  double max_score = 1.0;
+};
+
+struct FrameGrade {
+  image::FrameMetrics metrics;
+  image::NonFinite non_finite;
+  bool pass = false;
+};
+
+// A known mistake, rendered: the same frames as the student's.
+struct RenderedMistake {
+  std::string id, message;
+  std::vector<image::Image> frames;
+};
+
+struct GradeResult {
+  bool pass = false;
+  double score = 0, max_score = 1;
+  std::vector<FrameGrade> frames;
+  std::vector<std::string> messages;
+  std::string diagnosis;  // id of the mistake recognised, "swapped_channels", "nan", or ""
+};
+
+// `student` and `reference` are RGBA8 frames; `student_float` the same frames rendered to a float
+// target (for NaN and infinity, which the 8-bit canvas hides); empty to skip that check.
+GradeResult grade(const std::vector<image::Image>& student, const std::vector<image::Image>& student_float,
+                  const std::vector<image::Image>& reference, const std::vector<RenderedMistake>& mistakes,
+                  const GradeOptions& options);
+
+}  // namespace shadelab::grade

@@ -1,0 +1,40 @@
+#pragma once
+// Comparing a frame with its reference, as a grader needs it. Values are in [0, 1] per channel
+// over RGB (alpha is compared through the toBlob result the pixels already hold).
+#include <cstddef>
+#include <optional>
+
+#include "image/image.h"
+
+namespace shadelab::image {
+
+struct CompareOptions {
+  // A pixel fails when some channel differs by more than this. Blender's render tests use 0.016.
+  double threshold = 0.016;
+  // Accept a pixel that matches some reference pixel within one pixel of it: edge rasterisation
+  // differs between GPUs and drivers, and a student should not fail for it.
+  bool spatial_tolerance = false;
+};
+
+struct FrameMetrics {
+  bool identical = false;
+  double rmse = 0;
+  std::optional<double> psnr;  // dB; none when identical (infinite)
+  double ssim = 1;             // mean SSIM of luma, 7 x 7 windows
+  double max_abs = 0;
+  double failing_fraction = 0; // share of pixels over the threshold
+};
+
+// Both RGBA8, the same size.
+FrameMetrics compare(const Image& actual, const Image& expected, const CompareOptions& options = {});
+
+// NaN and infinite pixels of a float frame (any channel).
+struct NonFinite {
+  std::size_t nan = 0, inf = 0;
+};
+NonFinite count_non_finite(const Image& float_frame);
+
+// Per-pixel maximum channel difference as a heat map: black, red, yellow, white at 1/8, 1/4, 1/2.
+Image heatmap(const Image& actual, const Image& expected);
+
+}  // namespace shadelab::image
