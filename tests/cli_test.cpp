@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iterator>
 
+#include <nlohmann/json.hpp>
+
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -35,9 +37,17 @@ class CliTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+  void write(const std::string& name, const std::string& text) const {
+    fs::create_directories((dir_ / name).parent_path());
+    std::ofstream(dir_ / name) << text;
+  }
   fs::path dir_;
 };
+
+std::string read_text(const std::string& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
 
 std::vector<std::uint8_t> read_bytes(const std::string& p) {
   std::ifstream in(p, std::ios::binary);
@@ -114,4 +124,42 @@ TEST_F(CliTest, ExrOutputIsFloat) {
   const auto img = shadelab::testkit::decode(read_bytes(path("g.exr")));
   EXPECT_EQ(img.type, shadelab::image::PixelType::f32);
   EXPECT_EQ(img.width, 32);
+}
+
+TEST_F(CliTest, BatchGradingScoresAHangingSubmissionZeroAndGoesOn) {
+  const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
+  write("class/alice/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/alice/shaders/phong_frag.js", preset("specular_frag.js"));
+  write("class/bob/shaders/phong_vert.js", preset("diffuse_vert.js"));
+  write("class/bob/shaders/phong_frag.js", preset("diffuse_frag.js"));
+  std::string hang = preset("specular_frag.js");
+  hang.replace(hang.find("    fragColor = color;"), 22,
+               "    float s = gl_FragCoord.x;\n    while (true) { s = sin(s); if (s > 2.0) break; }\n    fragColor = color + vec4(s);");
+  write("class/carol/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/carol/shaders/phong_frag.js", hang);
+  fs::create_directories(dir_ / "class" / "dave");  // handed in nothing
+
+  const auto run = run_cli("grade --submissions " + path("class") + " --reference specular --size 64x48 --timeout-ms 2000 --out " +
+                           path("grades"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("4/4"), std::string::npos);  // the progress bar reached the end
+  const std::string summary = read_text(path("grades/summary.csv"));
+  EXPECT_NE(summary.find("alice,1.000000,1.000000,true"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("bob,0.000000,1.000000,false,missing_specular"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("carol,0.000000,1.000000,false,render_timeout"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("dave,0.000000,1.000000,false,invalid_argument,no shader pair found"), std::string::npos) << summary;
+  for (const char* who : {"alice", "bob", "carol", "dave"}) {
+    const auto results = nlohmann::json::parse(read_text(path(std::string("grades/") + who + "/results.json")));
+    EXPECT_TRUE(results.contains("score") && results.contains("execution_time") && results.contains("tests")) << who;
+  }
+}
+
+TEST_F(CliTest, SingleGradeWritesJsonAndAHeatmap) {
+  const std::string shaders = std::string(SHADELAB_SOURCE_DIR) + "/shaders/";
+  const auto run = run_cli("grade --vert " + shaders + "diffuse_vert.js --frag " + shaders + "diffuse_frag.js --reference diffuse " +
+                           "--size 64x48 --format gradescope -o " + path("r.json") + " --heatmap " + path("heat.png"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto r = nlohmann::json::parse(read_text(path("r.json")));
+  EXPECT_EQ(r["score"], 1.0);
+  EXPECT_EQ(shadelab::testkit::decode(read_bytes(path("heat.png"))).width, 192);
 }

@@ -49,6 +49,7 @@ Checkpoint build(const std::string& name) {
                                  {{false, "max(0.0, dot(N, L))", "0.0"}}));
   }
   if (name == "specular") {
+    c.probes.push_back({"back_light", {-6.0f, 4.0f, -20.0f}});
     const auto d = *render::find_preset("diffuse");
     c.mistakes.push_back(Mistake{"missing_specular", "specular highlight missing: the image matches ambient + diffuse only",
                                  d.vertex, d.fragment});

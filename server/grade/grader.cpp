@@ -16,19 +16,33 @@ std::string percent(double f) {
   return buf;
 }
 
+bool is_clear(const std::uint8_t* p) { return p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 255; }
+
+// Failing pixels over the pixels the object covers in either image (see FrameGrade).
+double failing_of_object(const image::Image& a, const image::Image& b, const image::FrameMetrics& m) {
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < a.bytes.size(); i += 4) covered += !is_clear(&a.bytes[i]) || !is_clear(&b.bytes[i]);
+  const double pixels = static_cast<double>(a.width) * a.height;
+  return covered == 0 ? 0.0 : m.failing_fraction * pixels / static_cast<double>(covered);
+}
+
+double frame_failing(const image::Image& a, const image::Image& b, const GradeOptions& options) {
+  return failing_of_object(a, b, image::compare(a, b, options.compare));
+}
+
 // Share of frames that pass when `candidate` stands in for the reference.
 double frames_matching(const std::vector<image::Image>& student, const std::vector<image::Image>& candidate,
                        const GradeOptions& options) {
   int matching = 0;
   for (size_t k = 0; k < student.size(); ++k)
-    matching += image::compare(student[k], candidate[k], options.compare).failing_fraction <= options.max_failing_fraction;
+    matching += frame_failing(student[k], candidate[k], options) <= options.max_failing_fraction;
   return static_cast<double>(matching) / static_cast<double>(student.size());
 }
 
 double mean_failing(const std::vector<image::Image>& student, const std::vector<image::Image>& candidate,
                     const GradeOptions& options) {
   double sum = 0;
-  for (size_t k = 0; k < student.size(); ++k) sum += image::compare(student[k], candidate[k], options.compare).failing_fraction;
+  for (size_t k = 0; k < student.size(); ++k) sum += frame_failing(student[k], candidate[k], options);
   return sum / static_cast<double>(student.size());
 }
 
@@ -64,8 +78,9 @@ GradeResult grade(const std::vector<image::Image>& student, const std::vector<im
   for (size_t k = 0; k < student.size(); ++k) {
     FrameGrade f;
     f.metrics = image::compare(student[k], reference[k], options.compare);
+    f.failing_fraction_of_object = failing_of_object(student[k], reference[k], f.metrics);
     if (k < student_float.size()) f.non_finite = image::count_non_finite(student_float[k]);
-    f.pass = f.metrics.failing_fraction <= options.max_failing_fraction && f.non_finite.nan == 0 && f.non_finite.inf == 0;
+    f.pass = f.failing_fraction_of_object <= options.max_failing_fraction && f.non_finite.nan == 0 && f.non_finite.inf == 0;
     passing += f.pass;
     nan += f.non_finite.nan;
     inf += f.non_finite.inf;
@@ -73,10 +88,11 @@ GradeResult grade(const std::vector<image::Image>& student, const std::vector<im
     r.frames.push_back(f);
   }
   for (size_t k = 1; k < r.frames.size(); ++k)
-    if (r.frames[k].metrics.failing_fraction > r.frames[static_cast<size_t>(worst)].metrics.failing_fraction) worst = static_cast<int>(k);
+    if (r.frames[k].failing_fraction_of_object > r.frames[static_cast<size_t>(worst)].failing_fraction_of_object) worst = static_cast<int>(k);
   r.pass = passing == static_cast<int>(student.size());
   r.score = options.max_score * passing / static_cast<double>(student.size());
   const auto& w = r.frames[static_cast<size_t>(worst)].metrics;
+  const double worst_object = r.frames[static_cast<size_t>(worst)].failing_fraction_of_object;
 
   if (nan > 0) {
     r.diagnosis = "nan";
@@ -87,8 +103,9 @@ GradeResult grade(const std::vector<image::Image>& student, const std::vector<im
   if (inf > 0) r.messages.push_back("infinity in " + percent(static_cast<double>(inf) / pixels) + " of pixels");
   if (r.pass) {
     r.messages.push_back(w.identical ? "matches the reference exactly"
-                                     : "matches the reference: at worst " + percent(w.failing_fraction) +
-                                           " of pixels differ by more than the tolerance (frame " + std::to_string(worst) + ")");
+                                     : "matches the reference: at worst " + percent(worst_object) +
+                                           " of the object's pixels differ by more than the tolerance (frame " +
+                                           std::to_string(worst) + ")");
     return r;
   }
   // Which known mistake explains the frames best, if one explains them at all?
@@ -108,7 +125,7 @@ GradeResult grade(const std::vector<image::Image>& student, const std::vector<im
   }
   r.messages.push_back(std::to_string(student.size() - static_cast<size_t>(passing)) + " of " + std::to_string(student.size()) +
                        " frames differ from the reference; worst frame " + std::to_string(worst) + ": " +
-                       percent(w.failing_fraction) + " of pixels off by more than " +
+                       percent(worst_object) + " of the object's pixels off by more than " +
                        std::to_string(static_cast<int>(options.compare.threshold * 255 + 1e-9)) + "/255");
   return r;
 }

@@ -10,12 +10,16 @@ namespace shadelab::grade {
 
 struct GradeOptions {
   image::CompareOptions compare;        // per-channel threshold 0.016, spatial tolerance off
-  double max_failing_fraction = 0.01;   // a frame fails past 1% failing pixels (Blender's tests)
+  double max_failing_fraction = 0.01;   // a frame fails past 1% failing object pixels (Blender's tests: 1%)
   double max_score = 1.0;
 };
 
 struct FrameGrade {
   image::FrameMetrics metrics;
+  // Failing pixels as a share of the object's pixels (where either image is not the clear
+  // colour): the mesh covers a tenth of a homework frame, and a share of the whole frame would
+  // let a tenth of the object be wrong before a frame failed. The verdict uses this one.
+  double failing_fraction_of_object = 0;
   image::NonFinite non_finite;
   bool pass = false;
 };

@@ -16,6 +16,7 @@ json to_json(const GradeResult& r, const std::string& checkpoint) {
                       {"ssim", f.metrics.ssim},
                       {"maxAbsError", f.metrics.max_abs},
                       {"failingFraction", f.metrics.failing_fraction},
+                      {"failingFractionOfObject", f.failing_fraction_of_object},
                       {"nanPixels", f.non_finite.nan},
                       {"infPixels", f.non_finite.inf}});
   }

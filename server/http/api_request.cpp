@@ -252,6 +252,7 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits) {
     spec.reference_vertex = checkpoint->vertex;
     spec.reference_fragment = checkpoint->fragment;
     spec.mistakes = std::move(checkpoint->mistakes);
+    spec.probes = std::move(checkpoint->probes);
   }
   auto threshold = number(f, "threshold", spec.options.compare.threshold);
   auto failing = number(f, "maxFailingFraction", spec.options.max_failing_fraction);

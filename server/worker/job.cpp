@@ -50,11 +50,14 @@ json to_json(const Job& job) {
   json mistakes = json::array();
   for (const auto& m : job.grade.mistakes)
     mistakes.push_back({{"id", m.id}, {"message", m.message}, {"vertex", file_json(m.vertex)}, {"fragment", file_json(m.fragment)}});
+  json probes = json::array();
+  for (const auto& p : job.grade.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
   const auto& o = job.grade.options;
   const json grade = {{"referenceName", job.grade.reference_name},
                       {"referenceVertex", file_json(job.grade.reference_vertex)},
                       {"referenceFragment", file_json(job.grade.reference_fragment)},
                       {"mistakes", mistakes},
+                      {"probes", probes},
                       {"threshold", o.compare.threshold},
                       {"spatialTolerance", o.compare.spatial_tolerance},
                       {"maxFailingFraction", o.max_failing_fraction},
@@ -91,6 +94,7 @@ Expected<Job> job_from_json(const json& j) {
     job.grade.reference_fragment = file_from(g.at("referenceFragment"));
     for (const auto& m : g.at("mistakes"))
       job.grade.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
+    for (const auto& p : g.at("probes")) job.grade.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>()});
     job.grade.options.compare.threshold = g.at("threshold");
     job.grade.options.compare.spatial_tolerance = g.at("spatialTolerance");
     job.grade.options.max_failing_fraction = g.at("maxFailingFraction");

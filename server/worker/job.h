@@ -22,6 +22,7 @@ struct GradeSpec {
   std::string reference_name;  // a checkpoint, or "custom"
   shader::ShaderFile reference_vertex, reference_fragment;
   std::vector<grade::Mistake> mistakes;
+  std::vector<grade::Probe> probes;
   grade::GradeOptions options;
 };
 

@@ -1,5 +1,6 @@
 #include "worker/worker_main.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstring>
@@ -198,13 +199,13 @@ class Worker {
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch
   // grading a class renders them once per worker.
   Expected<Frames> cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const Job& job) {
-    json key_parts = to_json(job);
-    key_parts["vertex"] = r.vertex.text;
-    key_parts["fragment"] = r.fragment.text;
-    key_parts.erase("grade");
-    key_parts.erase("vertexName");
-    key_parts.erase("fragmentName");
-    const std::string key = key_parts.dump();
+    // The key is the request actually rendered (shaders, size, uniforms, ...) and the mesh.
+    Job keyed;
+    keyed.request = r;
+    keyed.request.vertex.name = keyed.request.fragment.name = "";
+    keyed.mesh = job.mesh;
+    keyed.fit = job.fit;
+    const std::string key = to_json(keyed).dump() + (r.pixel_type == image::PixelType::f32 ? "f32" : "u8");
     if (auto it = references_.find(key); it != references_.end()) return it->second;
     auto frames = frames_of(r, m);
     if (!frames) return frames;
@@ -228,38 +229,73 @@ class Worker {
     const scene::Mesh& mesh_ref = job.fit ? fitted_ : **m;
     render::RenderRequest r = job.request;
     r.pixel_type = image::PixelType::u8;
-    auto student = frames_of(r, mesh_ref);
+    // Every set of frames is rendered under the homework's light, then under each probe light.
+    const auto render_set = [&](const render::RenderRequest& base, bool cache) -> Expected<Frames> {
+      Frames all;
+      for (int p = -1; p < static_cast<int>(spec.probes.size()); ++p) {
+        render::RenderRequest lit = base;
+        if (p >= 0) {
+          auto with = with_light(base, spec.probes[static_cast<size_t>(p)].light_position);
+          if (!with) return with.take_error();
+          lit = std::move(*with);
+        }
+        auto frames = cache ? cached_frames(lit, mesh_ref, job) : frames_of(lit, mesh_ref);
+        if (!frames) return frames.take_error();
+        all.insert(all.end(), std::make_move_iterator(frames->begin()), std::make_move_iterator(frames->end()));
+      }
+      return all;
+    };
+    auto student = render_set(r, false);
     if (!student) return graded(grade::failed_submission(student.error(), spec.reference_name, spec.options.max_score));
     // The canvas stores NaN as 0: render to floats as well to find it. No multisampling needed.
     render::RenderRequest as_float = r;
     as_float.pixel_type = image::PixelType::f32;
     as_float.msaa = 0;
-    auto student_float = frames_of(as_float, mesh_ref);
+    auto student_float = render_set(as_float, false);
     if (!student_float) return graded(grade::failed_submission(student_float.error(), spec.reference_name, spec.options.max_score));
 
+    // The reference gets the same uniform values as the submission: a grader that changes the
+    // colours grades against the reference with those colours.
     render::RenderRequest ref = r;
     ref.vertex = spec.reference_vertex;
     ref.fragment = spec.reference_fragment;
-    // The reference gets the same uniform values as the submission: a grader that changes the
-    // colours grades against the reference with those colours.
-    auto reference = cached_frames(ref, mesh_ref, job);
+    auto reference = render_set(ref, true);
     if (!reference) return failure(make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message));
     std::vector<grade::RenderedMistake> mistakes;
     for (const auto& mk : spec.mistakes) {
       render::RenderRequest mr = ref;
       mr.vertex = mk.vertex;
       mr.fragment = mk.fragment;
-      auto frames = cached_frames(mr, mesh_ref, job);
+      auto frames = render_set(mr, true);
       if (frames) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
     }
     const auto result = grade::grade(*student, *student_float, *reference, mistakes, spec.options);
     json out = grade::to_json(result, spec.reference_name);
     out["warnings"] = compiled->warnings;
-    Frames heat;
-    for (size_t k = 0; k < student->size(); ++k) heat.push_back(image::heatmap((*student)[k], (*reference)[k]));
+    for (size_t k = 0; k < out["frames"].size(); ++k) {
+      const size_t set = k / static_cast<size_t>(r.frames);
+      out["frames"][k]["light"] = set == 0 ? std::string("homework") : spec.probes[set - 1].name;
+    }
+    Frames heat;  // the homework light's frames
+    for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap((*student)[k], (*reference)[k]));
     auto heat_png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat));
     if (heat_png) out["heatmap"] = base64(*heat_png);
     return graded(std::move(out));
+  }
+
+  // `base` with the light moved, for the names the program declares as the page does (vec3);
+  // a name declared otherwise stays as the homework sets it, as in the browser.
+  Expected<render::RenderRequest> with_light(const render::RenderRequest& base, const std::array<float, 3>& position) {
+    auto program = renderer_.compile(base.vertex, base.fragment);
+    if (!program) return program.take_error();
+    render::RenderRequest lit = base;
+    for (const char* name : {"uLightPosition", "lightPosition"}) {
+      const bool declared = std::any_of(program->uniforms.begin(), program->uniforms.end(),
+                                        [&](const auto& u) { return u.name == name && u.type == "vec3" && u.array_size == 1; });
+      const bool set = std::any_of(lit.uniforms.begin(), lit.uniforms.end(), [&](const auto& u) { return u.name == name; });
+      if (declared && !set) lit.uniforms.push_back({name, {position[0], position[1], position[2]}});
+    }
+    return lit;
   }
 
   int fd_;

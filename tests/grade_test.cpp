@@ -1,0 +1,141 @@
+// Grading through the real server and workers: each checkpoint against itself, and the mistakes
+// students make, each recognised with the right message.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "render/presets.h"
+#include "support/http_fixture.h"
+#include "support/openapi_check.h"
+
+using nlohmann::json;
+using namespace shadelab;
+
+namespace {
+
+class GradeTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { server_ = new testkit::RunningService(testkit::test_config()); }
+  static void TearDownTestSuite() { delete server_; }
+
+  // A submission: a preset's shaders with one edit applied to the fragment (or vertex) shader.
+  static json submission(const std::string& preset, const std::string& from = "", const std::string& to = "",
+                         bool vertex = false) {
+    auto p = *render::find_preset(preset);
+    auto& file = vertex ? p.vertex.text : p.fragment.text;
+    if (!from.empty()) {
+      const auto at = file.find(from);
+      EXPECT_NE(at, std::string::npos) << from;
+      file.replace(at, from.size(), to);
+    }
+    return {{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"vertexName", "phong_vert.js"},
+            {"fragmentName", "phong_frag.js"}, {"width", 160}, {"height", 120}};
+  }
+  static json grade(json job, const std::string& reference) {
+    job["reference"] = reference;
+    auto r = server_->client().Post("/api/grade", job.dump(), "application/json");
+    EXPECT_TRUE(r);
+    EXPECT_EQ(r->status, 200) << r->body;
+    return json::parse(r->body);
+  }
+  static testkit::RunningService* server_;
+};
+testkit::RunningService* GradeTest::server_ = nullptr;
+
+TEST_F(GradeTest, EachCheckpointGradedAgainstItselfScoresFullMarks) {
+  for (const std::string c : {"smooth", "gouraud", "diffuse", "specular"}) {
+    const json r = grade(submission(c), c);
+    EXPECT_TRUE(r["pass"]) << c << ": " << r.dump();
+    EXPECT_EQ(r["score"], 1.0) << c;
+    EXPECT_EQ(r["frames"].size(), c == "specular" ? 18u : 9u);  // specular adds the back-light probe
+    EXPECT_TRUE(r["frames"][0]["identical"]) << c;
+    EXPECT_TRUE(r["frames"][0]["psnr"].is_null()) << c;  // identical: no infinite PSNR in the JSON
+    EXPECT_FALSE(r["heatmap"].get<std::string>().empty());
+  }
+}
+
+TEST_F(GradeTest, FlatInsteadOfSmoothIsRecognised) {
+  const json r = grade(submission("starter"), "smooth");
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_EQ(r["diagnosis"], "flat_shading") << r.dump();
+  EXPECT_NE(r["messages"][0].get<std::string>().find("flat"), std::string::npos);
+}
+
+TEST_F(GradeTest, MissingSpecularIsRecognised) {
+  const json r = grade(submission("diffuse"), "specular");
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_EQ(r["score"], 0.0);
+  EXPECT_EQ(r["diagnosis"], "missing_specular") << r.dump();
+  EXPECT_NE(r["messages"][0].get<std::string>().find("specular highlight missing"), std::string::npos);
+}
+
+TEST_F(GradeTest, SpecularWithoutTheNdotLGuardIsRecognised) {
+  // Written the way a student would, not as the catalogue's own edit.
+  const json r = grade(submission("specular", "    if (NdotL > 0.0) {", "    {"), "specular");
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_EQ(r["diagnosis"], "unguarded_specular") << r.dump();
+}
+
+TEST_F(GradeTest, SwappedChannelsAreRecognised) {
+  const json r = grade(submission("specular", "    fragColor = color;", "    fragColor = color.bgra;"), "specular");
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_EQ(r["diagnosis"], "swapped_channels") << r.dump();
+  EXPECT_NE(r["messages"][0].get<std::string>().find("(B, G, R)"), std::string::npos);
+}
+
+TEST_F(GradeTest, UnnormalizedNormalsAreRecognised) {
+  const json r = grade(submission("diffuse", "vec3 N = normalize(vNormal.xyz);", "vec3 N = vNormal.xyz;"), "diffuse");
+  EXPECT_FALSE(r["pass"]) << r.dump();
+  EXPECT_EQ(r["diagnosis"], "unnormalized_normals") << r.dump();
+}
+
+TEST_F(GradeTest, NanIsFoundEvenWhereTheCanvasShowsBlack) {
+  // An unset uniform is zero, and the compiler cannot fold zero divided by it.
+  json job = submission("specular", "    fragColor = color;", "    fragColor = color * (uUnset / uUnset);");
+  std::string fragment = job["fragment"];
+  fragment.replace(fragment.find("uniform vec4 uLightColor;"), 25, "uniform vec4 uLightColor;\nuniform float uUnset;");
+  job["fragment"] = fragment;
+  const json r = grade(job, "specular");
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_EQ(r["diagnosis"], "nan") << r.dump();
+  EXPECT_GT(r["frames"][0]["nanPixels"].get<int>(), 100);
+  EXPECT_NE(r["messages"][0].get<std::string>().find("NaN in"), std::string::npos);
+}
+
+TEST_F(GradeTest, CompileErrorsScoreZeroWithTheLine) {
+  const json r = grade(submission("specular", "fragColor = color;", "fragColor = colour;"), "specular");
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_EQ(r["score"], 0.0);
+  EXPECT_EQ(r["diagnosis"], "compile_failed");
+  EXPECT_NE(r["messages"][0].get<std::string>().find("compile error at phong_frag.js line"), std::string::npos) << r.dump();
+}
+
+TEST_F(GradeTest, GradescopeOutputHasEveryRequiredField) {
+  json job = submission("diffuse");
+  job["format"] = "gradescope";
+  job["maxScore"] = 2;
+  const json r = grade(job, "specular");
+  for (const char* field : {"score", "execution_time", "tests"}) EXPECT_TRUE(r.contains(field)) << field;
+  ASSERT_EQ(r["tests"].size(), 1u);
+  for (const char* field : {"name", "score", "max_score", "status", "output", "visibility"})
+    EXPECT_TRUE(r["tests"][0].contains(field)) << field;
+  EXPECT_EQ(r["tests"][0]["max_score"], 2.0);
+  EXPECT_EQ(r["tests"][0]["status"], "failed");
+  EXPECT_GT(r["execution_time"].get<double>(), 0.0);
+}
+
+TEST_F(GradeTest, BadGradeRequestsAreProblems) {
+  json job = submission("specular");
+  job["reference"] = "phong";
+  auto r = server_->client().Post("/api/grade", job.dump(), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 404);
+  job["reference"] = "specular";
+  job["threshold"] = 3;
+  r = server_->client().Post("/api/grade", job.dump(), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400);
+  testkit::expect_conforms(*r, "/api/grade", "post");
+}
+
+}  // namespace
