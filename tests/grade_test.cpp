@@ -124,6 +124,31 @@ TEST_F(GradeTest, GradescopeOutputHasEveryRequiredField) {
   EXPECT_GT(r["execution_time"].get<double>(), 0.0);
 }
 
+TEST_F(GradeTest, MultipartUploadAndACustomReferencePairWork) {
+  const auto diffuse = *render::find_preset("diffuse");
+  const auto smooth = *render::find_preset("smooth");
+  httplib::MultipartFormDataItems items = {
+      {"vertex", diffuse.vertex.text, "phong_vert.js", ""},
+      {"fragment", diffuse.fragment.text, "phong_frag.js", ""},
+      {"referenceVertex", smooth.vertex.text, "ref_vert.js", ""},
+      {"referenceFragment", smooth.fragment.text, "ref_frag.js", ""},
+      {"width", "96", "", ""},
+      {"height", "72", "", ""}};
+  auto r = server_->client().Post("/api/grade", items);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json j = json::parse(r->body);
+  EXPECT_EQ(j["checkpoint"], "custom");
+  EXPECT_FALSE(j["pass"]);  // diffuse shading is not the normal-colour reference
+  testkit::expect_conforms(*r, "/api/grade", "post");
+
+  items[0] = {"vertex", smooth.vertex.text, "starter_vert.js", ""};
+  items[1] = {"fragment", smooth.fragment.text, "starter_frag.js", ""};
+  r = server_->client().Post("/api/grade", items);
+  ASSERT_TRUE(r);
+  EXPECT_TRUE(json::parse(r->body)["pass"]) << r->body;
+}
+
 TEST_F(GradeTest, BadGradeRequestsAreProblems) {
   json job = submission("specular");
   job["reference"] = "phong";
