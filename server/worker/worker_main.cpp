@@ -79,6 +79,18 @@ class Worker {
     return &meshes_.emplace(job.mesh, std::move(*loaded)).first->second;
   }
 
+  // The job's mesh, fitted to the homework framing when it asks for that.
+  Expected<const scene::Mesh*> job_mesh(const Job& job, const std::string& payload) {
+    auto m = mesh(job, payload);
+    if (!m || !job.fit) return m;
+    fitted_ = **m;
+    scene::fit_to_homework(fitted_);
+    return &fitted_;
+  }
+
+  // Tells the server the compile is over: from here a hang or a crash is the render's.
+  bool enter_render_phase() { return write_message(fd_, {{{"event", "phase"}, {"phase", "render"}}, {}}); }
+
   Message handle(const Message& in) {
     auto parsed = job_from_json(in.header);
     if (!parsed) return failure(parsed.error());
@@ -110,19 +122,14 @@ class Worker {
                {"timings", {{"compile", compiled->compile_ms}}}},
               {}};
 
-    // From here a hang or a crash is the render's, not the compiler's.
-    if (!write_message(fd_, {{{"event", "phase"}, {"phase", "render"}}, {}})) return failure(make_error(ErrorCode::io_error, "lost the server"));
+    if (!enter_render_phase()) return failure(make_error(ErrorCode::io_error, "lost the server"));
     return render(job, in.payload, diagnostics, compiled->compile_ms);
   }
 
   Message render(Job& job, const std::string& payload, const json& diagnostics, double compile_ms) {
-    auto m = mesh(job, payload);
+    auto m = job_mesh(job, payload);
     if (!m) return failure(m.error());
-    if (job.fit) {
-      fitted_ = **m;
-      scene::fit_to_homework(fitted_);
-    }
-    const scene::Mesh& mesh_ref = job.fit ? fitted_ : **m;
+    const scene::Mesh& mesh_ref = **m;
     const auto& r = job.request;
     const auto layout = image::GridLayout::for_frames(r.frames, r.width, r.height);
     const bool png = job.format == Format::png;
@@ -218,15 +225,11 @@ class Worker {
     const auto graded = [](json result) { return Message{{{"ok", true}, {"result", std::move(result)}}, {}}; };
     auto compiled = renderer_.compile(job.request.vertex, job.request.fragment);
     if (!compiled) return graded(grade::failed_submission(compiled.error(), spec.reference_name, spec.options.max_score));
-    if (!write_message(fd_, {{{"event", "phase"}, {"phase", "render"}}, {}})) return failure(make_error(ErrorCode::io_error, "lost the server"));
+    if (!enter_render_phase()) return failure(make_error(ErrorCode::io_error, "lost the server"));
 
-    auto m = mesh(job, payload);
+    auto m = job_mesh(job, payload);
     if (!m) return failure(m.error());
-    if (job.fit) {
-      fitted_ = **m;
-      scene::fit_to_homework(fitted_);
-    }
-    const scene::Mesh& mesh_ref = job.fit ? fitted_ : **m;
+    const scene::Mesh& mesh_ref = **m;
     render::RenderRequest r = job.request;
     r.pixel_type = image::PixelType::u8;
     // Every set of frames is rendered under the homework's light, then under each probe light.
