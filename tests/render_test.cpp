@@ -264,7 +264,9 @@ TEST(RenderTest, BuiltinMeshesStayInViewAtEveryAngle) {
 
 TEST(RenderTest, InvalidRequestsAreRejectedBeforeRendering) {
   auto request = testkit::preset_request("smooth");
-  request.width = 5000;
+  request.width = 5000;  // over the default policy (2048), which the CLI and the HTTP edge apply
+  EXPECT_EQ(render::validate(request, render::RenderLimits{}).error().code, ErrorCode::invalid_argument);
+  request.width = 20000;  // over what the renderer itself accepts, whatever the policy
   EXPECT_EQ(render_frames(request, bunny()).error().code, ErrorCode::invalid_argument);
   request = testkit::preset_request("smooth");
   request.frames = 0;

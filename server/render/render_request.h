@@ -32,6 +32,10 @@ struct RenderLimits {
 
 Status validate(const RenderRequest& request, const RenderLimits& limits);
 
+// What the renderer itself insists on, whatever limits the caller's policy sets (the CLI and the
+// HTTP edge validate against their own, smaller, configurable limits first).
+inline constexpr RenderLimits kRendererHardLimits{16384, 16384, 3600, 1u << 20};
+
 // Milliseconds spent in each phase of one job.
 struct PhaseTimes {
   double compile_ms = 0;       // unwrap + compile + link + reflect (0 when the program was cached)

@@ -72,9 +72,10 @@ struct Renderer::State {
     bool cached;
   };
   Expected<Built> build(const shader::ShaderFile& vf, const shader::ShaderFile& ff) {
-    auto vertex = shader::unwrap(vf, shader::Stage::vertex);
+    const shader::SourceLimits limits{kRendererHardLimits.max_source_bytes};
+    auto vertex = shader::unwrap(vf, shader::Stage::vertex, limits);
     if (!vertex) return vertex.take_error();
-    auto fragment = shader::unwrap(ff, shader::Stage::fragment);
+    auto fragment = shader::unwrap(ff, shader::Stage::fragment, limits);
     if (!fragment) return fragment.take_error();
     std::string key = vertex->glsl + '\0' + fragment->glsl;
     for (auto it = programs.begin(); it != programs.end(); ++it)
@@ -191,7 +192,7 @@ Expected<CompileReport> Renderer::compile(const shader::ShaderFile& vertex, cons
 Expected<RenderReport> Renderer::render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink) {
   const auto start = Clock::now();
   RenderReport report;
-  if (auto valid = validate(request, RenderLimits{}); !valid) return valid.take_error();
+  if (auto valid = validate(request, kRendererHardLimits); !valid) return valid.take_error();
 
   auto built = state_->build(request.vertex, request.fragment);
   if (!built) return built.take_error();
