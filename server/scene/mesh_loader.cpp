@@ -2,6 +2,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -109,10 +110,19 @@ Expected<Mesh> load_mesh(std::span<const std::uint8_t> bytes, const std::string&
   for (const auto& p : mesh.positions)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       return make_error(ErrorCode::mesh_invalid, "'" + name + "': its node transforms move a vertex to infinity");
-  if (collector.all_have_normals)
-    mesh.normals_from_file = true;
-  else
+  if (!collector.all_have_normals) {
     compute_smooth_normals(mesh);
+    return mesh;
+  }
+  mesh.normals_from_file = true;
+  // A zero-length normal is not a normal (normalize() in any shader makes it NaN): those corners
+  // take the smooth normal computed from the geometry, the others keep the file's.
+  if (std::any_of(mesh.normals.begin(), mesh.normals.end(), [](const glm::vec3& n) { return n == glm::vec3(0.f); })) {
+    Mesh computed = mesh;
+    compute_smooth_normals(computed);
+    for (size_t i = 0; i < mesh.normals.size(); ++i)
+      if (mesh.normals[i] == glm::vec3(0.f)) mesh.normals[i] = computed.normals[i];
+  }
   return mesh;
 }
 
