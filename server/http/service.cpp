@@ -210,8 +210,12 @@ struct Service::Impl {
   void grade(const httplib::Request& req, httplib::Response& res) {
     auto raw = read(req);
     if (!raw) return send_problem(res, raw.error(), req.path);
-    const std::string checkpoint = raw->fields.value("reference", std::string("custom"));
-    const std::string format = raw->fields.value("format", std::string("json"));
+    // Read without throwing: these fields are type-checked by parse_grade_job, but its error path
+    // below still needs them, whatever the client sent.
+    const auto& fields = raw->fields;
+    const std::string checkpoint = fields.contains("reference") && fields["reference"].is_string() ? fields["reference"].get<std::string>() : "custom";
+    const std::string format = fields.contains("format") && fields["format"].is_string() ? fields["format"].get<std::string>() : "json";
+    const double max_score = fields.contains("maxScore") && fields["maxScore"].is_number() ? fields["maxScore"].get<double>() : 1.0;
     auto parsed = parse_grade_job(*raw, config.limits);
     json result;
     std::string heatmap;
@@ -221,7 +225,7 @@ struct Service::Impl {
       const auto code = parsed.error().code;
       if (code != ErrorCode::shader_source_invalid && code != ErrorCode::missing_version)
         return send_problem(res, parsed.error(), req.path);
-      result = grade::failed_submission(parsed.error(), checkpoint, raw->fields.value("maxScore", 1.0));
+      result = grade::failed_submission(parsed.error(), checkpoint, max_score);
     } else {
       worker::Message message;
       if (auto s = attach_mesh(parsed->parsed, message); !s) return send_problem(res, s.error(), req.path);
