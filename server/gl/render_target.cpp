@@ -95,7 +95,3 @@ void RenderTarget::read(void* dst) const {
 }
 
 }  // namespace shadelab::gl
-
-namespace shadelab::gl {
-void finish() { glFinish(); }
-}  // namespace shadelab::gl

@@ -40,8 +40,3 @@ class RenderTarget {
 int max_samples(PixelFormat format);
 
 }  // namespace shadelab::gl
-
-namespace shadelab::gl {
-// Waits until the GPU (or llvmpipe's rasteriser threads) has finished every queued command.
-void finish();
-}  // namespace shadelab::gl
