@@ -8,7 +8,7 @@ using shadelab::ErrorCode;
 
 TEST(ErrorCodeTest, EveryCodeHasADistinctNameAndAnHttpStatus) {
   std::set<std::string_view> names;
-  for (int i = 0; i <= static_cast<int>(ErrorCode::worker_protocol); ++i) {
+  for (int i = 0; i <= static_cast<int>(ErrorCode::view_transform_unavailable); ++i) {
     const auto code = static_cast<ErrorCode>(i);
     const auto name = shadelab::to_string(code);
     EXPECT_TRUE(names.insert(name).second) << "duplicate name " << name;

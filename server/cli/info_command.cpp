@@ -1,5 +1,7 @@
 #include <iostream>
 
+#include <GLES3/gl32.h>
+
 #include "cli/commands.h"
 #include "cli/environment.h"
 #include "egl/headless_context.h"
@@ -10,7 +12,9 @@ Command add_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Print the EGL devices and the GL context ShadeLab would render with");
   auto software = std::make_shared<bool>(software_from_environment());
   cmd->add_flag("--software", *software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
-  return [software] {
+  auto extensions = std::make_shared<bool>(false);
+  cmd->add_flag("--extensions", *extensions, "Also list the GL extensions, one per line");
+  return [software, extensions] {
     for (const auto& d : egl::enumerate_devices())
       std::cout << "EGL device " << d.index << ": " << d.name << (d.software ? " (software)" : "") << "\n";
     auto context = egl::HeadlessContext::create({.force_software = *software});
@@ -28,6 +32,12 @@ Command add_info_command(CLI::App& app) {
               << "GLSL version:  " << i.glsl_version << "\n"
               << "robust access: " << (i.robust_access ? "yes" : "no") << "\n"
               << "max samples:   " << i.max_samples << "\n";
+    if (*extensions) {
+      GLint count = 0;
+      glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+      for (GLint e = 0; e < count; ++e)
+        std::cout << "extension:     " << reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, e)) << "\n";
+    }
     return 0;
   };
 }

@@ -38,6 +38,7 @@ constexpr CodeInfo kCodes[] = {
     {ErrorCode::payload_too_large, "payload_too_large", 413},
     {ErrorCode::not_found, "not_found", 404},
     {ErrorCode::worker_protocol, "worker_protocol", 500},
+    {ErrorCode::view_transform_unavailable, "view_transform_unavailable", 503},
 };
 
 const CodeInfo& info(ErrorCode code) {

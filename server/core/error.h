@@ -36,6 +36,7 @@ enum class ErrorCode {
   payload_too_large,
   not_found,
   worker_protocol,         // a worker sent something we cannot read (a bug)
+  view_transform_unavailable,  // Filmic asked for, but no OCIO config on this server
 };
 
 std::string_view to_string(ErrorCode code);

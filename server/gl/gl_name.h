@@ -42,6 +42,9 @@ inline void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 inline void delete_shader(GLuint id) { glDeleteShader(id); }
 inline void delete_program(GLuint id) { glDeleteProgram(id); }
+inline void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
+inline void delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
+inline void delete_query(GLuint id) { glDeleteQueries(1, &id); }
 }  // namespace detail
 
 using BufferName = GlName<detail::delete_buffer>;
@@ -50,5 +53,7 @@ using FramebufferName = GlName<detail::delete_framebuffer>;
 using RenderbufferName = GlName<detail::delete_renderbuffer>;
 using ShaderName = GlName<detail::delete_shader>;
 using ProgramName = GlName<detail::delete_program>;
+using TextureName = GlName<detail::delete_texture>;
+using SamplerName = GlName<detail::delete_sampler>;
 
 }  // namespace shadelab::gl

@@ -1,0 +1,279 @@
+#include "scene/scene_description.h"
+
+#include <cmath>
+#include <set>
+
+namespace shadelab::scene {
+
+namespace {
+
+using nlohmann::json;
+
+// Reads fields off one JSON object, keeping the first problem (with its path) and carrying on
+// with defaults, so the parser reads straight through without an error check per field.
+class Reader {
+ public:
+  Reader(const json& j, std::string path, std::string* error) : j_(j), path_(std::move(path)), error_(error) {
+    if (!j_.is_object()) fail(path_.empty() ? "the scene must be a JSON object" : path_ + ": expected an object");
+  }
+
+  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  bool has(const std::string& key) const { return j_.is_object() && j_.contains(key) && !j_.at(key).is_null(); }
+  const json& get(const std::string& key) const { return j_.at(key); }
+
+  void fail(const std::string& message) const {
+    if (error_->empty()) *error_ = message;
+  }
+
+  double number(const std::string& key, double fallback, double lo, double hi) const {
+    if (!has(key)) return fallback;
+    const json& v = get(key);
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lo || v.get<double>() > hi) {
+      fail(at(key) + ": expected a number in [" + fmt(lo) + ", " + fmt(hi) + "]");
+      return fallback;
+    }
+    return v.get<double>();
+  }
+
+  int integer(const std::string& key, int fallback, int lo, int hi) const {
+    if (!has(key)) return fallback;
+    const json& v = get(key);
+    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi) {
+      fail(at(key) + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      return fallback;
+    }
+    return v.get<int>();
+  }
+
+  bool boolean(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!get(key).is_boolean()) {
+      fail(at(key) + ": expected true or false");
+      return fallback;
+    }
+    return get(key).get<bool>();
+  }
+
+  std::string text(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed = {}) const {
+    if (!has(key)) return fallback;
+    const json& v = get(key);
+    if (!v.is_string() || (!allowed.empty() && !allowed.count(v.get<std::string>()))) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      fail(at(key) + (allowed.empty() ? ": expected a string" : ": expected one of " + list));
+      return fallback;
+    }
+    return v.get<std::string>();
+  }
+
+  // [x, y, z]; `scalar_ok` also takes one number for all three (scale).
+  glm::dvec3 vec3(const std::string& key, glm::dvec3 fallback, double lo, double hi, bool scalar_ok = false) const {
+    if (!has(key)) return fallback;
+    const json& v = get(key);
+    if (scalar_ok && v.is_number()) {
+      const double s = number(key, fallback.x, lo, hi);
+      return {s, s, s};
+    }
+    if (!v.is_array() || v.size() != 3) {
+      fail(at(key) + ": expected [x, y, z]" + (scalar_ok ? " or a number" : ""));
+      return fallback;
+    }
+    glm::dvec3 out;
+    for (int i = 0; i < 3; ++i) {
+      if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || v[i].get<double>() < lo || v[i].get<double>() > hi) {
+        fail(at(key) + "[" + std::to_string(i) + "]: expected a number in [" + fmt(lo) + ", " + fmt(hi) + "]");
+        return fallback;
+      }
+      out[i] = v[i].get<double>();
+    }
+    return out;
+  }
+
+  // Keys the scene format does not know are typos, not extensions: say so.
+  void only(const std::set<std::string>& known) const {
+    if (!j_.is_object()) return;
+    for (auto it = j_.begin(); it != j_.end(); ++it)
+      if (!known.count(it.key())) fail(at(it.key()) + ": unknown field");
+  }
+
+ private:
+  static std::string fmt(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+  }
+  const json& j_;
+  std::string path_;
+  std::string* error_;
+};
+
+constexpr double kCoordinate = 1e7;  // metres; beyond this a float32 vertex has no precision left
+
+Material read_material(const Reader& r) {
+  r.only({"baseColor", "metallic", "roughness", "specular", "subsurface", "subsurfaceColor", "subsurfaceRadius",
+          "emission", "emissionStrength", "alpha"});
+  Material m;
+  m.base_color = r.vec3("baseColor", m.base_color, 0, 1);
+  m.metallic = r.number("metallic", m.metallic, 0, 1);
+  m.roughness = r.number("roughness", m.roughness, 0, 1);
+  m.specular = r.number("specular", m.specular, 0, 1);
+  m.subsurface = r.number("subsurface", m.subsurface, 0, 1);
+  m.subsurface_color = r.vec3("subsurfaceColor", m.subsurface_color, 0, 1);
+  m.subsurface_radius = r.vec3("subsurfaceRadius", m.subsurface_radius, 0, 100);
+  m.emission = r.vec3("emission", m.emission, 0, 1);
+  m.emission_strength = r.number("emissionStrength", m.emission_strength, 0, 1e6);
+  m.alpha = r.number("alpha", m.alpha, 0, 1);
+  return m;
+}
+
+Material material_at(const Reader& parent, const std::string& key, std::string* error) {
+  if (!parent.has(key)) return {};
+  return read_material(Reader(parent.get(key), parent.at(key), error));
+}
+
+Object read_object(const Reader& r, size_t index, std::string* error) {
+  r.only({"name", "mesh", "location", "rotation", "scale", "shading", "material"});
+  Object o;
+  o.name = r.text("name", "Object." + std::to_string(index));
+  if (!r.has("mesh")) r.fail(r.at("mesh") + ": required (a built-in mesh, an uploaded mesh id or a file field)");
+  o.mesh = r.text("mesh", "");
+  o.location = r.vec3("location", o.location, -kCoordinate, kCoordinate);
+  o.rotation_degrees = r.vec3("rotation", o.rotation_degrees, -1e6, 1e6);
+  o.scale = r.vec3("scale", o.scale, -1e6, 1e6, true);
+  o.shading = r.text("shading", "smooth", {"smooth", "flat"}) == "flat" ? Shading::flat : Shading::smooth;
+  o.material = material_at(r, "material", error);
+  return o;
+}
+
+Camera read_camera(const Reader& r) {
+  r.only({"location", "rotation", "target", "type", "lens", "sensorWidth", "sensorFit", "orthoScale", "clipStart", "clipEnd"});
+  Camera c;
+  c.location = r.vec3("location", c.location, -kCoordinate, kCoordinate);
+  if (r.has("rotation") && r.has("target")) r.fail(r.at("rotation") + ": give rotation or target, not both");
+  if (r.has("rotation")) c.rotation_degrees = r.vec3("rotation", {0, 0, 0}, -1e6, 1e6);
+  c.target = r.vec3("target", c.target, -kCoordinate, kCoordinate);
+  c.type = r.text("type", "perspective", {"perspective", "orthographic"}) == "orthographic" ? Projection::orthographic
+                                                                                            : Projection::perspective;
+  // Blender's own limits: lens 1 mm and up, sensor 1..100 mm, clip start > 0.
+  c.lens_mm = r.number("lens", c.lens_mm, 1, 5000);
+  c.sensor_width_mm = r.number("sensorWidth", c.sensor_width_mm, 1, 100);
+  const std::string fit = r.text("sensorFit", "auto", {"auto", "horizontal", "vertical"});
+  c.sensor_fit = fit == "horizontal" ? SensorFit::horizontal : fit == "vertical" ? SensorFit::vertical : SensorFit::automatic;
+  c.ortho_scale = r.number("orthoScale", c.ortho_scale, 1e-6, 1e7);
+  c.clip_start = r.number("clipStart", c.clip_start, 1e-6, 1e7);
+  c.clip_end = r.number("clipEnd", c.clip_end, 1e-6, 1e9);
+  if (c.clip_end <= c.clip_start) r.fail(r.at("clipEnd") + ": must be greater than clipStart");
+  return c;
+}
+
+Light read_light(const Reader& r, size_t index) {
+  r.only({"name", "type", "color", "location", "rotation", "target", "power", "strength", "radius", "angle", "spotSize",
+          "spotBlend", "size", "castShadow"});
+  Light l;
+  l.name = r.text("name", "Light." + std::to_string(index));
+  if (!r.has("type")) r.fail(r.at("type") + ": required (point, sun, spot or area)");
+  const std::string type = r.text("type", "point", {"point", "sun", "spot", "area"});
+  l.type = type == "sun" ? LightType::sun : type == "spot" ? LightType::spot : type == "area" ? LightType::area : LightType::point;
+  l.color = r.vec3("color", l.color, 0, 1e3);
+  l.location = r.vec3("location", l.location, -kCoordinate, kCoordinate);
+  if (r.has("rotation") && r.has("target")) r.fail(r.at("rotation") + ": give rotation or target, not both");
+  if (r.has("rotation")) l.rotation_degrees = r.vec3("rotation", {0, 0, 0}, -1e6, 1e6);
+  if (r.has("target")) l.target = r.vec3("target", {0, 0, 0}, -kCoordinate, kCoordinate);
+  l.power_w = r.number("power", l.power_w, 0, 1e9);
+  l.strength = r.number("strength", l.strength, 0, 1e6);
+  l.radius = r.number("radius", l.radius, 0, 1e4);
+  l.angle_degrees = r.number("angle", l.angle_degrees, 0, 180);
+  l.spot_size_degrees = r.number("spotSize", l.spot_size_degrees, 1, 180);
+  l.spot_blend = r.number("spotBlend", l.spot_blend, 0, 1);
+  l.size = r.number("size", l.size, 0, 1e4);
+  l.cast_shadow = r.boolean("castShadow", l.cast_shadow);
+  return l;
+}
+
+RenderSettings read_render(const Reader& r, const SceneLimits& limits) {
+  r.only({"width", "height", "engine", "viewTransform", "samples", "shadowMapSize", "shadowFilterTaps",
+          "reflectionMapSize", "workbenchShadows", "framing"});
+  RenderSettings s;
+  s.width = r.integer("width", s.width, 1, limits.max_dimension);
+  s.height = r.integer("height", s.height, 1, limits.max_dimension);
+  s.engine = r.text("engine", "eevee", {"eevee", "workbench"}) == "workbench" ? Engine::workbench : Engine::eevee;
+  s.view_transform = r.text("viewTransform", "filmic", {"filmic", "standard"}) == "standard" ? ViewTransform::standard
+                                                                                          : ViewTransform::filmic;
+  s.samples = r.integer("samples", s.samples, 0, 4);
+  if (s.samples == 1 || s.samples == 3) r.fail(r.at("samples") + ": expected 0, 2 or 4");
+  s.shadow_map_size = r.integer("shadowMapSize", s.shadow_map_size, 64, 4096);
+  if ((s.shadow_map_size & (s.shadow_map_size - 1)) != 0) r.fail(r.at("shadowMapSize") + ": expected a power of two");
+  s.shadow_filter_taps = r.integer("shadowFilterTaps", s.shadow_filter_taps, 1, 64);
+  s.reflection_map_size = r.integer("reflectionMapSize", s.reflection_map_size, 16, 2048);
+  s.workbench_shadows = r.boolean("workbenchShadows", s.workbench_shadows);
+  s.framing = r.boolean("framing", s.framing);
+  return s;
+}
+
+}  // namespace
+
+Expected<SceneDescription> parse_scene(const json& j, const SceneLimits& limits) {
+  std::string error;
+  Reader root(j, "", &error);
+  root.only({"objects", "ground", "camera", "lights", "world", "render"});
+  SceneDescription scene;
+
+  if (!root.has("objects") || !root.get("objects").is_array() || root.get("objects").empty()) {
+    root.fail("objects: expected a non-empty array of objects");
+  } else if (root.get("objects").size() > static_cast<size_t>(limits.max_objects)) {
+    root.fail("objects: at most " + std::to_string(limits.max_objects) + " objects");
+  } else {
+    const json& objects = root.get("objects");
+    for (size_t i = 0; i < objects.size(); ++i)
+      scene.objects.push_back(read_object(Reader(objects[i], "objects[" + std::to_string(i) + "]", &error), i, &error));
+  }
+
+  if (root.has("ground")) {
+    Reader g(root.get("ground"), "ground", &error);
+    g.only({"size", "height", "material"});
+    Ground ground;
+    ground.size = g.number("size", ground.size, 1e-6, 1e7);
+    ground.height = g.number("height", ground.height, -kCoordinate, kCoordinate);
+    ground.material = material_at(g, "material", &error);
+    scene.ground = ground;
+  }
+  if (root.has("camera")) scene.camera = read_camera(Reader(root.get("camera"), "camera", &error));
+
+  if (root.has("lights")) {
+    const json& lights = root.get("lights");
+    if (!lights.is_array()) root.fail("lights: expected an array");
+    else if (lights.size() > static_cast<size_t>(limits.max_lights))
+      root.fail("lights: at most " + std::to_string(limits.max_lights) + " lights");
+    else
+      for (size_t i = 0; i < lights.size(); ++i)
+        scene.lights.push_back(read_light(Reader(lights[i], "lights[" + std::to_string(i) + "]", &error), i));
+  }
+  if (root.has("world")) {
+    Reader w(root.get("world"), "world", &error);
+    w.only({"color", "strength"});
+    scene.world.color = w.vec3("color", scene.world.color, 0, 1e3);
+    scene.world.strength = w.number("strength", scene.world.strength, 0, 1e6);
+  }
+  if (root.has("render")) scene.render = read_render(Reader(root.get("render"), "render", &error), limits);
+
+  std::set<std::string> names;
+  for (const auto& o : scene.objects)
+    if (!names.insert(o.name).second) root.fail("objects: two objects are named '" + o.name + "'");
+
+  if (!error.empty()) return make_error(ErrorCode::invalid_argument, error);
+  return scene;
+}
+
+std::string_view to_string(Engine e) { return e == Engine::workbench ? "workbench" : "eevee"; }
+std::string_view to_string(ViewTransform v) { return v == ViewTransform::standard ? "standard" : "filmic"; }
+std::string_view to_string(LightType t) {
+  switch (t) {
+    case LightType::sun: return "sun";
+    case LightType::spot: return "spot";
+    case LightType::area: return "area";
+    case LightType::point: break;
+  }
+  return "point";
+}
+
+}  // namespace shadelab::scene
