@@ -5,4 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/build.sh
 SHADELAB_APPROVE_GOLDENS=1 build/tests/golden_test
+SHADELAB_APPROVE_GOLDENS=1 build/tests/scene_test --gtest_filter="*Golden*"
 git status --short tests/golden

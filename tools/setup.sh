@@ -11,6 +11,8 @@ packages=(
   # libraries
   libglm-dev libopenimageio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
   libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
+  # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them
+  blender-data
   # tests and benchmarks; the browser tests drive Debian's chromium with playwright-core
   libgtest-dev libgmock-dev libbenchmark-dev chromium fonts-dejavu-core
 )

@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "render/render_request.h"
+#include "scene/scene_description.h"
 
 namespace shadelab::http {
 
@@ -11,6 +12,7 @@ struct Limits {
   size_t max_body_bytes = 16u << 20;    // 16 MiB
   size_t max_mesh_bytes = 16u << 20;
   size_t max_stored_meshes = 64;
+  scene::SceneLimits scene;             // objects <= 64, lights <= 8, width, height <= 4096
 };
 
 }  // namespace shadelab::http

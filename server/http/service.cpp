@@ -5,6 +5,11 @@
 #include <chrono>
 #include <cstdio>
 #include <thread>
+#include <set>
+#include <cmath>
+#include <algorithm>
+
+#include <OpenImageIO/strutil.h>
 
 #include "core/embedded_files.h"
 #include "grade/report.h"
@@ -15,7 +20,12 @@
 #include "http/problem.h"
 #include "http/response_cache.h"
 #include "render/presets.h"
+#include "scene/dolly_zoom.h"
 #include "scene/mesh.h"
+#include "scene/scene_description.h"
+#include "scene/scene_mesh.h"
+#include "http/scene_routes.h"
+#include "worker/scene_job.h"
 
 namespace shadelab::http {
 
@@ -241,6 +251,131 @@ struct Service::Impl {
     send_json(res, 200, result);
   }
 
+  // POST /api/scene: the scene as the JSON body, or multipart with the scene in the part "scene"
+  // and mesh files in parts the objects name.
+  void render_scene(const httplib::Request& req, httplib::Response& res) {
+    json scene_json;
+    std::map<std::string, UploadedFile> files;
+    if (req.is_multipart_form_data()) {
+      for (const auto& [name, part] : req.files) {
+        if (name == "scene") scene_json = json::parse(part.content, nullptr, false);
+        else files[name] = {part.filename, part.content};
+      }
+      if (!req.has_file("scene"))
+        return send_problem(res, make_error(ErrorCode::invalid_argument, "send the scene JSON in the multipart part 'scene'"), req.path);
+    } else {
+      const std::string type = req.get_header_value("Content-Type");
+      if (!type.empty() && type.find("json") == std::string::npos)
+        return send_problem(res, make_error(ErrorCode::invalid_argument, "send the scene as JSON (Content-Type: application/json) or multipart/form-data; got " + type), req.path);
+      scene_json = json::parse(req.body, nullptr, false);
+    }
+    if (scene_json.is_discarded())
+      return send_problem(res, make_error(ErrorCode::invalid_argument, "the scene is not valid JSON"), req.path);
+    auto description = scene::parse_scene(scene_json, config.limits.scene);
+    if (!description) return send_problem(res, description.error(), req.path);
+
+    worker::SceneJob job{scene_json, {}};
+    std::set<std::string> attached;
+    for (size_t i = 0; i < description->objects.size(); ++i) {
+      const std::string& ref = description->objects[i].mesh;
+      if (!attached.insert(ref).second) continue;
+      if (auto f = files.find(ref); f != files.end()) {
+        const auto dot = f->second.filename.find_last_of('.');
+        job.meshes.push_back({ref, dot == std::string::npos ? "obj" : f->second.filename.substr(dot + 1), f->second.content});
+      } else if (!scene::is_builtin_scene_mesh(ref)) {
+        const auto stored = meshes.get(ref);
+        if (!stored) {
+          std::string builtins;
+          for (const auto& n : scene::builtin_scene_mesh_names()) builtins += (builtins.empty() ? "" : ", ") + n;
+          return send_problem(res, make_error(ErrorCode::mesh_not_found, "objects[" + std::to_string(i) + "].mesh: no mesh '" + ref +
+                                                                              "' (built-ins: " + builtins + "; or an id from POST /api/meshes, or a multipart file part of that name)"),
+                              req.path);
+        }
+        job.meshes.push_back({ref, stored->format, stored->bytes});
+      }
+    }
+    worker::Message message = worker::to_message(job);
+    const bool as_json = req.get_param_value("format") == "json" ||
+                         (req.get_header_value("Accept").find("application/json") != std::string::npos &&
+                          req.get_header_value("Accept").find("image/png") == std::string::npos);
+    const std::string key = std::string(as_json ? "json" : "png") + '\0' + message.header.dump(-1, ' ', false, json::error_handler_t::replace) +
+                            '\0' + message.payload + '\0' + pool->renderer();
+    const std::string etag = "\"" + hex(fnv1a64(key)) + hex(fnv1a64(key, 0x9e3779b97f4a7c15ull)) + "\"";
+    if (req.get_header_value("If-None-Match") == etag) {
+      res.status = 304;
+      res.set_header("ETag", etag);
+      return;
+    }
+    if (auto hit = cache.get(etag)) {
+      metrics.cache(true);
+      for (const auto& [k, v] : hit->headers) res.set_header(k, v);
+      res.set_header("X-ShadeLab-Cache", "hit");
+      res.set_content(hit->body, hit->content_type);
+      return;
+    }
+    metrics.cache(false);
+    auto result = run(std::move(message));
+    if (!result) return send_problem(res, result.error(), req.path);
+    json report = result->header.value("report", json::object());
+
+    CachedResponse response;
+    response.headers["ETag"] = etag;
+    response.headers["Cache-Control"] = "no-cache";
+    response.headers["X-ShadeLab-Renderer"] = pool->renderer();
+    response.headers["X-ShadeLab-Passes"] = scene_passes_header(report);
+    response.headers["X-ShadeLab-Features"] = scene_features_header(report);
+    response.headers["Server-Timing"] = "queue;dur=" + std::to_string(result->queue_ms) + ", " + scene_passes_header(report);
+    if (!report.value("framing", json::array()).empty()) response.headers["X-ShadeLab-Framing"] = scene_framing_header(report);
+    if (as_json) {
+      report["renderer"] = pool->renderer();
+      report["queueMs"] = result->queue_ms;
+      report["encodeMs"] = result->header["timings"].value("encode", 0.0);
+      report["image"] = OIIO::Strutil::base64_encode(result->payload);
+      response.content_type = "application/json";
+      response.body = report.dump(2, ' ', false, json::error_handler_t::replace);
+    } else {
+      response.content_type = "image/png";
+      response.body = std::move(result->payload);
+    }
+    for (const auto& [k, v] : response.headers) res.set_header(k, v);
+    res.set_content(response.body, response.content_type);
+    cache.put(etag, std::move(response));
+  }
+
+  // GET /api/dolly?subject=0,0,0&from=0,-4,0&lens=25&lenses=25,50,100
+  void dolly(const httplib::Request& req, httplib::Response& res) {
+    const auto numbers = [&](const char* name, std::vector<double> fallback, size_t count) -> Expected<std::vector<double>> {
+      if (!req.has_param(name)) return fallback;
+      std::vector<double> out;
+      const std::string text = req.get_param_value(name);
+      size_t pos = 0;
+      while (pos <= text.size()) {
+        const size_t comma = std::min(text.find(',', pos), text.size());
+        char* end = nullptr;
+        const std::string item = text.substr(pos, comma - pos);
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+          return make_error(ErrorCode::invalid_argument, std::string(name) + ": '" + item + "' is not a number");
+        out.push_back(v);
+        pos = comma + 1;
+      }
+      if (count && out.size() != count) return make_error(ErrorCode::invalid_argument, std::string(name) + ": expected " + std::to_string(count) + " numbers");
+      return out;
+    };
+    auto subject = numbers("subject", {0, 0, 0}, 3);
+    auto from = numbers("from", {0, -4, 0}, 3);
+    auto lens = numbers("lens", {25}, 1);
+    auto lenses = numbers("lenses", {25, 50, 100}, 0);
+    for (auto* e : {&subject, &from, &lens, &lenses})
+      if (!*e) return send_problem(res, e->error(), req.path);
+    if ((*lens)[0] <= 0 || lenses->empty() || lenses->size() > 64 || std::any_of(lenses->begin(), lenses->end(), [](double l) { return l <= 0; }))
+      return send_problem(res, make_error(ErrorCode::invalid_argument, "lens and lenses: positive focal lengths in mm (at most 64)"), req.path);
+    json stops = json::array();
+    for (const auto& s : scene::dolly_zoom({(*subject)[0], (*subject)[1], (*subject)[2]}, {(*from)[0], (*from)[1], (*from)[2]}, (*lens)[0], *lenses))
+      stops.push_back({{"lens", s.lens_mm}, {"distance", s.distance}, {"location", {s.location.x, s.location.y, s.location.z}}});
+    send_json(res, 200, {{"stops", stops}});
+  }
+
   void upload_mesh(const httplib::Request& req, httplib::Response& res) {
     UploadedFile file;
     if (req.is_multipart_form_data()) {
@@ -274,10 +409,29 @@ struct Service::Impl {
     server.Post("/api/compile", [this](const auto& req, auto& res) { compile(req, res); });
     server.Post("/api/grade", [this](const auto& req, auto& res) { grade(req, res); });
     server.Post("/api/meshes", [this](const auto& req, auto& res) { upload_mesh(req, res); });
+    server.Post("/api/scene", [this](const auto& req, auto& res) { render_scene(req, res); });
+    server.Get("/api/dolly", [this](const auto& req, auto& res) { dolly(req, res); });
+    // The example scenes (assets/scenes/), ready to POST back to /api/scene.
+    server.Get("/api/scenes", [](const auto&, auto& res) {
+      json out = json::array();
+      for (const auto& f : embedded_files())
+        if (f.path.rfind("assets/scenes/", 0) == 0) {
+          std::string name(f.path.substr(14));
+          out.push_back(name.substr(0, name.size() - 5));
+        }
+      send_json(res, 200, {{"scenes", out}});
+    });
+    server.Get(R"(/api/scenes/([a-z0-9_]+))", [](const httplib::Request& req, httplib::Response& res) {
+      const auto text = embedded_file("assets/scenes/" + std::string(req.matches[1]) + ".json");
+      if (!text) return send_problem(res, make_error(ErrorCode::not_found, "no example scene '" + std::string(req.matches[1]) + "'"), req.path);
+      res.set_content(std::string(*text), "application/json");
+    });
     server.Get("/api/meshes", [this](const auto&, auto& res) {
       json builtin = json::array();
       for (const auto& n : scene::builtin_mesh_names()) builtin.push_back({{"id", n}, {"builtin", true}});
-      send_json(res, 200, {{"builtin", builtin}, {"uploaded", meshes.list()}});
+      json scene_builtin = json::array();
+      for (const auto& n : scene::builtin_scene_mesh_names()) scene_builtin.push_back(n);
+      send_json(res, 200, {{"builtin", builtin}, {"sceneBuiltin", scene_builtin}, {"uploaded", meshes.list()}});
     });
     // The built-in meshes as OBJ text, for the page's own WebGL canvas.
     server.Get(R"(/api/meshes/([a-z]+)\.obj)", [](const httplib::Request& req, httplib::Response& res) {

@@ -345,7 +345,8 @@ ShaderVariant lit_variant(const SceneDescription& s, const scene::PassPlan& plan
 
 }  // namespace
 
-Expected<SceneRender> SceneRenderer::render(const SceneDescription& scene, const MeshResolver& resolve) {
+Expected<SceneRender> SceneRenderer::render(const SceneDescription& scene, const MeshResolver& resolve,
+                                           const SceneRenderOptions& options) {
   State& st = *state_;
   const auto start = Clock::now();
   auto lap = start;
@@ -609,6 +610,14 @@ Expected<SceneRender> SceneRenderer::render(const SceneDescription& scene, const
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
     for (int y = 0; y < height; ++y)
       std::memcpy(out.image.row(y), bottom_up.data() + static_cast<size_t>(height - 1 - y) * out.image.row_bytes(), out.image.row_bytes());
+    if (options.keep_radiance) {
+      out.radiance = image::Image::blank(width, height, image::PixelType::f32);
+      std::vector<std::uint8_t> rows(out.radiance.bytes.size());
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, st.frame->resolve_fbo.get());
+      glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, rows.data());
+      for (int y = 0; y < height; ++y)
+        std::memcpy(out.radiance.row(y), rows.data() + static_cast<size_t>(height - 1 - y) * out.radiance.row_bytes(), out.radiance.row_bytes());
+    }
     report.passes.push_back({"readback", ms_since(lap), nlohmann::json::object()});
     lap = Clock::now();
   }

@@ -36,8 +36,13 @@ struct SceneReport {
 };
 
 struct SceneRender {
-  image::Image image;  // RGBA8, display-referred, rows top-down
+  image::Image image;     // RGBA8, display-referred, rows top-down
+  image::Image radiance;  // RGBA32F scene-referred radiance before the view transform, when asked for
   SceneReport report;
+};
+
+struct SceneRenderOptions {
+  bool keep_radiance = false;  // also read back the linear HDR image (tests, accuracy measurements)
 };
 
 // Meshes by reference (a built-in name, an upload id, a file path for the CLI), already in the
@@ -54,7 +59,8 @@ class SceneRenderer {
   SceneRenderer& operator=(SceneRenderer&&) noexcept;
   ~SceneRenderer();
 
-  Expected<SceneRender> render(const scene::SceneDescription& scene, const MeshResolver& meshes);
+  Expected<SceneRender> render(const scene::SceneDescription& scene, const MeshResolver& meshes,
+                               const SceneRenderOptions& options = {});
 
  private:
   struct State;

@@ -18,6 +18,9 @@
 #include "render/renderer.h"
 #include "worker/job.h"
 #include "worker/protocol.h"
+#include "worker/scene_job.h"
+#include "scene/scene_mesh.h"
+#include "scene_render/scene_renderer.h"
 #include "worker/zip_archive.h"
 
 namespace shadelab::worker {
@@ -91,7 +94,43 @@ class Worker {
   // Tells the server the compile is over: from here a hang or a crash is the render's.
   bool enter_render_phase() { return write_message(fd_, {{{"event", "phase"}, {"phase", "render"}}, {}}); }
 
+  // Scenes run our own shaders, not a student's: straight to the render phase and its deadline.
+  Message scene(const Message& in) {
+    if (!enter_render_phase()) return failure(make_error(ErrorCode::io_error, "lost the server"));
+    auto job = scene_job_from_message(in);
+    if (!job) return failure(job.error());
+    auto description = scene::parse_scene(job->scene);
+    if (!description) return failure(description.error());
+    if (!scene_renderer_) {
+      auto created = scene_render::SceneRenderer::create();
+      if (!created) return failure(created.error());
+      scene_renderer_.emplace(std::move(*created));
+    }
+    const auto& uploads = job->meshes;
+    const auto resolve = [&uploads](const std::string& reference) -> Expected<scene::Mesh> {
+      for (const auto& m : uploads)
+        if (m.reference == reference) {
+          auto mesh = scene::load_mesh({reinterpret_cast<const std::uint8_t*>(m.bytes.data()), m.bytes.size()}, m.format, reference);
+          if (mesh) scene::to_scene_space(*mesh, m.format);
+          return mesh;
+        }
+      return scene::builtin_scene_mesh(reference);
+    };
+    auto rendered = scene_renderer_->render(*description, resolve);
+    if (!rendered) return failure(rendered.error());
+    const auto encode_start = std::chrono::steady_clock::now();
+    auto png = image::encode_png(rendered->image);
+    if (!png) return failure(png.error());
+    const double encode_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - encode_start).count();
+    return {{{"ok", true},
+             {"report", rendered->report.to_json(*description)},
+             {"contentType", "image/png"},
+             {"timings", {{"render", rendered->report.total_ms}, {"encode", encode_ms}}}},
+            std::string(png->begin(), png->end())};
+  }
+
   Message handle(const Message& in) {
+    if (is_scene_message(in)) return scene(in);
     auto parsed = job_from_json(in.header);
     if (!parsed) return failure(parsed.error());
     Job& job = *parsed;
@@ -306,6 +345,7 @@ class Worker {
   std::map<std::string, Frames> references_;
   std::map<std::string, scene::Mesh> meshes_;
   scene::Mesh fitted_;
+  std::optional<scene_render::SceneRenderer> scene_renderer_;  // made on the first scene job
 };
 
 }  // namespace
