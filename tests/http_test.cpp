@@ -422,3 +422,84 @@ TEST(HttpPoolTest, AFullQueueAnswers503WithRetryAfter) {
 }
 
 }  // namespace
+
+TEST_F(HttpTest, SceneRendersAPngWithItsPassesAndFramingInHeaders) {
+  json scene = {{"objects", {{{"name", "Monkey"}, {"mesh", "suzanne"}, {"location", {0, 0, 1}}, {"material", {{"metallic", 1}, {"roughness", 0.2}}}}}},
+                {"ground", {{"size", 6}}},
+                {"camera", {{"location", {0, -6, 2}}, {"target", {0, 0, 1}}}},
+                {"lights", {{{"type", "sun"}, {"strength", 3}, {"rotation", {40, 0, 30}}}}},
+                {"render", {{"width", 96}, {"height", 72}}}};
+  auto r = post_json("/api/scene", scene);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type"), "image/png");
+  testkit::expect_conforms(*r, "/api/scene", "post");
+  const auto img = testkit::decode({r->body.begin(), r->body.end()});
+  EXPECT_EQ(img.width, 96);
+  const std::string passes = r->get_header_value("X-ShadeLab-Passes");
+  for (const char* pass : {"shadow;dur=", "reflection;dur=", "main;dur=", "view;dur=", "framing;dur="})
+    EXPECT_NE(passes.find(pass), std::string::npos) << pass << " in " << passes;
+  EXPECT_EQ(r->get_header_value("X-ShadeLab-Features"), "shadows, ground_reflection");
+  EXPECT_EQ(r->get_header_value("X-ShadeLab-Framing").rfind("Monkey;fully-visible;in-frame=1.000;coverage=0.", 0), 0u)
+      << r->get_header_value("X-ShadeLab-Framing");
+
+  // Same scene, same bytes: the second answer is a cache hit or a 304.
+  auto again = post_json("/api/scene", scene);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->body, r->body);
+  httplib::Headers conditional = {{"If-None-Match", r->get_header_value("ETag")}};
+  auto not_modified = client().Post("/api/scene", conditional, scene.dump(), "application/json");
+  ASSERT_TRUE(not_modified);
+  EXPECT_EQ(not_modified->status, 304);
+
+  auto as_json = post_json("/api/scene?format=json", scene);
+  ASSERT_TRUE(as_json);
+  ASSERT_EQ(as_json->status, 200) << as_json->body;
+  testkit::expect_conforms(*as_json, "/api/scene", "post");
+  const json report = body_json(as_json);
+  EXPECT_EQ(report["framing"][0]["name"], "Monkey");
+  EXPECT_TRUE(report["framing"][0]["fullyVisible"]);
+  EXPECT_FALSE(report["image"].get<std::string>().empty());
+}
+
+TEST_F(HttpTest, SceneMeshesComeAsMultipartFilesInTheirOwnAxes) {
+  // A Y-up OBJ triangle standing 1 m tall; in the Z-up scene it must stand along +Z.
+  const std::string obj = "v -0.5 0 0\nv 0.5 0 0\nv 0 1 0\nf 1 2 3\n";
+  json scene = {{"objects", {{{"name", "Tri"}, {"mesh", "tri"}, {"material", {{"emission", {1, 1, 1}}, {"emissionStrength", 1}}}}}},
+                {"camera", {{"location", {0, -5, 0.5}}, {"rotation", {90, 0, 0}}}},
+                {"world", {{"color", {0, 0, 0}}}},
+                {"render", {{"width", 64}, {"height", 64}, {"viewTransform", "standard"}}}};
+  httplib::MultipartFormDataItems items = {{"scene", scene.dump(), "scene.json", "application/json"},
+                                           {"tri", obj, "tri.obj", "text/plain"}};
+  auto r = client().Post("/api/scene?format=json", items);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json report = body_json(r);
+  const auto& box = report["framing"][0]["boundingBox"];
+  // Taller than wide: 1 m up (Z), 1 m across at the base.
+  EXPECT_GT(box["y1"].get<double>() - box["y0"].get<double>(), 0.8 * (box["x1"].get<double>() - box["x0"].get<double>()));
+  EXPECT_LT(box["y0"].get<double>(), 32);  // reaches above the centre line (z = 0.5 is the centre)
+}
+
+TEST_F(HttpTest, BadScenesGetStructuredErrors) {
+  expect_problem(client().Post("/api/scene", "{nope", "application/json"), 400, "invalid_argument");
+  expect_problem(post_json("/api/scene", json{{"objects", {{{"mesh", "cube"}, {"scale", "big"}}}}}), 400, "invalid_argument");
+  expect_problem(post_json("/api/scene", json{{"objects", {{{"mesh", "nothing-like-it"}}}}}), 404, "mesh_not_found");
+  httplib::MultipartFormDataItems broken = {{"scene", json{{"objects", {{{"mesh", "m"}}}}}.dump(), "scene.json", "application/json"},
+                                            {"m", "this is not a mesh at all", "m.obj", "text/plain"}};
+  auto r = client().Post("/api/scene", broken);
+  ASSERT_TRUE(r);
+  EXPECT_GE(r->status, 400) << r->body;
+  EXPECT_LT(r->status, 500) << r->body;
+  EXPECT_EQ(r->get_header_value("Content-Type"), "application/problem+json");
+  auto dolly = client().Get("/api/dolly?from=0,-4,0&lens=25&lenses=50,100");
+  ASSERT_TRUE(dolly);
+  ASSERT_EQ(dolly->status, 200);
+  testkit::expect_conforms(*dolly, "/api/dolly", "get");
+  EXPECT_DOUBLE_EQ(body_json(dolly)["stops"][1]["distance"].get<double>(), 16.0);
+  expect_problem(client().Get("/api/dolly?lens=abc"), 400, "invalid_argument");
+  auto examples = client().Get("/api/scenes/two_objects");
+  ASSERT_TRUE(examples);
+  EXPECT_EQ(examples->status, 200);
+  testkit::expect_conforms(*examples, "/api/scenes/{name}", "get");
+}
