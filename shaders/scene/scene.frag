@@ -104,6 +104,8 @@ float shadow(int view, vec3 P, vec3 N, vec3 L) {
     }
   }
   if (blockers == 0.0) return 1.0;
+  // Every search tap blocked: deep in the umbra (the filter would not reach past the search area).
+  if (blockers == float(blocker_taps)) return 0.0;
   float zb = blocker_depth / blockers;
   float penumbra = (zr - zb) * a.w * (a.x > 0.5 ? 1.0 / max(zb, 1e-6) : 1.0) * to_uv;  // full width
   float radius = clamp(0.5 * penumbra, 1.0 * b.z, 0.01);
