@@ -6,6 +6,7 @@ namespace shadelab::gl {
 
 namespace {
 GLenum internal_format(PixelFormat f) { return f == PixelFormat::rgba8 ? GL_RGBA8 : GL_RGBA32F; }
+}  // namespace
 
 RenderbufferName make_renderbuffer(GLenum format, int width, int height, int samples) {
   GLuint id = 0;
@@ -21,7 +22,6 @@ FramebufferName make_framebuffer() {
   glGenFramebuffers(1, &id);
   return FramebufferName(id);
 }
-}  // namespace
 
 int max_samples(PixelFormat format) {
   GLint n = 0;

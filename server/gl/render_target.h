@@ -36,6 +36,10 @@ class RenderTarget {
   RenderbufferName color_, depth_, resolve_color_;
 };
 
+// Storage for one attachment (samples = 0: single-sampled), bound to GL_RENDERBUFFER on return.
+RenderbufferName make_renderbuffer(GLenum format, int width, int height, int samples);
+FramebufferName make_framebuffer();
+
 // The largest sample count the driver offers for `format`.
 int max_samples(PixelFormat format);
 

@@ -132,6 +132,32 @@ struct Service::Impl {
     return result;
   }
 
+  // Same job, same mesh bytes, same renderer, same response form: same bytes out. That makes a
+  // strong ETag.
+  std::string etag_of(const worker::Message& message, const std::string& form) const {
+    const std::string key = form + '\0' + message.header.dump(-1, ' ', false, json::error_handler_t::replace) + '\0' +
+                            message.payload + '\0' + pool->renderer();
+    return "\"" + hex(fnv1a64(key)) + hex(fnv1a64(key, 0x9e3779b97f4a7c15ull)) + "\"";
+  }
+
+  // A 304 for a matching If-None-Match, or the cached response; false when the job must run.
+  bool answered_from_cache(const httplib::Request& req, httplib::Response& res, const std::string& etag) {
+    if (req.get_header_value("If-None-Match") == etag) {
+      res.status = 304;
+      res.set_header("ETag", etag);
+      return true;
+    }
+    if (auto hit = cache.get(etag)) {
+      metrics.cache(true);
+      for (const auto& [k, v] : hit->headers) res.set_header(k, v);
+      res.set_header("X-ShadeLab-Cache", "hit");
+      res.set_content(hit->body, hit->content_type);
+      return true;
+    }
+    metrics.cache(false);
+    return false;
+  }
+
   void render(const httplib::Request& req, httplib::Response& res) {
     auto raw = read(req);
     if (!raw) return send_problem(res, raw.error(), req.path);
@@ -140,22 +166,8 @@ struct Service::Impl {
     worker::Message message;
     if (auto s = attach_mesh(*parsed, message); !s) return send_problem(res, s.error(), req.path);
 
-    // Same job, same mesh bytes, same renderer: same bytes out. That makes a strong ETag.
-    const std::string key = message.header.dump(-1, ' ', false, json::error_handler_t::replace) + '\0' + message.payload + '\0' + pool->renderer();
-    const std::string etag = "\"" + hex(fnv1a64(key)) + hex(fnv1a64(key, 0x9e3779b97f4a7c15ull)) + "\"";
-    if (req.get_header_value("If-None-Match") == etag) {
-      res.status = 304;
-      res.set_header("ETag", etag);
-      return;
-    }
-    if (auto hit = cache.get(etag)) {
-      metrics.cache(true);
-      for (const auto& [k, v] : hit->headers) res.set_header(k, v);
-      res.set_header("X-ShadeLab-Cache", "hit");
-      res.set_content(hit->body, hit->content_type);
-      return;
-    }
-    metrics.cache(false);
+    const std::string etag = etag_of(message, "");
+    if (answered_from_cache(req, res, etag)) return;
 
     auto result = run(std::move(message));
     if (!result) return send_problem(res, result.error(), req.path);
@@ -298,22 +310,8 @@ struct Service::Impl {
     const bool as_json = req.get_param_value("format") == "json" ||
                          (req.get_header_value("Accept").find("application/json") != std::string::npos &&
                           req.get_header_value("Accept").find("image/png") == std::string::npos);
-    const std::string key = std::string(as_json ? "json" : "png") + '\0' + message.header.dump(-1, ' ', false, json::error_handler_t::replace) +
-                            '\0' + message.payload + '\0' + pool->renderer();
-    const std::string etag = "\"" + hex(fnv1a64(key)) + hex(fnv1a64(key, 0x9e3779b97f4a7c15ull)) + "\"";
-    if (req.get_header_value("If-None-Match") == etag) {
-      res.status = 304;
-      res.set_header("ETag", etag);
-      return;
-    }
-    if (auto hit = cache.get(etag)) {
-      metrics.cache(true);
-      for (const auto& [k, v] : hit->headers) res.set_header(k, v);
-      res.set_header("X-ShadeLab-Cache", "hit");
-      res.set_content(hit->body, hit->content_type);
-      return;
-    }
-    metrics.cache(false);
+    const std::string etag = etag_of(message, as_json ? "json" : "png");
+    if (answered_from_cache(req, res, etag)) return;
     auto result = run(std::move(message));
     if (!result) return send_problem(res, result.error(), req.path);
     json report = result->header.value("report", json::object());

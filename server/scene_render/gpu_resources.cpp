@@ -1,5 +1,7 @@
 #include "scene_render/gpu_resources.h"
 
+#include "gl/render_target.h"
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -8,19 +10,11 @@ namespace shadelab::scene_render {
 
 namespace {
 
-GLuint gen_renderbuffer(GLenum format, int width, int height, int samples) {
-  GLuint id = 0;
-  glGenRenderbuffers(1, &id);
-  glBindRenderbuffer(GL_RENDERBUFFER, id);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
-  return id;
-}
-
-GLuint gen_framebuffer() {
-  GLuint id = 0;
-  glGenFramebuffers(1, &id);
-  glBindFramebuffer(GL_FRAMEBUFFER, id);
-  return id;
+// A new framebuffer, bound so the attachments that follow go to it.
+gl::FramebufferName bound_framebuffer() {
+  gl::FramebufferName fbo = gl::make_framebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+  return fbo;
 }
 
 GLuint gen_texture() {
@@ -42,10 +36,10 @@ Expected<FrameTargets> FrameTargets::create(int width, int height, int samples) 
   FrameTargets t;
   t.width = width;
   t.height = height;
-  t.hdr_color = gl::RenderbufferName(gen_renderbuffer(GL_RGBA16F, width, height, samples));
+  t.hdr_color = gl::make_renderbuffer(GL_RGBA16F, width, height, samples);
   glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &t.samples);
-  t.hdr_depth = gl::RenderbufferName(gen_renderbuffer(GL_DEPTH_COMPONENT32F, width, height, samples));
-  t.hdr_fbo = gl::FramebufferName(gen_framebuffer());
+  t.hdr_depth = gl::make_renderbuffer(GL_DEPTH_COMPONENT32F, width, height, samples);
+  t.hdr_fbo = bound_framebuffer();
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.hdr_color.get());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.hdr_depth.get());
   if (auto s = complete("HDR"); !s) return s.take_error();
@@ -57,12 +51,12 @@ Expected<FrameTargets> FrameTargets::create(int width, int height, int samples) 
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  t.resolve_fbo = gl::FramebufferName(gen_framebuffer());
+  t.resolve_fbo = bound_framebuffer();
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.resolved.get(), 0);
   if (auto s = complete("resolve"); !s) return s.take_error();
 
-  t.display_color = gl::RenderbufferName(gen_renderbuffer(GL_RGBA8, width, height, 0));
-  t.display_fbo = gl::FramebufferName(gen_framebuffer());
+  t.display_color = gl::make_renderbuffer(GL_RGBA8, width, height, 0);
+  t.display_fbo = bound_framebuffer();
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.display_color.get());
   if (auto s = complete("display"); !s) return s.take_error();
   return t;
@@ -72,9 +66,9 @@ Expected<IdTarget> IdTarget::create(int width, int height) {
   IdTarget t;
   t.width = width;
   t.height = height;
-  t.color = gl::RenderbufferName(gen_renderbuffer(GL_RGBA8, width, height, 0));
-  t.depth = gl::RenderbufferName(gen_renderbuffer(GL_DEPTH_COMPONENT32F, width, height, 0));
-  t.fbo = gl::FramebufferName(gen_framebuffer());
+  t.color = gl::make_renderbuffer(GL_RGBA8, width, height, 0);
+  t.depth = gl::make_renderbuffer(GL_DEPTH_COMPONENT32F, width, height, 0);
+  t.fbo = bound_framebuffer();
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color.get());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth.get());
   if (auto s = complete("object-id"); !s) return s.take_error();
@@ -104,7 +98,7 @@ Expected<ShadowArray> ShadowArray::create(int size, int layers) {
   glSamplerParameteri(samplers[1], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glSamplerParameteri(samplers[1], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glSamplerParameteri(samplers[1], GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  a.fbo = gl::FramebufferName(gen_framebuffer());
+  a.fbo = bound_framebuffer();
   a.bind_layer(0);
   if (auto s = complete("shadow"); !s) return s.take_error();
   return a;
@@ -129,7 +123,7 @@ Expected<ReflectionMap> ReflectionMap::create(int size) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  r.fbo = gl::FramebufferName(gen_framebuffer());
+  r.fbo = bound_framebuffer();
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r.color.get(), 0);
   if (auto s = complete("reflection"); !s) return s.take_error();
   return r;
