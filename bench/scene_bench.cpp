@@ -64,7 +64,7 @@ Timed run(scene_render::SceneRenderer& r, const scene::SceneDescription& s, int 
       std::exit(1);
     }
     totals.push_back(out->report.total_ms);
-    for (const auto& p : out->report.passes) passes[p.name].push_back(p.ms);
+    for (const auto& p : out->report.passes) passes[std::string(p.name())].push_back(p.ms);
     t.image = std::move(out->image);
   }
   t.total = median(totals);

@@ -17,6 +17,7 @@ class GradeTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { server_ = new testkit::RunningService(testkit::test_config()); }
   static void TearDownTestSuite() { delete server_; }
+  void SetUp() override { ASSERT_TRUE(server_->ok()) << server_->failure; }
 
   // A submission: a preset's shaders with one edit applied to the fragment (or vertex) shader.
   static json submission(const std::string& preset, const std::string& from = "", const std::string& to = "",
@@ -34,7 +35,10 @@ class GradeTest : public ::testing::Test {
   static json grade(json job, const std::string& reference) {
     job["reference"] = reference;
     auto r = server_->client().Post("/api/grade", job.dump(), "application/json");
-    EXPECT_TRUE(r);
+    if (!r) {
+      ADD_FAILURE() << "no response from /api/grade";
+      return json::object();
+    }
     EXPECT_EQ(r->status, 200) << r->body;
     return json::parse(r->body);
   }

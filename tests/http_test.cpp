@@ -47,6 +47,7 @@ class HttpTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { server_ = new testkit::RunningService(testkit::test_config()); }
   static void TearDownTestSuite() { delete server_; }
+  void SetUp() override { ASSERT_TRUE(server_->ok()) << server_->failure; }
   static httplib::Client client() { return server_->client(); }
 
   static httplib::Result post_json(const std::string& path, const json& body) {
@@ -363,6 +364,7 @@ TEST_F(HttpTest, SameRequestGivesIdenticalBytesFromAnyWorker) {
   auto config = testkit::test_config();
   config.cache_bytes = 0;
   testkit::RunningService other(config);
+  ASSERT_TRUE(other.ok()) << other.failure;
   const json job = {{"preset", "specular"}, {"mesh", "teapot"}, {"width", 120}, {"height", 90}};
   auto a = post_json("/api/render", job);
   auto b = other.client().Post("/api/render", job.dump(), "application/json");
@@ -376,6 +378,7 @@ TEST(HttpPoolTest, AWorkerKilledMidJobFailsThatJobAndThePoolRecovers) {
   config.pool.workers = 1;
   config.pool.render_deadline = std::chrono::milliseconds(30000);
   testkit::RunningService server(config);
+  ASSERT_TRUE(server.ok()) << server.failure;
   auto busy = std::async(std::launch::async, [&] {
     return server.client().Post("/api/render", heavy_job().dump(), "application/json");
   });
@@ -399,6 +402,7 @@ TEST(HttpPoolTest, AFullQueueAnswers503WithRetryAfter) {
   config.pool.max_queue = 1;
   config.pool.render_deadline = std::chrono::milliseconds(3000);
   testkit::RunningService server(config);
+  ASSERT_TRUE(server.ok()) << server.failure;
   std::vector<std::future<httplib::Result>> requests;
   for (int i = 0; i < 4; ++i) {
     requests.push_back(std::async(std::launch::async, [&, i] {
@@ -502,4 +506,12 @@ TEST_F(HttpTest, BadScenesGetStructuredErrors) {
   ASSERT_TRUE(examples);
   EXPECT_EQ(examples->status, 200);
   testkit::expect_conforms(*examples, "/api/scenes/{name}", "get");
+}
+
+TEST(HttpFixtureTest, AServiceWhoseWorkersCannotStartReportsWhyInsteadOfAborting) {
+  auto config = testkit::test_config();
+  config.pool.executable = "/nonexistent/shadelab";
+  testkit::RunningService broken(config, std::chrono::milliseconds(500));
+  EXPECT_FALSE(broken.ok());
+  EXPECT_NE(broken.failure.find("no worker was ready"), std::string::npos) << broken.failure;
 }

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "image/view_transform.h"
+#include "scene/scene_mesh.h"
 #include "support/golden.h"
 #include "support/scene_support.h"
 #include "support/test_support.h"
@@ -53,7 +54,7 @@ TEST(SceneFramingTest, FullyInside) {
   // The box is symmetric about the centre for a cube on the line of sight.
   EXPECT_NEAR(f->box->min.x + f->box->max.x, 160, 1e-6);
   EXPECT_GT(f->image_coverage, 0.05);
-  EXPECT_FALSE(testkit::ran_pass(*r, "framing") && r->report.passes.back().detail.value("guardBandRenders", 0) != 0);
+  EXPECT_FALSE(testkit::ran_pass(*r, "framing") && r->report.detail<scene_render::FramingDetail>()->guard_band_renders != 0);
 }
 
 TEST(SceneFramingTest, CutByTheRightEdge) {
@@ -139,7 +140,7 @@ TEST(ScenePassTest, ShadowsDarkenTheGroundWhereTheObjectBlocksTheSun) {
   auto unshadowed = testkit::render_scene(s);
   ASSERT_TRUE(shadowed && unshadowed);
   const auto sample = [](const scene_render::SceneRender& r, const glm::dvec3& world) {
-    const auto p = r.report.camera.project(world);
+    const auto p = r.camera.project(world);
     EXPECT_TRUE(p);
     return testkit::pixel(r.image, static_cast<int>(p->x), static_cast<int>(p->y));
   };
@@ -200,3 +201,37 @@ TEST_P(SceneGoldenTest, TwoObjectsMatchTheApprovedImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Engines, SceneGoldenTest, ::testing::Values("eevee", "workbench"));
+
+// The renderer keeps 32 meshes warm; a scene may draw up to 64. Every mesh a render draws must
+// stay alive until that render is over, however many it loads (a render once drew from meshes
+// the cache had already freed).
+TEST(SceneMeshCacheTest, FortyDistinctMeshesInOneSceneAreAllDrawn) {
+  constexpr int kObjects = 40, kColumns = 8;
+  json objects = json::array();
+  for (int i = 0; i < kObjects; ++i)
+    objects.push_back({{"name", "cube" + std::to_string(i)}, {"mesh", "m" + std::to_string(i)},
+                       {"location", {3.0 * (i % kColumns) - 10.5, 3.0 * (i / kColumns) - 6.0, 0}}});
+  const json j = {{"objects", objects},
+                  {"camera", {{"location", {0, 0, 20}}, {"rotation", {0, 0, 0}}, {"type", "orthographic"}, {"orthoScale", 30}}},
+                  {"lights", {{{"type", "sun"}, {"strength", 3}}}},
+                  {"render", {{"width", 320}, {"height", 240}, {"engine", "workbench"}, {"samples", 0}}}};
+  auto description = scene::parse_scene(j);
+  ASSERT_TRUE(description) << description.error().message;
+  int resolved = 0;
+  const auto distinct_cubes = [&](const std::string& reference) -> Expected<scene::Mesh> {
+    ++resolved;
+    auto cube = scene::builtin_scene_mesh("cube");
+    if (cube) cube->name = reference;
+    return cube;
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    auto r = testkit::shared_scene_renderer().render(*description, distinct_cubes);
+    ASSERT_TRUE(r) << r.error().message;
+    ASSERT_EQ(r->report.framing.size(), static_cast<size_t>(kObjects));
+    for (const auto& f : r->report.framing) {
+      EXPECT_TRUE(f.fully_visible) << f.name << " (render " << pass << ")";
+      EXPECT_GT(f.visible_pixels, 100) << f.name << " was not drawn (render " << pass << ")";
+    }
+  }
+  EXPECT_GE(resolved, kObjects);
+}

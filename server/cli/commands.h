@@ -5,9 +5,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/error.h"
+
 namespace shadelab::cli {
 
 using Command = std::function<int()>;
+
+// Prints an error as a compiler would (one located line per diagnostic, then the error and its
+// code; the driver's log when it said more than the diagnostics) and returns the exit status 1.
+int fail(const Error& error);
 
 Command add_render_command(CLI::App& app);
 Command add_info_command(CLI::App& app);

@@ -8,13 +8,12 @@
 #include <iterator>
 #include <thread>
 
-#include "core/base64.h"
-
 #include "cli/commands.h"
 #include "cli/environment.h"
 #include "grade/report.h"
-#include "http/api_request.h"
-#include "worker/grade_client.h"
+#include "grade/grade_session.h"
+#include "render/render_request.h"
+#include "worker/client.h"
 
 namespace shadelab::cli {
 
@@ -55,25 +54,44 @@ std::optional<std::pair<fs::path, fs::path>> find_pair(const fs::path& dir, cons
   return std::nullopt;
 }
 
-http::RawRequest raw_request(const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
-  http::RawRequest raw;
-  int w = 640, h = 480;
-  std::sscanf(f.size.c_str(), "%dx%d", &w, &h);
-  raw.fields = {{"reference", f.reference}, {"mesh", f.mesh},  {"width", w}, {"height", h}, {"frames", f.frames},
-                {"threshold", f.threshold}, {"maxFailingFraction", f.max_failing}, {"spatialTolerance", f.spatial},
-                {"maxScore", f.max_score}};
-  raw.files["vertex"] = {vert.filename().string(), read_text(vert)};
-  raw.files["fragment"] = {frag.filename().string(), read_text(frag)};
-  return raw;
+// The grade job for one submission, built and checked as POST /api/grade builds it.
+Expected<worker::Job> grade_job(const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+  grade::GradeOptions options;
+  options.compare.threshold = f.threshold;
+  options.compare.spatial_tolerance = f.spatial;
+  options.max_failing_fraction = f.max_failing;
+  options.max_score = f.max_score;
+  auto spec = grade::checkpoint_spec(f.reference, options);
+  if (!spec) return spec.take_error();
+  worker::Job job;
+  job.kind = worker::JobKind::grade;
+  job.mesh = f.mesh;
+  job.grade = std::move(*spec);
+  auto& r = job.request;
+  if (std::sscanf(f.size.c_str(), "%dx%d", &r.width, &r.height) != 2)
+    return make_error(ErrorCode::invalid_argument, "--size takes WIDTHxHEIGHT, e.g. 640x480; got '" + f.size + "'");
+  r.frames = f.frames;
+  r.vertex = {vert.filename().string(), read_text(vert)};
+  r.fragment = {frag.filename().string(), read_text(frag)};
+  const render::RenderLimits limits;
+  if (auto valid = render::validate(r, limits); !valid) return valid.take_error();
+  if (auto sources = render::check_sources(r, limits); !sources) return sources.take_error();
+  return job;
 }
 
-// One submission to a result (grade::to_json shape), whatever goes wrong with it.
-worker::GradeOutcome grade_one(worker::WorkerPool& pool, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
-  auto parsed = http::parse_grade_job(raw_request(f, vert, frag), http::Limits{});
-  if (!parsed) return {grade::failed_submission(parsed.error(), f.reference, f.max_score), "", 0, std::nullopt};
-  auto outcome = worker::grade_with_pool(pool, parsed->parsed.job, "");
-  if (outcome.service_error) outcome.result = grade::failed_submission(*outcome.service_error, f.reference, f.max_score);
-  return outcome;
+// One submission to a grade, whatever goes wrong with it.
+struct Graded {
+  worker::GradeResult result;
+  double seconds = 0;
+};
+
+Graded grade_one(worker::WorkerPool& pool, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+  const auto ungradable = [&](const Error& e) { return Graded{{grade::failed_submission(e, f.reference, f.max_score), {}}, 0}; };
+  auto job = grade_job(f, vert, frag);
+  if (!job) return ungradable(job.error());
+  auto answered = worker::grade(pool, *job, "");
+  if (!answered) return ungradable(answered.error());
+  return {std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
 }
 
 void write(const fs::path& path, const std::string& text) {
@@ -103,12 +121,13 @@ worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
 
 int run_single(const GradeFlags& f) {
   worker::WorkerPool pool(pool_config(f, 1));
-  auto outcome = grade_one(pool, f, f.vert, f.frag);
-  const json out = f.format == "gradescope" ? grade::to_gradescope(outcome.result, outcome.seconds) : outcome.result;
+  const Graded graded = grade_one(pool, f, f.vert, f.frag);
+  const auto& report = graded.result.report;
+  const json out = f.format == "gradescope" ? grade::to_gradescope(report, graded.seconds) : grade::to_json(report);
   if (f.output.empty()) std::cout << out.dump(2) << "\n";
   else write(f.output, out.dump(2) + "\n");
-  if (!f.heatmap.empty() && !outcome.heatmap_png.empty()) write(f.heatmap, base64_decode(outcome.heatmap_png));
-  for (const auto& m : outcome.result.value("messages", json::array())) std::cerr << m.get<std::string>() << "\n";
+  if (!f.heatmap.empty() && !graded.result.heatmap_png.empty()) write(f.heatmap, graded.result.heatmap_png);
+  for (const auto& m : report.messages) std::cerr << m << "\n";
   return 0;
 }
 
@@ -122,7 +141,7 @@ int run_batch(const GradeFlags& f) {
     return 2;
   }
   worker::WorkerPool pool(pool_config(f, static_cast<int>(students.size())));
-  std::vector<worker::GradeOutcome> outcomes(students.size());
+  std::vector<Graded> outcomes(students.size());
   std::atomic<size_t> done{0};
   std::mutex print;
   const auto progress = [&](const std::string& who) {
@@ -137,7 +156,7 @@ int run_batch(const GradeFlags& f) {
     threads.emplace_back([&, i] {
       const auto pair = find_pair(students[i], f.reference);
       if (!pair) {
-        outcomes[i].result = grade::failed_submission(
+        outcomes[i].result.report = grade::failed_submission(
             make_error(ErrorCode::invalid_argument, "no shader pair found (expected *_vert.js and *_frag.js)"), f.reference, f.max_score);
       } else {
         outcomes[i] = grade_one(pool, f, pair->first, pair->second);
@@ -151,14 +170,12 @@ int run_batch(const GradeFlags& f) {
   std::string summary = "student,score,max_score,pass,diagnosis,message\n";
   double total = 0;
   for (size_t i = 0; i < students.size(); ++i) {
-    const auto& r = outcomes[i].result;
+    const auto& r = outcomes[i].result.report;
     const std::string who = students[i].filename().string();
     write(fs::path(f.out) / who / "results.json", grade::to_gradescope(r, outcomes[i].seconds).dump(2) + "\n");
-    const auto messages = r.value("messages", json::array());
-    summary += csv(who) + "," + std::to_string(r.value("score", 0.0)) + "," + std::to_string(r.value("maxScore", 1.0)) + "," +
-               (r.value("pass", false) ? "true" : "false") + "," + csv(r.value("diagnosis", "")) + "," +
-               csv(messages.empty() ? "" : messages[0].get<std::string>()) + "\n";
-    total += r.value("score", 0.0);
+    summary += csv(who) + "," + std::to_string(r.score) + "," + std::to_string(r.max_score) + "," + (r.pass ? "true" : "false") + "," +
+               csv(r.diagnosis) + "," + csv(r.messages.empty() ? "" : r.messages[0]) + "\n";
+    total += r.score;
   }
   write(fs::path(f.out) / "summary.csv", summary);
   std::cerr << "graded " << students.size() << " submissions, mean score " << total / static_cast<double>(students.size())

@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include "cli/commands.h"
+#include "core/number_list.h"
 #include "cli/environment.h"
 #include "image/encode.h"
 #include "image/grid.h"
@@ -28,17 +29,6 @@ struct RenderFlags {
   bool timings = false;
 };
 
-int fail(const Error& e) {
-  // Compiler-style: one located line per diagnostic, then the driver's log if it said more.
-  if (e.diagnostics.empty()) {
-    std::cerr << "error: " << e.message << " [" << to_string(e.code) << "]\n";
-  } else {
-    for (const auto& d : e.diagnostics) std::cerr << d.format() << "\n";
-    std::cerr << "error: " << e.message << " [" << to_string(e.code) << "]\n";
-  }
-  return 1;
-}
-
 Expected<shader::ShaderFile> read_shader(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(ErrorCode::io_error, "cannot read shader file '" + path + "'");
@@ -49,27 +39,10 @@ Expected<render::UniformSetting> parse_uniform(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     return make_error(ErrorCode::invalid_argument, "--uniform takes NAME=v1,v2,...; got '" + text + "'");
-  render::UniformSetting s{text.substr(0, eq), {}};
-  std::string rest = text.substr(eq + 1);
-  size_t pos = 0;
-  while (pos <= rest.size()) {
-    const size_t comma = std::min(rest.find(',', pos), rest.size());
-    const std::string item = rest.substr(pos, comma - pos);
-    if (item == "true" || item == "false") {
-      s.values.push_back(item == "true" ? 1.0 : 0.0);
-    } else {
-      size_t used = 0;
-      try {
-        s.values.push_back(std::stod(item, &used));
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != item.size())
-        return make_error(ErrorCode::invalid_argument, "--uniform " + s.name + ": '" + item + "' is not a number");
-    }
-    pos = comma + 1;
-  }
-  return s;
+  const std::string name = text.substr(0, eq);
+  auto values = parse_number_list(std::string_view(text).substr(eq + 1), "--uniform " + name, {.booleans = true});
+  if (!values) return values.take_error();
+  return render::UniformSetting{name, std::move(*values)};
 }
 
 Status write_file(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {

@@ -12,16 +12,11 @@
 #include "scene/dolly_zoom.h"
 #include "scene/scene_mesh.h"
 #include "scene_render/scene_renderer.h"
+#include "worker/result.h"
 
 namespace shadelab::cli {
 
 namespace {
-
-int fail(const Error& e) {
-  std::cerr << "error: " << e.message << " [" << to_string(e.code) << "]\n";
-  if (!e.driver_log.empty()) std::cerr << e.driver_log << "\n";
-  return 1;
-}
 
 Expected<nlohmann::json> read_json(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -40,9 +35,7 @@ scene_render::MeshResolver file_resolver(const std::filesystem::path& scene_dir)
                                                                                       : scene_dir / reference;
     auto mesh = scene::load_mesh_file(path.string());
     if (!mesh) return mesh;
-    std::string ext = path.extension().string();
-    if (!ext.empty()) ext.erase(0, 1);
-    scene::to_scene_space(*mesh, ext);
+    scene::to_scene_space(*mesh, scene::mesh_format_of(path.string()));
     return mesh;
   };
 }
@@ -83,7 +76,7 @@ Command add_scene_command(CLI::App& app) {
     out.write(reinterpret_cast<const char*>(png->data()), static_cast<std::streamsize>(png->size()));
     if (!out) return fail(make_error(ErrorCode::io_error, "cannot write '" + flags->output + "'"));
 
-    const nlohmann::json report = rendered->report.to_json(*description);
+    const nlohmann::json report = worker::to_json(rendered->report);
     if (flags->report == "-") {
       std::cout << report.dump(2) << "\n";
     } else if (!flags->report.empty()) {
@@ -92,7 +85,7 @@ Command add_scene_command(CLI::App& app) {
     }
     std::cerr << "wrote " << flags->output << " (" << description->render.width << "x" << description->render.height << ", "
               << scene::to_string(description->render.engine) << ")\n";
-    for (const auto& p : rendered->report.passes) std::cerr << "  " << p.name << ": " << p.ms << " ms\n";
+    for (const auto& p : rendered->report.passes) std::cerr << "  " << p.name() << ": " << p.ms << " ms\n";
     std::cerr << "  total: " << rendered->report.total_ms << " ms\n";
     for (const auto& fr : rendered->report.framing)
       std::cerr << "  " << fr.name << ": " << (fr.fully_visible ? "fully visible" : "NOT fully visible") << ", "

@@ -1,6 +1,8 @@
 #pragma once
 // The user-facing error channel: everything a caller or the machine can cause is a value of this
 // type, never an exception or an abort. Broken invariants (bugs) go to SHADELAB_CHECK instead.
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,8 +41,24 @@ enum class ErrorCode {
   view_transform_unavailable,  // Filmic asked for, but no OCIO config on this server
 };
 
-std::string_view to_string(ErrorCode code);
-int http_status(ErrorCode code);
+// Everything known about a code, in one row of the table in error.cpp.
+struct ErrorCodeInfo {
+  ErrorCode code;
+  std::string_view name;       // stable, snake_case: the `code` of problem+json and of the worker wire
+  int status;                  // HTTP status
+  std::string_view title;      // problem+json `title`: the same for every error of this code
+  bool submission_caused;      // the submitted shaders caused it: a grade of 0, not a service error
+  bool retry_later;            // the service is busy or starting: answered with Retry-After
+};
+
+// Every code, in enum order (a test checks that each enumerator has exactly one row).
+std::span<const ErrorCodeInfo> error_codes();
+const ErrorCodeInfo& info(ErrorCode code);
+// The code of that name; nullopt for a name no row holds.
+std::optional<ErrorCode> error_code_named(std::string_view name);
+
+inline std::string_view to_string(ErrorCode code) { return info(code).name; }
+inline int http_status(ErrorCode code) { return info(code).status; }
 
 // One compiler-style message, located in the student's own file.
 struct Diagnostic {

@@ -4,53 +4,110 @@ namespace shadelab::grade {
 
 using nlohmann::json;
 
-json to_json(const GradeResult& r, const std::string& checkpoint) {
-  json frames = json::array();
-  for (size_t k = 0; k < r.frames.size(); ++k) {
-    const auto& f = r.frames[k];
-    frames.push_back({{"frame", k},
-                      {"pass", f.pass},
-                      {"identical", f.metrics.identical},
-                      {"rmse", f.metrics.rmse},
-                      {"psnr", f.metrics.psnr ? json(*f.metrics.psnr) : json(nullptr)},  // null: identical
-                      {"ssim", f.metrics.ssim},
-                      {"maxAbsError", f.metrics.max_abs},
-                      {"failingFraction", f.metrics.failing_fraction},
-                      {"failingFractionOfObject", f.failing_fraction_of_object},
-                      {"nanPixels", f.non_finite.nan},
-                      {"infPixels", f.non_finite.inf}});
-  }
-  return {{"checkpoint", checkpoint}, {"pass", r.pass},         {"score", r.score}, {"maxScore", r.max_score},
-          {"diagnosis", r.diagnosis}, {"messages", r.messages}, {"frames", frames}, {"diagnostics", json::array()}};
+namespace {
+
+json frame_json(const FrameReport& f, size_t index) {
+  const auto& m = f.grade.metrics;
+  return {{"frame", index},
+          {"light", f.light},
+          {"pass", f.grade.pass},
+          {"identical", m.identical},
+          {"rmse", m.rmse},
+          {"psnr", m.psnr ? json(*m.psnr) : json(nullptr)},  // null: identical
+          {"ssim", m.ssim},
+          {"maxAbsError", m.max_abs},
+          {"failingFraction", m.failing_fraction},
+          {"failingFractionOfObject", f.grade.failing_fraction_of_object},
+          {"nanPixels", f.grade.non_finite.nan},
+          {"infPixels", f.grade.non_finite.inf}};
 }
 
-json failed_submission(const Error& e, const std::string& checkpoint, double max_score) {
+FrameReport frame_from_json(const json& j) {
+  FrameReport f;
+  f.light = j.at("light");
+  f.grade.pass = j.at("pass");
+  auto& m = f.grade.metrics;
+  m.identical = j.at("identical");
+  m.rmse = j.at("rmse");
+  if (!j.at("psnr").is_null()) m.psnr = j.at("psnr").get<double>();
+  m.ssim = j.at("ssim");
+  m.max_abs = j.at("maxAbsError");
+  m.failing_fraction = j.at("failingFraction");
+  f.grade.failing_fraction_of_object = j.at("failingFractionOfObject");
+  f.grade.non_finite.nan = j.at("nanPixels");
+  f.grade.non_finite.inf = j.at("infPixels");
+  return f;
+}
+
+}  // namespace
+
+json to_json(const Diagnostic& d) {
+  return {{"stage", d.stage}, {"file", d.file}, {"line", d.line}, {"column", d.column}, {"severity", d.severity},
+          {"message", d.message}};
+}
+
+Diagnostic diagnostic_from_json(const json& j) {
+  return {j.value("stage", ""), j.value("file", ""), j.value("line", 0), j.value("column", 0), j.value("severity", "error"),
+          j.value("message", "")};
+}
+
+Report report(const GradeResult& r, const std::string& checkpoint, const std::vector<std::string>& lights,
+              size_t frames_per_light) {
+  Report out{checkpoint, r.pass, r.score, r.max_score, r.diagnosis, r.messages, {}, {}, {}};
+  for (size_t k = 0; k < r.frames.size(); ++k) {
+    const size_t set = frames_per_light == 0 ? 0 : k / frames_per_light;
+    out.frames.push_back({r.frames[k], set < lights.size() ? lights[set] : "homework"});
+  }
+  return out;
+}
+
+Report failed_submission(const Error& e, const std::string& checkpoint, double max_score) {
   std::string message = e.message;
   for (const auto& d : e.diagnostics)
     if (d.severity == "error") {
       message = (d.line > 0 ? "compile error at " + d.file + " line " + std::to_string(d.line) + ": " : "") + d.message;
       break;
     }
-  json diagnostics = json::array();
-  for (const auto& d : e.diagnostics)
-    diagnostics.push_back({{"stage", d.stage}, {"file", d.file}, {"line", d.line}, {"column", d.column},
-                           {"severity", d.severity}, {"message", d.message}});
-  return {{"checkpoint", checkpoint}, {"pass", false}, {"score", 0.0}, {"maxScore", max_score},
-          {"diagnosis", std::string(to_string(e.code))}, {"messages", json::array({message})},
-          {"frames", json::array()}, {"diagnostics", diagnostics}};
+  return {checkpoint, false, 0.0, max_score, std::string(to_string(e.code)), {message}, {}, e.diagnostics, {}};
 }
 
-json to_gradescope(const json& result, double seconds) {
+json to_json(const Report& r) {
+  json frames = json::array(), diagnostics = json::array();
+  for (size_t k = 0; k < r.frames.size(); ++k) frames.push_back(frame_json(r.frames[k], k));
+  for (const auto& d : r.diagnostics) diagnostics.push_back(to_json(d));
+  return {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},           {"maxScore", r.max_score},
+          {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},           {"diagnostics", diagnostics},
+          {"warnings", r.warnings}};
+}
+
+Expected<Report> report_from_json(const json& j) {
+  try {
+    Report r;
+    r.checkpoint = j.at("checkpoint");
+    r.pass = j.at("pass");
+    r.score = j.at("score");
+    r.max_score = j.at("maxScore");
+    r.diagnosis = j.at("diagnosis");
+    r.messages = j.at("messages").get<std::vector<std::string>>();
+    for (const auto& f : j.at("frames")) r.frames.push_back(frame_from_json(f));
+    for (const auto& d : j.at("diagnostics")) r.diagnostics.push_back(diagnostic_from_json(d));
+    r.warnings = j.at("warnings").get<std::vector<std::string>>();
+    return r;
+  } catch (const json::exception& e) {
+    return make_error(ErrorCode::worker_protocol, std::string("malformed grade report: ") + e.what());
+  }
+}
+
+json to_gradescope(const Report& r, double seconds) {
   std::string output;
-  for (const auto& m : result.value("messages", json::array())) output += m.get<std::string>() + "\n";
-  const bool pass = result.value("pass", false);
-  json test = {{"name", "checkpoint: " + result.value("checkpoint", std::string("?"))},
-               {"score", result.value("score", 0.0)},
-               {"max_score", result.value("maxScore", 1.0)},
-               {"status", pass ? "passed" : "failed"},
+  for (const auto& m : r.messages) output += m + "\n";
+  json test = {{"name", "checkpoint: " + r.checkpoint},
+               {"score", r.score},
+               {"max_score", r.max_score},
+               {"status", r.pass ? "passed" : "failed"},
                {"output", output},
                {"visibility", "visible"}};
-  return {{"score", result.value("score", 0.0)}, {"execution_time", seconds}, {"output", output}, {"tests", json::array({test})}};
+  return {{"score", r.score}, {"execution_time", seconds}, {"output", output}, {"tests", json::array({test})}};
 }
 
 }  // namespace shadelab::grade

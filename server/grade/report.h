@@ -1,17 +1,58 @@
 #pragma once
-// Grade results as JSON, ShadeLab's own and Gradescope's results.json.
+// A grade as the student, the TA and Gradescope see it. One shape, whether the submission was
+// graded frame by frame or could not be graded at all (it does not compile, hangs, crashes the
+// driver: score 0 and the reason). It crosses the worker boundary and is the body of
+// POST /api/grade and of `shadelab grade`'s results, so to_json and report_from_json are its wire.
+//
+// | JSON field   | meaning                                                                    |
+// |--------------|----------------------------------------------------------------------------|
+// | checkpoint   | smooth, gouraud, diffuse, specular, or custom                              |
+// | pass, score, maxScore | the verdict; score is maxScore or 0                               |
+// | diagnosis    | the recognised mistake's id, "swapped_channels", "nan", an error code, ""  |
+// | messages[]   | what the student reads, most important first                               |
+// | frames[]     | per frame and light: metrics, failing share of the object, NaN/Inf counts  |
+// | diagnostics[]| compiler messages at the student's lines (ungradable submissions)          |
+// | warnings[]   | request fields ignored, uniforms the program does not use, ...             |
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
-#include "core/error.h"
+#include "core/expected.h"
 #include "grade/grader.h"
 
 namespace shadelab::grade {
 
-nlohmann::json to_json(const GradeResult& result, const std::string& checkpoint);
-// A submission that could not be graded (does not compile, hangs, crashes): score 0, the reason.
-nlohmann::json failed_submission(const Error& error, const std::string& checkpoint, double max_score);
+struct FrameReport {
+  FrameGrade grade;
+  std::string light = "homework";  // "homework", or the probe light it was rendered under
+};
+
+struct Report {
+  std::string checkpoint;
+  bool pass = false;
+  double score = 0, max_score = 1;
+  std::string diagnosis;
+  std::vector<std::string> messages;
+  std::vector<FrameReport> frames;
+  std::vector<Diagnostic> diagnostics;
+  std::vector<std::string> warnings;
+};
+
+// A graded result; `lights` names the light of each run of frames_per_light frames, in order.
+Report report(const GradeResult& result, const std::string& checkpoint, const std::vector<std::string>& lights,
+              size_t frames_per_light);
+// A submission that could not be graded: score 0, the reason (its first compile error at its line).
+Report failed_submission(const Error& error, const std::string& checkpoint, double max_score);
+
+nlohmann::json to_json(const Report& report);
+Expected<Report> report_from_json(const nlohmann::json& j);
+
 // Gradescope's results.json: score, execution_time, output, tests[] (name, score, max_score,
 // status, output, visibility).
-nlohmann::json to_gradescope(const nlohmann::json& result, double execution_seconds);
+nlohmann::json to_gradescope(const Report& report, double execution_seconds);
+
+nlohmann::json to_json(const Diagnostic& d);
+Diagnostic diagnostic_from_json(const nlohmann::json& j);
 
 }  // namespace shadelab::grade

@@ -4,8 +4,10 @@
 #include <regex>
 #include <set>
 
+#include "core/hash.h"
 #include "grade/checkpoints.h"
 #include "render/presets.h"
+#include "scene/mesh.h"
 
 namespace shadelab::http {
 
@@ -76,16 +78,7 @@ const std::set<std::string> kKnownFields = {"vertex",  "fragment", "vertexName",
 
 }  // namespace
 
-std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t h) {
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
-std::string mesh_id(const std::string& bytes) {
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(bytes)));
-  return std::string("m") + hex;
-}
+std::string mesh_id(const std::string& bytes) { return "m" + hex64(fnv1a64(bytes)); }
 
 Expected<RawRequest> from_json_body(const std::string& body) {
   RawRequest raw;
@@ -191,8 +184,7 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
       return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
     out.mesh_upload = it->second;
     job.mesh = mesh_id(it->second.content);
-    const auto dot = it->second.filename.find_last_of('.');
-    job.mesh_format = dot == std::string::npos ? "obj" : it->second.filename.substr(dot + 1);
+    job.mesh_format = scene::mesh_format_of(it->second.filename);
   } else {
     auto mesh = text(f, "mesh", "bunny");
     if (!mesh) return mesh.take_error();
@@ -201,11 +193,7 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
 
   if (kind != worker::JobKind::mesh_check) {
     if (auto valid = render::validate(r, limits.render); !valid) return valid.take_error();
-    // The source checks need no GL (UTF-8, NUL, the module's syntax, #version): answer them here.
-    // They must run before the job is sent, too: the JSON that carries it cannot hold invalid UTF-8.
-    const shader::SourceLimits source_limits{limits.render.max_source_bytes};
-    if (auto vs = shader::unwrap(r.vertex, shader::Stage::vertex, source_limits); !vs) return vs.take_error();
-    if (auto fs = shader::unwrap(r.fragment, shader::Stage::fragment, source_limits); !fs) return fs.take_error();
+    if (auto sources = render::check_sources(r, limits.render); !sources) return sources.take_error();
   }
   return out;
 }
@@ -246,13 +234,9 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits) {
     spec.reference_vertex = std::move(*v);
     spec.reference_fragment = std::move(*fr);
   } else {
-    auto checkpoint = grade::find_checkpoint(*reference);
-    if (!checkpoint) return make_error(ErrorCode::unknown_preset, "no checkpoint '" + *reference + "' (checkpoints: smooth, gouraud, diffuse, specular)");
-    spec.reference_name = checkpoint->name;
-    spec.reference_vertex = checkpoint->vertex;
-    spec.reference_fragment = checkpoint->fragment;
-    spec.mistakes = std::move(checkpoint->mistakes);
-    spec.probes = std::move(checkpoint->probes);
+    auto checkpoint = grade::checkpoint_spec(*reference, spec.options);
+    if (!checkpoint) return checkpoint.take_error();
+    spec = std::move(*checkpoint);
   }
   auto threshold = number(f, "threshold", spec.options.compare.threshold);
   auto failing = number(f, "maxFailingFraction", spec.options.max_failing_fraction);

@@ -48,6 +48,5 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits);
 
 // A mesh id: content-addressed ("m" + 16 hex digits of a 64-bit FNV-1a of the bytes).
 std::string mesh_id(const std::string& bytes);
-std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t seed = 1469598103934665603ull);
 
 }  // namespace shadelab::http

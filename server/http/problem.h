@@ -10,6 +10,5 @@
 namespace shadelab::http {
 
 nlohmann::json problem(const Error& error, const std::string& instance);
-std::string_view title(ErrorCode code);
 
 }  // namespace shadelab::http

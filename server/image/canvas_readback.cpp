@@ -52,10 +52,12 @@ bool canvas_blob_from_readback(const std::uint8_t* bottom_up, Image& out) {
   return opaque;
 }
 
-void float_from_readback(const float* bottom_up, Image& out) {
+void flip_from_readback(const void* bottom_up, Image& out) {
   const size_t row_bytes = out.row_bytes();
-  const auto* src = reinterpret_cast<const std::uint8_t*>(bottom_up);
+  const auto* src = static_cast<const std::uint8_t*>(bottom_up);
   for (int y = 0; y < out.height; ++y) std::memcpy(out.row(out.height - 1 - y), src + static_cast<size_t>(y) * row_bytes, row_bytes);
 }
+
+void float_from_readback(const float* bottom_up, Image& out) { flip_from_readback(bottom_up, out); }
 
 }  // namespace shadelab::image

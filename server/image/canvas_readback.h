@@ -18,6 +18,9 @@ void canvas_blob_pixel(std::uint8_t rgba[4]);
 // Returns true when every pixel is opaque (the PNG can then drop alpha losslessly).
 bool canvas_blob_from_readback(const std::uint8_t* bottom_up, Image& out);
 
+// Flips readback of any pixel type (bottom row first) into `out` (top row first), bytes unchanged.
+void flip_from_readback(const void* bottom_up, Image& out);
+
 // Flips float readback into `out`; values stay as the drawing buffer holds them (premultiplied,
 // NaN and infinity kept), which is what an EXR is for.
 void float_from_readback(const float* bottom_up, Image& out);

@@ -25,4 +25,11 @@ Status validate(const RenderRequest& r, const RenderLimits& limits) {
   return Ok{};
 }
 
+Status check_sources(const RenderRequest& r, const RenderLimits& limits) {
+  const shader::SourceLimits source_limits{limits.max_source_bytes};
+  if (auto vs = shader::unwrap(r.vertex, shader::Stage::vertex, source_limits); !vs) return vs.take_error();
+  if (auto fs = shader::unwrap(r.fragment, shader::Stage::fragment, source_limits); !fs) return fs.take_error();
+  return Ok{};
+}
+
 }  // namespace shadelab::render

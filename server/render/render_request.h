@@ -31,6 +31,10 @@ struct RenderLimits {
 };
 
 Status validate(const RenderRequest& request, const RenderLimits& limits);
+// The source checks that need no GL (size, UTF-8, NUL bytes, the JS module's syntax, #version) on
+// both stages. Callers answer these before a job leaves for a worker: the JSON that carries a job
+// cannot hold invalid UTF-8, and a student should not wait for a worker to hear about a typo.
+Status check_sources(const RenderRequest& request, const RenderLimits& limits);
 
 // What the renderer itself insists on, whatever limits the caller's policy sets (the CLI and the
 // HTTP edge validate against their own, smaller, configurable limits first).

@@ -1,5 +1,7 @@
 #include "render/renderer.h"
 
+#include "core/hash.h"
+
 #include <chrono>
 #include <array>
 #include <list>
@@ -24,12 +26,6 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 constexpr gl::AttributeBinding kBindings[] = {{kPositionAttribute, kPositionLocation}, {kNormalAttribute, kNormalLocation}};
 constexpr size_t kProgramCacheSize = 32;
 constexpr size_t kMeshCacheSize = 8;
-
-std::uint64_t fnv1a(const void* data, size_t size, std::uint64_t h = 1469598103934665603ull) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  return h;
-}
 
 std::vector<VariableInfo> describe(const std::vector<gl::ActiveVariable>& vars) {
   std::vector<VariableInfo> out;
@@ -130,7 +126,7 @@ struct Renderer::State {
 
   gl::MeshBuffer& mesh_buffer(const scene::Mesh& mesh, bool& cached) {
     const std::vector<float> data = mesh.interleaved();
-    const std::uint64_t hash = fnv1a(data.data(), data.size() * sizeof(float));
+    const std::uint64_t hash = fnv1a64({reinterpret_cast<const char*>(data.data()), data.size() * sizeof(float)});
     for (auto it = meshes.begin(); it != meshes.end(); ++it)
       if (it->hash == hash && it->floats == data.size()) {
         cached = true;

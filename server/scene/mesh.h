@@ -50,6 +50,8 @@ struct MeshLimits {
 Expected<Mesh> load_mesh(std::span<const std::uint8_t> bytes, const std::string& format_hint,
                          const std::string& name, const MeshLimits& limits = {});
 Expected<Mesh> load_mesh_file(const std::string& path, const MeshLimits& limits = {});
+// The format hint of a file name or path: its extension ("glb"), or "obj" when it has none.
+std::string mesh_format_of(std::string_view filename);
 
 // "teapot" or "bunny", compiled into the binary from assets/.
 Expected<Mesh> builtin_mesh(const std::string& name);

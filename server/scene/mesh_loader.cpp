@@ -130,10 +130,15 @@ Expected<Mesh> load_mesh_file(const std::string& path, const MeshLimits& limits)
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(ErrorCode::mesh_not_found, "cannot open mesh file '" + path + "'");
   const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
-  const size_t dot = path.find_last_of('.');
-  const std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
   const size_t slash = path.find_last_of('/');
-  return load_mesh(bytes, ext, slash == std::string::npos ? path : path.substr(slash + 1), limits);
+  return load_mesh(bytes, mesh_format_of(path), slash == std::string::npos ? path : path.substr(slash + 1), limits);
+}
+
+std::string mesh_format_of(std::string_view filename) {
+  const size_t slash = filename.find_last_of('/');
+  if (slash != std::string_view::npos) filename.remove_prefix(slash + 1);
+  const size_t dot = filename.find_last_of('.');
+  return dot == std::string_view::npos || dot + 1 == filename.size() ? "obj" : std::string(filename.substr(dot + 1));
 }
 
 std::vector<std::string> builtin_mesh_names() { return {"bunny", "teapot"}; }

@@ -15,7 +15,6 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
-#include <nlohmann/json.hpp>
 
 #include "scene/camera_model.h"
 #include "scene/mesh.h"
@@ -45,7 +44,5 @@ struct VertexFraming {
   bool all_inside = true;  // every vertex in front, in the clip range, inside the image
 };
 VertexFraming frame_vertices(const scene::CameraModel& camera, const glm::dmat4& world_from_object, const scene::Mesh& mesh);
-
-nlohmann::json to_json(const ObjectFraming& f);
 
 }  // namespace shadelab::scene_render

@@ -8,37 +8,21 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "core/expected.h"
 #include "image/image.h"
 #include "scene/camera_model.h"
 #include "scene/mesh.h"
 #include "scene/scene_description.h"
 #include "scene_render/framing.h"
+#include "scene_render/scene_report.h"
 
 namespace shadelab::scene_render {
-
-struct PassTiming {
-  std::string name;
-  double ms = 0;
-  nlohmann::json detail = nlohmann::json::object();
-};
-
-struct SceneReport {
-  std::vector<PassTiming> passes;
-  std::vector<std::string> features;
-  std::vector<ObjectFraming> framing;  // empty when render.framing is false
-  scene::CameraModel camera;
-  std::string depth;                   // "reversed-z float32" or "forward float32"
-  double total_ms = 0;
-  nlohmann::json to_json(const scene::SceneDescription& scene) const;
-};
 
 struct SceneRender {
   image::Image image;     // RGBA8, display-referred, rows top-down
   image::Image radiance;  // RGBA32F scene-referred radiance before the view transform, when asked for
   SceneReport report;
+  scene::CameraModel camera;  // the camera the image was rendered with (projects scene points to pixels)
 };
 
 struct SceneRenderOptions {
@@ -52,6 +36,8 @@ using MeshResolver = std::function<Expected<scene::Mesh>(const std::string& refe
 // Built-in scene meshes only.
 Expected<scene::Mesh> resolve_builtin_mesh(const std::string& reference);
 
+struct RenderState;  // scene_passes.h
+
 class SceneRenderer {
  public:
   static Expected<SceneRenderer> create();
@@ -63,9 +49,8 @@ class SceneRenderer {
                                const SceneRenderOptions& options = {});
 
  private:
-  struct State;
-  explicit SceneRenderer(std::unique_ptr<State> state);
-  std::unique_ptr<State> state_;
+  explicit SceneRenderer(std::unique_ptr<RenderState> state);
+  std::unique_ptr<RenderState> state_;
 };
 
 }  // namespace shadelab::scene_render

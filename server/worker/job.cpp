@@ -1,125 +1,245 @@
 #include "worker/job.h"
 
+#include <glm/vec3.hpp>
+
+// The scene description's wire form: each struct's fields under their C++ names. It is read only
+// from a trusted sender that validated the scene (scene::parse_scene), so it is not re-validated.
+namespace nlohmann {
+template <>
+struct adl_serializer<glm::dvec3> {
+  static void to_json(json& j, const glm::dvec3& v) { j = {v.x, v.y, v.z}; }
+  static void from_json(const json& j, glm::dvec3& v) { v = {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+};
+}  // namespace nlohmann
+
+namespace shadelab::scene {
+
+NLOHMANN_JSON_SERIALIZE_ENUM(Shading, {{Shading::smooth, "smooth"}, {Shading::flat, "flat"}})
+NLOHMANN_JSON_SERIALIZE_ENUM(Projection, {{Projection::perspective, "perspective"}, {Projection::orthographic, "orthographic"}})
+NLOHMANN_JSON_SERIALIZE_ENUM(SensorFit, {{SensorFit::automatic, "auto"}, {SensorFit::horizontal, "horizontal"}, {SensorFit::vertical, "vertical"}})
+NLOHMANN_JSON_SERIALIZE_ENUM(LightType, {{LightType::point, "point"}, {LightType::sun, "sun"}, {LightType::spot, "spot"}, {LightType::area, "area"}})
+NLOHMANN_JSON_SERIALIZE_ENUM(Engine, {{Engine::workbench, "workbench"}, {Engine::eevee, "eevee"}})
+NLOHMANN_JSON_SERIALIZE_ENUM(ViewTransform, {{ViewTransform::standard, "standard"}, {ViewTransform::filmic, "filmic"}})
+
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Material, base_color, metallic, roughness, specular, subsurface, subsurface_color,
+                                   subsurface_radius, emission, emission_strength, alpha)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Object, name, mesh, location, rotation_degrees, scale, shading, material)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Ground, size, height, material)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(World, color, strength)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RenderSettings, width, height, engine, view_transform, samples, shadow_map_size,
+                                   shadow_filter_taps, reflection_map_size, workbench_shadows, framing)
+
+namespace {
+template <class T>
+nlohmann::json optional_json(const std::optional<T>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+template <class T>
+std::optional<T> optional_from(const nlohmann::json& j) { return j.is_null() ? std::nullopt : std::optional<T>(j.get<T>()); }
+}  // namespace
+
+void to_json(nlohmann::json& j, const Camera& c) {
+  j = {{"location", c.location}, {"rotation_degrees", optional_json(c.rotation_degrees)}, {"target", c.target},
+       {"type", c.type}, {"lens_mm", c.lens_mm}, {"sensor_width_mm", c.sensor_width_mm}, {"sensor_fit", c.sensor_fit},
+       {"ortho_scale", c.ortho_scale}, {"clip_start", c.clip_start}, {"clip_end", c.clip_end}};
+}
+void from_json(const nlohmann::json& j, Camera& c) {
+  j.at("location").get_to(c.location);
+  c.rotation_degrees = optional_from<glm::dvec3>(j.at("rotation_degrees"));
+  j.at("target").get_to(c.target);
+  j.at("type").get_to(c.type);
+  j.at("lens_mm").get_to(c.lens_mm);
+  j.at("sensor_width_mm").get_to(c.sensor_width_mm);
+  j.at("sensor_fit").get_to(c.sensor_fit);
+  j.at("ortho_scale").get_to(c.ortho_scale);
+  j.at("clip_start").get_to(c.clip_start);
+  j.at("clip_end").get_to(c.clip_end);
+}
+
+void to_json(nlohmann::json& j, const Light& l) {
+  j = {{"name", l.name}, {"type", l.type}, {"color", l.color}, {"location", l.location},
+       {"rotation_degrees", optional_json(l.rotation_degrees)}, {"target", optional_json(l.target)},
+       {"power_w", l.power_w}, {"strength", l.strength}, {"radius", l.radius}, {"angle_degrees", l.angle_degrees},
+       {"spot_size_degrees", l.spot_size_degrees}, {"spot_blend", l.spot_blend}, {"size", l.size}, {"cast_shadow", l.cast_shadow}};
+}
+void from_json(const nlohmann::json& j, Light& l) {
+  j.at("name").get_to(l.name);
+  j.at("type").get_to(l.type);
+  j.at("color").get_to(l.color);
+  j.at("location").get_to(l.location);
+  l.rotation_degrees = optional_from<glm::dvec3>(j.at("rotation_degrees"));
+  l.target = optional_from<glm::dvec3>(j.at("target"));
+  j.at("power_w").get_to(l.power_w);
+  j.at("strength").get_to(l.strength);
+  j.at("radius").get_to(l.radius);
+  j.at("angle_degrees").get_to(l.angle_degrees);
+  j.at("spot_size_degrees").get_to(l.spot_size_degrees);
+  j.at("spot_blend").get_to(l.spot_blend);
+  j.at("size").get_to(l.size);
+  j.at("cast_shadow").get_to(l.cast_shadow);
+}
+
+}  // namespace shadelab::scene
+
 namespace shadelab::worker {
 
 using nlohmann::json;
 
-std::string_view to_string(Output o) { return o == Output::grid ? "grid" : o == Output::frames ? "frames" : "json"; }
-std::string_view to_string(Format f) { return f == Format::png ? "png" : "exr"; }
-
-json to_json(const Diagnostic& d) {
-  return {{"stage", d.stage}, {"file", d.file}, {"line", d.line}, {"column", d.column}, {"severity", d.severity},
-          {"message", d.message}};
-}
-
-json to_json(const Error& e) {
-  json diagnostics = json::array();
-  for (const auto& d : e.diagnostics) diagnostics.push_back(to_json(d));
-  return {{"code", to_string(e.code)}, {"message", e.message}, {"diagnostics", diagnostics}, {"driverLog", e.driver_log}};
-}
-
-Error error_from_json(const json& j) {
-  Error e{ErrorCode::io_error, j.value("message", "unknown error"), {}, j.value("driverLog", "")};
-  const std::string code = j.value("code", "");
-  for (int i = 0; i <= static_cast<int>(ErrorCode::worker_protocol); ++i)
-    if (to_string(static_cast<ErrorCode>(i)) == code) e.code = static_cast<ErrorCode>(i);
-  for (const auto& d : j.value("diagnostics", json::array()))
-    e.diagnostics.push_back({d.value("stage", ""), d.value("file", ""), d.value("line", 0), d.value("column", 0),
-                             d.value("severity", "error"), d.value("message", "")});
-  return e;
-}
-
 namespace {
+
+constexpr JobKind kKinds[] = {JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade, JobKind::scene};
+
 json file_json(const shader::ShaderFile& f) { return {{"name", f.name}, {"text", f.text}}; }
 shader::ShaderFile file_from(const json& j) { return {j.at("name"), j.at("text")}; }
-const char* kind_name(JobKind k) {
+
+json grade_json(const grade::GradeSpec& g) {
+  json mistakes = json::array(), probes = json::array();
+  for (const auto& m : g.mistakes)
+    mistakes.push_back({{"id", m.id}, {"message", m.message}, {"vertex", file_json(m.vertex)}, {"fragment", file_json(m.fragment)}});
+  for (const auto& p : g.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
+  const auto& o = g.options;
+  return {{"referenceName", g.reference_name}, {"referenceVertex", file_json(g.reference_vertex)},
+          {"referenceFragment", file_json(g.reference_fragment)}, {"mistakes", mistakes}, {"probes", probes},
+          {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
+          {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}};
+}
+
+grade::GradeSpec grade_from(const json& g) {
+  grade::GradeSpec spec;
+  spec.reference_name = g.at("referenceName");
+  spec.reference_vertex = file_from(g.at("referenceVertex"));
+  spec.reference_fragment = file_from(g.at("referenceFragment"));
+  for (const auto& m : g.at("mistakes"))
+    spec.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
+  for (const auto& p : g.at("probes")) spec.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>()});
+  spec.options.compare.threshold = g.at("threshold");
+  spec.options.compare.spatial_tolerance = g.at("spatialTolerance");
+  spec.options.max_failing_fraction = g.at("maxFailingFraction");
+  spec.options.max_score = g.at("maxScore");
+  return spec;
+}
+
+json request_json(const render::RenderRequest& r) {
+  json uniforms = json::array();
+  for (const auto& u : r.uniforms) uniforms.push_back({{"name", u.name}, {"values", u.values}});
+  return {{"vertex", file_json(r.vertex)}, {"fragment", file_json(r.fragment)}, {"width", r.width}, {"height", r.height},
+          {"frames", r.frames}, {"degreesPerFrame", r.degrees_per_frame}, {"msaa", r.msaa}, {"uniforms", uniforms},
+          {"pixelType", r.pixel_type == image::PixelType::f32 ? "f32" : "u8"}};
+}
+
+render::RenderRequest request_from(const json& j) {
+  render::RenderRequest r;
+  r.vertex = file_from(j.at("vertex"));
+  r.fragment = file_from(j.at("fragment"));
+  r.width = j.at("width");
+  r.height = j.at("height");
+  r.frames = j.at("frames");
+  r.degrees_per_frame = j.at("degreesPerFrame");
+  r.msaa = j.at("msaa");
+  for (const auto& u : j.at("uniforms")) r.uniforms.push_back({u.at("name"), u.at("values").get<std::vector<double>>()});
+  r.pixel_type = j.at("pixelType") == "f32" ? image::PixelType::f32 : image::PixelType::u8;
+  return r;
+}
+
+template <class Enum, size_t N>
+Enum enum_named(const json& j, const Enum (&values)[N]) {
+  const std::string name = j.get<std::string>();
+  for (const Enum v : values)
+    if (to_string(v) == name) return v;
+  throw json::other_error::create(501, "unknown value '" + name + "'", &j);
+}
+
+}  // namespace
+
+std::string_view to_string(JobKind k) {
   switch (k) {
     case JobKind::render: return "render";
     case JobKind::compile: return "compile";
     case JobKind::mesh_check: return "mesh_check";
     case JobKind::grade: return "grade";
+    case JobKind::scene: return "scene";
   }
   return "render";
 }
-}  // namespace
+std::string_view to_string(Output o) { return o == Output::grid ? "grid" : o == Output::frames ? "frames" : "json"; }
+std::string_view to_string(Format f) { return f == Format::png ? "png" : "exr"; }
 
-json to_json(const Job& job) {
-  const auto& r = job.request;
-  json uniforms = json::array();
-  for (const auto& u : r.uniforms) uniforms.push_back({{"name", u.name}, {"values", u.values}});
-  json mistakes = json::array();
-  for (const auto& m : job.grade.mistakes)
-    mistakes.push_back({{"id", m.id}, {"message", m.message}, {"vertex", file_json(m.vertex)}, {"fragment", file_json(m.fragment)}});
-  json probes = json::array();
-  for (const auto& p : job.grade.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
-  const auto& o = job.grade.options;
-  const json grade = {{"referenceName", job.grade.reference_name},
-                      {"referenceVertex", file_json(job.grade.reference_vertex)},
-                      {"referenceFragment", file_json(job.grade.reference_fragment)},
-                      {"mistakes", mistakes},
-                      {"probes", probes},
-                      {"threshold", o.compare.threshold},
-                      {"spatialTolerance", o.compare.spatial_tolerance},
-                      {"maxFailingFraction", o.max_failing_fraction},
-                      {"maxScore", o.max_score}};
-  return {{"kind", kind_name(job.kind)},
-          {"grade", grade},
-          {"vertex", r.vertex.text},
-          {"vertexName", r.vertex.name},
-          {"fragment", r.fragment.text},
-          {"fragmentName", r.fragment.name},
-          {"width", r.width},
-          {"height", r.height},
-          {"frames", r.frames},
-          {"degreesPerFrame", r.degrees_per_frame},
-          {"msaa", r.msaa},
-          {"uniforms", uniforms},
-          {"mesh", job.mesh},
-          {"meshFormat", job.mesh_format},
-          {"fit", job.fit},
-          {"prefix", job.prefix},
-          {"output", to_string(job.output)},
-          {"format", to_string(job.format)}};
+Message to_message(const Job& job, std::string mesh_bytes) {
+  json header = {{"kind", to_string(job.kind)},   {"request", request_json(job.request)}, {"mesh", job.mesh},
+                 {"meshFormat", job.mesh_format}, {"fit", job.fit},                       {"prefix", job.prefix},
+                 {"output", to_string(job.output)}, {"format", to_string(job.format)}};
+  if (job.kind == JobKind::grade) header["grade"] = grade_json(job.grade);
+  return {std::move(header), std::move(mesh_bytes)};
 }
 
-Expected<Job> job_from_json(const json& j) {
+Message to_message(const SceneJob& job) {
+  Message m;
+  std::vector<PayloadPart> parts;
+  json formats = json::array();
+  for (const auto& mesh : job.meshes) {
+    parts.push_back({mesh.reference, mesh.bytes});
+    formats.push_back(mesh.format);
+  }
+  m.header = {{"kind", to_string(JobKind::scene)}, {"scene", to_json(job.scene)}, {"meshFormats", formats},
+              {"meshes", pack_parts(parts, m.payload)}};
+  return m;
+}
+
+Expected<JobKind> job_kind_of(const Message& m) {
   try {
+    return enum_named(m.header.at("kind"), kKinds);
+  } catch (const json::exception& e) {
+    return make_error(ErrorCode::worker_protocol, std::string("a job without a known kind: ") + e.what());
+  }
+}
+
+Expected<Job> job_from_message(const Message& m) {
+  try {
+    const json& j = m.header;
     Job job;
-    const std::string kind = j.at("kind");
-    for (auto k : {JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade})
-      if (kind == kind_name(k)) job.kind = k;
-    const json& g = j.at("grade");
-    job.grade.reference_name = g.at("referenceName");
-    job.grade.reference_vertex = file_from(g.at("referenceVertex"));
-    job.grade.reference_fragment = file_from(g.at("referenceFragment"));
-    for (const auto& m : g.at("mistakes"))
-      job.grade.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
-    for (const auto& p : g.at("probes")) job.grade.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>()});
-    job.grade.options.compare.threshold = g.at("threshold");
-    job.grade.options.compare.spatial_tolerance = g.at("spatialTolerance");
-    job.grade.options.max_failing_fraction = g.at("maxFailingFraction");
-    job.grade.options.max_score = g.at("maxScore");
-    auto& r = job.request;
-    r.vertex = {j.at("vertexName"), j.at("vertex")};
-    r.fragment = {j.at("fragmentName"), j.at("fragment")};
-    r.width = j.at("width");
-    r.height = j.at("height");
-    r.frames = j.at("frames");
-    r.degrees_per_frame = j.at("degreesPerFrame");
-    r.msaa = j.at("msaa");
-    for (const auto& u : j.at("uniforms")) r.uniforms.push_back({u.at("name"), u.at("values").get<std::vector<double>>()});
+    job.kind = enum_named(j.at("kind"), kKinds);
+    job.request = request_from(j.at("request"));
     job.mesh = j.at("mesh");
     job.mesh_format = j.at("meshFormat");
     job.fit = j.at("fit");
     job.prefix = j.at("prefix");
-    const std::string output = j.at("output");
-    job.output = output == "grid" ? Output::grid : output == "frames" ? Output::frames : Output::json;
-    job.format = j.at("format") == "exr" ? Format::exr : Format::png;
-    r.pixel_type = job.format == Format::exr ? image::PixelType::f32 : image::PixelType::u8;
+    job.output = enum_named(j.at("output"), {Output::grid, Output::frames, Output::json});
+    job.format = enum_named(j.at("format"), {Format::png, Format::exr});
+    if (job.kind == JobKind::grade) job.grade = grade_from(j.at("grade"));
     return job;
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed job: ") + e.what());
   }
+}
+
+Expected<SceneJob> scene_job_from_message(const Message& m) {
+  try {
+    SceneJob job;
+    job.scene = scene_from_json(m.header.at("scene"));
+    auto parts = unpack_parts(m.header.at("meshes"), m.payload);
+    if (!parts) return parts.take_error();
+    const json& formats = m.header.at("meshFormats");
+    if (formats.size() != parts->size()) return make_error(ErrorCode::worker_protocol, "a scene mesh without a format");
+    for (size_t i = 0; i < parts->size(); ++i)
+      job.meshes.push_back({std::move((*parts)[i].name), formats[i].get<std::string>(), std::move((*parts)[i].bytes)});
+    return job;
+  } catch (const json::exception& e) {
+    return make_error(ErrorCode::worker_protocol, std::string("malformed scene job: ") + e.what());
+  }
+}
+
+json to_json(const scene::SceneDescription& s) {
+  return {{"objects", s.objects}, {"ground", s.ground ? json(*s.ground) : json(nullptr)}, {"camera", s.camera},
+          {"lights", s.lights},   {"world", s.world},                                   {"render", s.render}};
+}
+
+scene::SceneDescription scene_from_json(const json& j) {
+  scene::SceneDescription s;
+  j.at("objects").get_to(s.objects);
+  if (!j.at("ground").is_null()) s.ground = j.at("ground").get<scene::Ground>();
+  j.at("camera").get_to(s.camera);
+  j.at("lights").get_to(s.lights);
+  j.at("world").get_to(s.world);
+  j.at("render").get_to(s.render);
+  return s;
 }
 
 }  // namespace shadelab::worker

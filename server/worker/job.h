@@ -1,30 +1,31 @@
 #pragma once
-// A job as it travels to a worker: everything resolved (presets expanded, uploaded meshes attached
-// as the message payload), validated by the HTTP layer before it is sent.
+// Every job a render worker takes, typed: what the HTTP process and the CLI send. Each job is
+// resolved and validated before it is sent (presets expanded, the scene parsed once, uploaded
+// meshes attached as the message payload); the worker trusts its shape, not its content.
+//
+// | kind       | struct   | payload                        | answered with (worker/result.h) |
+// |------------|----------|--------------------------------|---------------------------------|
+// | render     | Job      | the uploaded mesh, if any      | RenderResult                    |
+// | compile    | Job      | none                           | CompileResult                   |
+// | mesh_check | Job      | the mesh file                  | MeshCheckResult                 |
+// | grade      | Job      | the uploaded mesh, if any      | GradeResult                     |
+// | scene      | SceneJob | each non-built-in mesh's bytes | SceneResult                     |
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
-#include "grade/checkpoints.h"
-#include "grade/grader.h"
+#include "grade/grade_session.h"
 #include "render/render_request.h"
+#include "scene/scene_description.h"
+#include "worker/protocol.h"
 
 namespace shadelab::worker {
 
-enum class JobKind { render, compile, mesh_check, grade };
+enum class JobKind { render, compile, mesh_check, grade, scene };
 enum class Output { grid, frames, json };
 enum class Format { png, exr };
-
-// What a grade job compares the submission (the job's shaders) against.
-struct GradeSpec {
-  std::string reference_name;  // a checkpoint, or "custom"
-  shader::ShaderFile reference_vertex, reference_fragment;
-  std::vector<grade::Mistake> mistakes;
-  std::vector<grade::Probe> probes;
-  grade::GradeOptions options;
-};
 
 struct Job {
   JobKind kind = JobKind::render;
@@ -35,17 +36,34 @@ struct Job {
   std::string prefix = "render";
   Output output = Output::grid;
   Format format = Format::png;
-  GradeSpec grade;  // for JobKind::grade
+  grade::GradeSpec grade;  // for JobKind::grade
 };
 
-nlohmann::json to_json(const Job& job);
-Expected<Job> job_from_json(const nlohmann::json& j);
+struct SceneMeshBytes {
+  std::string reference;  // as the scene's objects name it
+  std::string format;     // file extension: obj, glb, ply, ...
+  std::string bytes;
+};
 
-nlohmann::json to_json(const Error& error);
-Error error_from_json(const nlohmann::json& j);
-nlohmann::json to_json(const Diagnostic& d);
+struct SceneJob {
+  scene::SceneDescription scene;     // parsed and validated by the sender
+  std::vector<SceneMeshBytes> meshes;
+};
 
+Message to_message(const Job& job, std::string mesh_bytes = {});
+Message to_message(const SceneJob& job);
+
+// The kind a message carries, for the worker's dispatch; worker_protocol when there is none.
+Expected<JobKind> job_kind_of(const Message& message);
+Expected<Job> job_from_message(const Message& message);
+Expected<SceneJob> scene_job_from_message(const Message& message);
+
+std::string_view to_string(JobKind k);
 std::string_view to_string(Output o);
 std::string_view to_string(Format f);
+
+// The scene description on the wire: every field of the struct, nothing re-validated.
+nlohmann::json to_json(const scene::SceneDescription& scene);
+scene::SceneDescription scene_from_json(const nlohmann::json& j);  // throws nlohmann::json::exception
 
 }  // namespace shadelab::worker

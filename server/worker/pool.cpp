@@ -1,5 +1,5 @@
 #include "worker/pool.h"
-#include "worker/job.h"
+#include "worker/result.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -124,7 +124,7 @@ struct WorkerPool::Slot {
     const auto status = read_message(fd, ready, Clock::now() + c.start_deadline);
     if (status != ReadStatus::ok || ready.header.value("event", "") != "ready" || !ready.header.value("ok", false)) {
       std::string why = status == ReadStatus::timeout ? "it did not start in time" : "it exited while starting";
-      if (status == ReadStatus::ok && ready.header.contains("error")) why = ready.header["error"].value("message", why);
+      if (status == ReadStatus::ok && ready.header.contains("error")) why = error_from_json(ready.header["error"]).message;
       reap(true);
       return worker_error(ErrorCode::not_ready, "a render worker could not start: " + why);
     }
@@ -176,10 +176,8 @@ struct WorkerPool::Slot {
           deadline = Clock::now() + c.render_deadline;
           continue;
         }
-        result.ok = in.header.value("ok", false);
-        if (!result.ok) result.error = error_from_json(in.header.value("error", nlohmann::json::object()));
-        result.header = std::move(in.header);
-        result.payload = std::move(in.payload);
+        result.answered = true;
+        result.answer = std::move(in);
         return result;
       }
       if (status == ReadStatus::timeout) {

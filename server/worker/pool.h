@@ -32,11 +32,12 @@ struct PoolConfig {
   std::string executable = "/proc/self/exe";    // started as `<executable> worker`
 };
 
+// What became of a job: the worker's answer (worker/result.h reads it), or, when the worker
+// never answered (it hung, crashed, ran out of memory, could not start), why.
 struct JobResult {
-  bool ok = false;
-  nlohmann::json header;  // the worker's result (ok) ...
-  std::string payload;
-  Error error{ErrorCode::io_error, "", {}, {}};  // ... or what went wrong
+  bool answered = false;
+  Message answer;
+  Error error{ErrorCode::io_error, "", {}, {}};
   double queue_ms = 0;    // waiting for a worker
   double worker_ms = 0;   // in the worker, from hand-over to result
 };

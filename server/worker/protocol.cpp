@@ -74,4 +74,28 @@ ReadStatus read_message(int fd, Message& message, Clock::time_point deadline) {
   return message.header.is_discarded() ? ReadStatus::malformed : ReadStatus::ok;
 }
 
+nlohmann::json pack_parts(const std::vector<PayloadPart>& parts, std::string& payload) {
+  nlohmann::json index = nlohmann::json::array();
+  for (const auto& p : parts) {
+    index.push_back({{"name", p.name}, {"offset", payload.size()}, {"size", p.bytes.size()}});
+    payload += p.bytes;
+  }
+  return index;
+}
+
+Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, const std::string& payload) {
+  try {
+    std::vector<PayloadPart> parts;
+    for (const auto& entry : index) {
+      const size_t offset = entry.at("offset"), size = entry.at("size");
+      if (offset > payload.size() || size > payload.size() - offset)
+        return make_error(ErrorCode::worker_protocol, "a file lies outside the message payload");
+      parts.push_back({entry.at("name"), payload.substr(offset, size)});
+    }
+    return parts;
+  } catch (const nlohmann::json::exception& e) {
+    return make_error(ErrorCode::worker_protocol, std::string("malformed payload index: ") + e.what());
+  }
+}
+
 }  // namespace shadelab::worker

@@ -4,8 +4,11 @@
 //   u32 header bytes | u64 payload bytes | header (UTF-8 JSON) | payload
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "core/expected.h"
 
 namespace shadelab::worker {
 
@@ -20,6 +23,16 @@ bool write_message(int fd, const Message& message);
 enum class ReadStatus { ok, timeout, closed, malformed };
 // Waits until `deadline` for a whole message.
 ReadStatus read_message(int fd, Message& message, std::chrono::steady_clock::time_point deadline);
+
+// Files carried in a payload back to back; the header holds their index, [{name, offset, size}].
+struct PayloadPart {
+  std::string name;
+  std::string bytes;
+};
+// Appends the parts to `payload` and returns their index.
+nlohmann::json pack_parts(const std::vector<PayloadPart>& parts, std::string& payload);
+// The parts an index names; a worker_protocol error when one lies outside the payload.
+Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, const std::string& payload);
 
 inline constexpr size_t kMaxHeaderBytes = 16u << 20;
 inline constexpr size_t kMaxPayloadBytes = 512u << 20;

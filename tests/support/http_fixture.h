@@ -3,6 +3,8 @@
 #include <httplib.h>
 
 #include <memory>
+#include <string>
+#include <thread>
 
 #include "http/service.h"
 
@@ -20,23 +22,33 @@ inline http::ServiceConfig test_config() {
   return c;
 }
 
+// A service that could not start does not abort the test binary: `failure` says why, and each
+// test that uses it fails with that reason (ASSERT_TRUE(server.ok()) << server.failure).
 struct RunningService {
   std::unique_ptr<http::Service> service;
   int port = 0;
+  std::string failure;
 
-  explicit RunningService(http::ServiceConfig config) : service(std::make_unique<http::Service>(std::move(config))) {
+  explicit RunningService(http::ServiceConfig config, std::chrono::milliseconds ready_within = std::chrono::seconds(20))
+      : service(std::make_unique<http::Service>(std::move(config))) {
     auto p = service->start();
-    if (!p) std::abort();
+    if (!p) {
+      failure = "the service did not start: " + p.error().message;
+      return;
+    }
     port = *p;
     // Ready means a worker holds a context; wait for it like a load balancer would.
     httplib::Client c("127.0.0.1", port);
-    for (int i = 0; i < 200; ++i) {
+    const auto deadline = std::chrono::steady_clock::now() + ready_within;
+    while (std::chrono::steady_clock::now() < deadline) {
       if (auto r = c.Get("/readyz"); r && r->status == 200) return;
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
-    std::abort();
+    failure = "no worker was ready within " + std::to_string(ready_within.count()) +
+              " ms of the start (is EGL available? see the server's stderr)";
   }
   ~RunningService() { service->stop(); }
+  bool ok() const { return failure.empty(); }
 
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", port);

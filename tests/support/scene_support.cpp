@@ -49,7 +49,7 @@ const scene_render::ObjectFraming* framing_of(const scene_render::SceneRender& r
 
 bool ran_pass(const scene_render::SceneRender& r, const std::string& name) {
   for (const auto& p : r.report.passes)
-    if (p.name == name) return true;
+    if (p.name() == name) return true;
   return false;
 }
 

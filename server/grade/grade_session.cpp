@@ -1,0 +1,146 @@
+#include "grade/grade_session.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "image/encode.h"
+#include "image/grid.h"
+#include "image/metrics.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+constexpr size_t kReferenceCacheEntries = 64;
+
+// Exactly: two different values must never share a key.
+std::string exact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g,", v);
+  return buf;
+}
+
+// The cache key of a render: everything that changes its pixels, and nothing else (file names
+// do not).
+std::string render_key(const render::RenderRequest& r, const std::string& mesh_key) {
+  std::string key = r.vertex.text + '\0' + r.fragment.text + '\0' + mesh_key + '\0';
+  for (const double v : {double(r.width), double(r.height), double(r.frames), r.degrees_per_frame, double(r.msaa),
+                         double(r.pixel_type == image::PixelType::f32)})
+    key += exact(v);
+  for (const auto& u : r.uniforms) {
+    key += u.name + '=';
+    for (const double v : u.values) key += exact(v);
+    key += ';';
+  }
+  return key;
+}
+
+}  // namespace
+
+Expected<GradeSpec> checkpoint_spec(const std::string& name, const GradeOptions& options) {
+  auto checkpoint = find_checkpoint(name);
+  if (!checkpoint)
+    return make_error(ErrorCode::unknown_preset, "no checkpoint '" + name + "' (checkpoints: smooth, gouraud, diffuse, specular)");
+  return GradeSpec{checkpoint->name, checkpoint->vertex, checkpoint->fragment, std::move(checkpoint->mistakes),
+                   std::move(checkpoint->probes), options};
+}
+
+Expected<GradeSession::Frames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
+  Frames out;
+  auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(f); });
+  if (!rendered) return rendered.take_error();
+  return out;
+}
+
+Expected<GradeSession::Frames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m,
+                                                           const std::string& mesh_key) {
+  const std::string key = render_key(r, mesh_key);
+  if (auto it = references_.find(key); it != references_.end()) return it->second;
+  auto frames = frames_of(r, m);
+  if (!frames) return frames;
+  if (references_.size() >= kReferenceCacheEntries) references_.clear();
+  return references_.emplace(key, std::move(*frames)).first->second;
+}
+
+// `base` with the light moved, for the names the program declares as the page does (vec3); a name
+// declared otherwise stays as the homework sets it, as in the browser.
+Expected<render::RenderRequest> GradeSession::with_light(const render::RenderRequest& base, const std::array<float, 3>& position) {
+  auto program = renderer_.compile(base.vertex, base.fragment);
+  if (!program) return program.take_error();
+  render::RenderRequest lit = base;
+  for (const char* name : {"uLightPosition", "lightPosition"}) {
+    const bool declared = std::any_of(program->uniforms.begin(), program->uniforms.end(),
+                                      [&](const auto& u) { return u.name == name && u.type == "vec3" && u.array_size == 1; });
+    const bool set = std::any_of(lit.uniforms.begin(), lit.uniforms.end(), [&](const auto& u) { return u.name == name; });
+    if (declared && !set) lit.uniforms.push_back({name, {position[0], position[1], position[2]}});
+  }
+  return lit;
+}
+
+// Every set of frames is rendered under the homework's light, then under each probe light.
+Expected<GradeSession::Frames> GradeSession::render_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
+                                                                 const scene::Mesh& mesh, const std::string* cache_key) {
+  Frames all;
+  for (int p = -1; p < static_cast<int>(spec.probes.size()); ++p) {
+    render::RenderRequest lit = base;
+    if (p >= 0) {
+      auto with = with_light(base, spec.probes[static_cast<size_t>(p)].light_position);
+      if (!with) return with.take_error();
+      lit = std::move(*with);
+    }
+    auto frames = cache_key ? cached_frames(lit, mesh, *cache_key) : frames_of(lit, mesh);
+    if (!frames) return frames.take_error();
+    all.insert(all.end(), std::make_move_iterator(frames->begin()), std::make_move_iterator(frames->end()));
+  }
+  return all;
+}
+
+Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
+                                          const std::string& mesh_key, const RenderPhaseHook& on_compiled) {
+  const auto ungradable = [&](const Error& e) { return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}}; };
+  auto compiled = renderer_.compile(submission.vertex, submission.fragment);
+  if (!compiled) return ungradable(compiled.error());
+  if (auto s = on_compiled(); !s) return s.take_error();
+  auto mesh = mesh_source();
+  if (!mesh) return mesh.take_error();
+
+  render::RenderRequest r = submission;
+  r.pixel_type = image::PixelType::u8;
+  auto student = render_under_lights(spec, r, **mesh, nullptr);
+  if (!student) return ungradable(student.error());
+  // The canvas stores NaN as 0: render to floats as well to find it. No multisampling needed.
+  render::RenderRequest as_float = r;
+  as_float.pixel_type = image::PixelType::f32;
+  as_float.msaa = 0;
+  auto student_float = render_under_lights(spec, as_float, **mesh, nullptr);
+  if (!student_float) return ungradable(student_float.error());
+
+  // The reference gets the same uniform values as the submission: a grader that changes the
+  // colours grades against the reference with those colours.
+  render::RenderRequest ref = r;
+  ref.vertex = spec.reference_vertex;
+  ref.fragment = spec.reference_fragment;
+  auto reference = render_under_lights(spec, ref, **mesh, &mesh_key);
+  if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
+  std::vector<RenderedMistake> mistakes;
+  for (const auto& mk : spec.mistakes) {
+    render::RenderRequest mr = ref;
+    mr.vertex = mk.vertex;
+    mr.fragment = mk.fragment;
+    if (auto frames = render_under_lights(spec, mr, **mesh, &mesh_key)) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
+  }
+
+  std::vector<std::string> lights = {"homework"};
+  for (const auto& p : spec.probes) lights.push_back(p.name);
+  GradeOutput out{report(grade::grade(*student, *student_float, *reference, mistakes, spec.options), spec.reference_name, lights,
+                         static_cast<size_t>(r.frames)),
+                  {}};
+  out.report.warnings = compiled->warnings;
+  Frames heat;  // the homework light's frames
+  for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap((*student)[k], (*reference)[k]));
+  if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat)))
+    out.heatmap_png.assign(png->begin(), png->end());
+  return out;
+}
+
+}  // namespace shadelab::grade

@@ -1,0 +1,65 @@
+#pragma once
+// Grading one submission on a renderer: the orchestration between the worker's dispatch and the
+// pure verdict in grader.h. The submission is rendered under the homework's light and each of the
+// checkpoint's probe lights, to 8-bit frames (what the canvas saves) and to float frames (where
+// NaN and infinity survive); the reference and every known mistake are rendered the same way with
+// the submission's uniform values, and grade() decides.
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/expected.h"
+#include "grade/checkpoints.h"
+#include "grade/report.h"
+#include "render/renderer.h"
+
+namespace shadelab::grade {
+
+// What a submission is compared against.
+struct GradeSpec {
+  std::string reference_name;  // a checkpoint, or "custom"
+  shader::ShaderFile reference_vertex, reference_fragment;
+  std::vector<Mistake> mistakes;
+  std::vector<Probe> probes;
+  GradeOptions options;
+};
+
+// The spec of one of the homework's checkpoints; unknown_preset for another name.
+Expected<GradeSpec> checkpoint_spec(const std::string& checkpoint, const GradeOptions& options);
+
+struct GradeOutput {
+  Report report;
+  std::string heatmap_png;  // the homework light's frames against the reference; empty when none rendered
+};
+
+// The job's mesh, loaded once the submission has compiled.
+using MeshSource = std::function<Expected<const scene::Mesh*>()>;
+// Called once the submission has compiled: from then on a hang or a crash is the render's.
+using RenderPhaseHook = std::function<Status()>;
+
+class GradeSession {
+ public:
+  explicit GradeSession(render::Renderer& renderer) : renderer_(renderer) {}
+
+  // What the submission causes (it does not compile, renders NaN, ...) is in the report; an Error
+  // is the grader's own problem (the reference does not render, the mesh does not load).
+  // `mesh_key` names the mesh for the reference cache (the same key must mean the same mesh).
+  Expected<GradeOutput> grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh,
+                              const std::string& mesh_key, const RenderPhaseHook& on_compiled);
+
+ private:
+  using Frames = std::vector<image::Image>;
+  Expected<Frames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh);
+  Expected<Frames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
+  Expected<Frames> render_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
+                                       const std::string* cache_key);
+  Expected<render::RenderRequest> with_light(const render::RenderRequest& base, const std::array<float, 3>& position);
+
+  render::Renderer& renderer_;
+  // Reference and mistake renders depend only on their shaders and the job's parameters: a batch
+  // grading a class renders them once per worker.
+  std::map<std::string, Frames> references_;
+};
+
+}  // namespace shadelab::grade

@@ -1,0 +1,56 @@
+// POST /api/grade: a submission against a checkpoint or a custom reference, through a worker.
+#include <OpenImageIO/strutil.h>
+
+#include "http/route_context.h"
+
+namespace shadelab::http {
+
+namespace {
+
+using nlohmann::json;
+
+template <class T>
+T field_or(const json& fields, const char* name, T fallback) {
+  if (!fields.contains(name)) return fallback;
+  const json& v = fields[name];
+  if constexpr (std::is_same_v<T, std::string>) return v.is_string() ? v.get<std::string>() : fallback;
+  else return v.is_number() ? v.get<T>() : fallback;
+}
+
+void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+  auto raw = read_request(req);
+  if (!raw) return send_problem(res, raw.error(), req.path);
+  // Read without throwing: parse_grade_job type-checks these, but its error path below still
+  // needs them, whatever the client sent.
+  const std::string checkpoint = field_or<std::string>(raw->fields, "reference", "custom");
+  const std::string format = field_or<std::string>(raw->fields, "format", "json");
+  const double max_score = field_or<double>(raw->fields, "maxScore", 1.0);
+  auto parsed = parse_grade_job(*raw, c.config.limits);
+  worker::GradeResult graded;
+  double seconds = 0;
+  if (!parsed) {
+    // The submission's own source problems are its grade; a malformed request is not.
+    if (!info(parsed.error().code).submission_caused) return send_problem(res, parsed.error(), req.path);
+    graded.report = grade::failed_submission(parsed.error(), checkpoint, max_score);
+  } else {
+    auto mesh = c.mesh_bytes(parsed->parsed);
+    if (!mesh) return send_problem(res, mesh.error(), req.path);
+    auto answered = worker::grade(c.pool, parsed->parsed.job, std::move(*mesh));
+    if (!answered) return send_problem(res, answered.error(), req.path);
+    graded = std::move(answered->result);
+    seconds = (answered->queue_ms + answered->worker_ms) / 1000;
+    graded.report.warnings.insert(graded.report.warnings.end(), parsed->parsed.warnings.begin(), parsed->parsed.warnings.end());
+  }
+  if (format == "gradescope") return send_json(res, 200, grade::to_gradescope(graded.report, seconds));
+  json body = grade::to_json(graded.report);
+  if (!graded.heatmap_png.empty()) body["heatmap"] = OIIO::Strutil::base64_encode(graded.heatmap_png);
+  send_json(res, 200, body);
+}
+
+}  // namespace
+
+void add_grade_routes(httplib::Server& server, RouteContext& c) {
+  server.Post("/api/grade", [&c](const httplib::Request& req, httplib::Response& res) { grade(c, req, res); });
+}
+
+}  // namespace shadelab::http

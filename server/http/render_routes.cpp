@@ -1,0 +1,114 @@
+// POST/GET /api/render and POST /api/compile: the homework's spinning mesh, through a worker.
+#include <OpenImageIO/strutil.h>
+
+#include "http/route_context.h"
+
+namespace shadelab::http {
+
+namespace {
+
+using nlohmann::json;
+
+std::string server_timing(const worker::RenderTimings& t, double queue_ms) {
+  std::string out = "queue;dur=" + std::to_string(queue_ms);
+  for (const auto& [phase, ms] : {std::pair{"compile", t.compile_ms}, {"render", t.render_ms}, {"readback", t.readback_ms}, {"encode", t.encode_ms}})
+    out += std::string(", ") + phase + ";dur=" + std::to_string(ms);
+  return out;
+}
+
+void record_phases(Metrics& metrics, const worker::RenderTimings& t) {
+  for (const auto& [phase, ms] : {std::pair{"compile", t.compile_ms}, {"upload", t.upload_ms}, {"firstFrame", t.first_frame_ms},
+                                  {"render", t.render_ms}, {"readback", t.readback_ms}, {"encode", t.encode_ms}})
+    metrics.phase(phase, ms / 1000);
+}
+
+// The request's warnings, then the worker's, then one per frame that came out one colour.
+std::vector<std::string> warnings_of(const ParsedJob& parsed, const worker::RenderResult& r) {
+  std::vector<std::string> warnings = parsed.warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  for (const auto& c : r.constant_frames)
+    warnings.push_back("frame " + std::to_string(c.frame) + " is one constant colour " + json(c.rgba).dump() +
+                       ": nothing was drawn, or the shader writes the same colour everywhere");
+  return warnings;
+}
+
+// output=json: the images base64-encoded beside the report.
+std::string json_body(const worker::RenderResult& r, const std::vector<std::string>& warnings, const std::string& renderer, double queue_ms) {
+  json constant = json::array(), frames = json::array();
+  for (const auto& c : r.constant_frames) constant.push_back({{"frame", c.frame}, {"rgba", c.rgba}});
+  for (const auto& f : r.frames) frames.push_back({{"name", f.name}, {"data", OIIO::Strutil::base64_encode(f.bytes)}});
+  json timings = worker::to_json(r.timings);
+  timings["queue"] = queue_ms;
+  return json_text({{"renderer", renderer},
+                    {"samples", r.samples},
+                    {"warnings", warnings},
+                    {"diagnostics", worker::diagnostics_json(r.diagnostics)},
+                    {"constantFrames", constant},
+                    {"attributes", worker::variables_json(r.attributes)},
+                    {"uniforms", worker::variables_json(r.uniforms)},
+                    {"timings", timings},
+                    {"images", {{"grid", OIIO::Strutil::base64_encode(r.body)}, {"frames", frames}}}},
+                   -1);
+}
+
+void render(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+  auto raw = read_request(req);
+  if (!raw) return send_problem(res, raw.error(), req.path);
+  auto parsed = parse_job(*raw, worker::JobKind::render, c.config.limits);
+  if (!parsed) return send_problem(res, parsed.error(), req.path);
+  auto mesh = c.mesh_bytes(*parsed);
+  if (!mesh) return send_problem(res, mesh.error(), req.path);
+  worker::Message message = worker::to_message(parsed->job, std::move(*mesh));
+  const std::string etag = c.etag_of(message, "");
+  if (c.answered_from_cache(req, res, etag)) return;
+
+  auto answered = c.run<worker::RenderResult>(std::move(message));
+  if (!answered) return send_problem(res, answered.error(), req.path);
+  auto& r = answered->result;
+  record_phases(c.metrics, r.timings);
+  const auto warnings = warnings_of(*parsed, r);
+  std::string constant;
+  for (const auto& f : r.constant_frames) constant += (constant.empty() ? "" : ",") + std::to_string(f.frame);
+
+  CachedResponse response;
+  response.headers["Server-Timing"] = server_timing(r.timings, answered->queue_ms);
+  response.headers["X-ShadeLab-Warnings"] = std::to_string(warnings.size());
+  if (!constant.empty()) response.headers["X-ShadeLab-Constant-Frames"] = constant;
+  if (parsed->job.output == worker::Output::frames)
+    response.headers["Content-Disposition"] = "attachment; filename=\"hw2_" + parsed->job.prefix + "_frames.zip\"";
+  if (parsed->job.output == worker::Output::json) {
+    response.content_type = "application/json";
+    response.body = json_body(r, warnings, c.pool.renderer(), answered->queue_ms);
+  } else {
+    response.content_type = r.content_type;
+    response.body = std::move(r.body);
+  }
+  c.send_and_cache(res, etag, std::move(response));
+}
+
+void compile(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+  auto raw = read_request(req);
+  if (!raw) return send_problem(res, raw.error(), req.path);
+  auto parsed = parse_job(*raw, worker::JobKind::compile, c.config.limits);
+  if (!parsed) return send_problem(res, parsed.error(), req.path);
+  auto answered = c.run<worker::CompileResult>(worker::to_message(parsed->job));
+  if (!answered) return send_problem(res, answered.error(), req.path);
+  const auto& r = answered->result;
+  c.metrics.phase("compile", r.compile_ms / 1000);
+  std::vector<std::string> warnings = parsed->warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  res.set_header("X-ShadeLab-Renderer", c.pool.renderer());
+  send_json(res, 200, {{"ok", true}, {"renderer", c.pool.renderer()}, {"warnings", warnings},
+                       {"diagnostics", worker::diagnostics_json(r.diagnostics)}, {"attributes", worker::variables_json(r.attributes)},
+                       {"uniforms", worker::variables_json(r.uniforms)}, {"timings", {{"compile", r.compile_ms}}}});
+}
+
+}  // namespace
+
+void add_render_routes(httplib::Server& server, RouteContext& c) {
+  server.Post("/api/render", [&c](const httplib::Request& req, httplib::Response& res) { render(c, req, res); });
+  server.Get("/api/render", [&c](const httplib::Request& req, httplib::Response& res) { render(c, req, res); });
+  server.Post("/api/compile", [&c](const httplib::Request& req, httplib::Response& res) { compile(c, req, res); });
+}
+
+}  // namespace shadelab::http

@@ -1,0 +1,84 @@
+#include "http/route_context.h"
+
+#include "core/hash.h"
+#include "http/problem.h"
+#include "scene/mesh.h"
+
+namespace shadelab::http {
+
+using nlohmann::json;
+
+std::string json_text(const json& body, int indent) { return body.dump(indent, ' ', false, json::error_handler_t::replace); }
+
+void send_problem(httplib::Response& res, const Error& e, const std::string& instance) {
+  res.status = http_status(e.code);
+  if (info(e.code).retry_later) res.set_header("Retry-After", "1");
+  res.set_content(json_text(problem(e, instance)), "application/problem+json");
+}
+
+void send_json(httplib::Response& res, int status, const json& body) {
+  res.status = status;
+  res.set_content(json_text(body), "application/json");
+}
+
+Expected<RawRequest> read_request(const httplib::Request& req) {
+  if (req.is_multipart_form_data()) {
+    std::multimap<std::string, std::string> fields;
+    std::map<std::string, UploadedFile> files;
+    for (const auto& [name, part] : req.files) {
+      if (part.filename.empty()) fields.emplace(name, part.content);
+      else files[name] = {part.filename, part.content};
+    }
+    return from_form(fields, std::move(files));
+  }
+  if (req.method == "GET") return from_form(req.params, {});
+  const std::string type = req.get_header_value("Content-Type");
+  if (type.rfind("application/x-www-form-urlencoded", 0) == 0) return from_form(req.params, {});
+  if (!type.empty() && type.find("json") == std::string::npos)
+    return make_error(ErrorCode::invalid_argument, "send JSON (Content-Type: application/json) or multipart/form-data; got " + type);
+  return from_json_body(req.body);
+}
+
+Expected<std::string> RouteContext::mesh_bytes(ParsedJob& parsed) const {
+  if (!parsed.mesh_upload.content.empty()) return parsed.mesh_upload.content;
+  const auto& names = scene::builtin_mesh_names();
+  if (std::find(names.begin(), names.end(), parsed.job.mesh) != names.end()) return std::string();
+  const auto stored = meshes.get(parsed.job.mesh);
+  if (!stored)
+    return make_error(ErrorCode::mesh_not_found, "no mesh '" + parsed.job.mesh + "': use bunny, teapot, or the id POST /api/meshes returned");
+  parsed.job.mesh_format = stored->format;
+  return stored->bytes;
+}
+
+std::string RouteContext::etag_of(const worker::Message& job, const std::string& form) const {
+  const std::string key = form + '\0' + json_text(job.header, -1) + '\0' + job.payload + '\0' + pool.renderer();
+  return "\"" + hex64(fnv1a64(key)) + hex64(fnv1a64(key, 0x9e3779b97f4a7c15ull)) + "\"";
+}
+
+bool RouteContext::answered_from_cache(const httplib::Request& req, httplib::Response& res, const std::string& etag) {
+  if (req.get_header_value("If-None-Match") == etag) {
+    res.status = 304;
+    res.set_header("ETag", etag);
+    return true;
+  }
+  if (auto hit = cache.get(etag)) {
+    metrics.cache(true);
+    for (const auto& [k, v] : hit->headers) res.set_header(k, v);
+    res.set_header("X-ShadeLab-Cache", "hit");
+    res.set_content(hit->body, hit->content_type);
+    return true;
+  }
+  metrics.cache(false);
+  return false;
+}
+
+void RouteContext::send_and_cache(httplib::Response& res, const std::string& etag, CachedResponse response) {
+  response.headers["ETag"] = etag;
+  response.headers["Cache-Control"] = "no-cache";  // revalidate: the ETag makes that cheap
+  response.headers["X-ShadeLab-Renderer"] = pool.renderer();
+  for (const auto& [k, v] : response.headers) res.set_header(k, v);
+  res.set_content(response.body, response.content_type);
+  cache.put(etag, std::move(response));
+}
+
+}  // namespace shadelab::http

@@ -1,0 +1,70 @@
+#pragma once
+// What every route module shares: the service's state, one reader for request bodies, the
+// problem+json and JSON writers, the ETag cache, and the metrics of a worker's answer. Each
+// resource's routes live in their own file (render_routes, grade_routes, scene_routes,
+// mesh_routes, service_routes) and register themselves on the server.
+#include <httplib.h>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/expected.h"
+#include "http/api_request.h"
+#include "http/mesh_store.h"
+#include "http/metrics.h"
+#include "http/response_cache.h"
+#include "http/service.h"
+#include "worker/client.h"
+
+namespace shadelab::http {
+
+struct RouteContext {
+  const ServiceConfig& config;
+  worker::WorkerPool& pool;
+  MeshStore& meshes;
+  ResponseCache& cache;
+  Metrics& metrics;
+
+  // Runs a job and records its queue time (and a compile failure) in the metrics.
+  template <class Result>
+  Expected<worker::Answered<Result>> run(worker::Message job) {
+    auto answered = worker::run<Result>(pool, std::move(job));
+    if (!answered) {
+      const auto code = answered.error().code;
+      if (code == ErrorCode::compile_failed || code == ErrorCode::link_failed) metrics.compile_failure();
+    } else {
+      metrics.phase("queue", answered->queue_ms / 1000);
+    }
+    return answered;
+  }
+
+  // The bytes of the job's mesh: a file in this request, an uploaded id (its format set on the
+  // job), or none for a built-in.
+  Expected<std::string> mesh_bytes(ParsedJob& parsed) const;
+
+  // Same job, same mesh bytes, same renderer, same response form: same bytes out. That makes a
+  // strong ETag.
+  std::string etag_of(const worker::Message& job, const std::string& form) const;
+  // A 304 for a matching If-None-Match, or the cached response; false when the job must run.
+  bool answered_from_cache(const httplib::Request& req, httplib::Response& res, const std::string& etag);
+  // Sends `response` and keeps it under `etag`.
+  void send_and_cache(httplib::Response& res, const std::string& etag, CachedResponse response);
+};
+
+// The request in neutral form, whichever encoding the client used: a JSON object body,
+// multipart/form-data (text parts become fields, file parts files), a urlencoded form or a GET
+// query. One reader for every route, so every route answers a bad body in the same words.
+Expected<RawRequest> read_request(const httplib::Request& req);
+
+void send_problem(httplib::Response& res, const Error& e, const std::string& instance);
+void send_json(httplib::Response& res, int status, const nlohmann::json& body);
+std::string json_text(const nlohmann::json& body, int indent = 2);
+
+void add_render_routes(httplib::Server& server, RouteContext& context);   // /api/render, /api/compile
+void add_grade_routes(httplib::Server& server, RouteContext& context);    // /api/grade
+void add_scene_routes(httplib::Server& server, RouteContext& context);    // /api/scene, /api/scenes, /api/dolly
+void add_mesh_routes(httplib::Server& server, RouteContext& context);     // /api/meshes
+void add_service_routes(httplib::Server& server, RouteContext& context);  // presets, OpenAPI, health, metrics
+
+}  // namespace shadelab::http

@@ -1,0 +1,102 @@
+#pragma once
+// Every answer a render worker gives, typed: what the worker sends and what the HTTP process and
+// the CLI read. An answer is one Message: {"ok": true, "result": {...}} with the result's files
+// packed into the payload (never base64), or {"ok": false, "error": {...}}.
+//
+// | job kind   | result          | files in the payload                                   |
+// |------------|-----------------|--------------------------------------------------------|
+// | compile    | CompileResult   | none                                                   |
+// | render     | RenderResult    | the body (grid image or zip); for output json, frames  |
+// | mesh_check | MeshCheckResult | none                                                   |
+// | scene      | SceneResult     | the PNG                                                |
+// | grade      | GradeResult     | the heat map PNG, when the submission rendered         |
+#include <array>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/expected.h"
+#include "grade/report.h"
+#include "render/render_request.h"
+#include "scene_render/scene_report.h"
+#include "worker/protocol.h"
+
+namespace shadelab::worker {
+
+struct CompileResult {
+  std::vector<std::string> warnings;
+  std::vector<Diagnostic> diagnostics;  // the driver's warnings, at the student's lines
+  std::vector<render::VariableInfo> attributes, uniforms;
+  double compile_ms = 0;
+};
+
+// A frame one colour throughout: the most common "my render is blank" complaint.
+struct ConstantFrame {
+  int frame = 0;
+  std::array<int, 4> rgba{};
+};
+
+struct RenderTimings {
+  double compile_ms = 0, upload_ms = 0, first_frame_ms = 0, render_ms = 0, readback_ms = 0, encode_ms = 0;
+};
+
+struct NamedFile {
+  std::string name;
+  std::string bytes;
+};
+
+struct RenderResult {
+  std::vector<std::string> warnings;
+  std::vector<Diagnostic> diagnostics;
+  std::vector<render::VariableInfo> attributes, uniforms;
+  int samples = 0;
+  std::vector<ConstantFrame> constant_frames;
+  RenderTimings timings;
+  std::string content_type;       // of `body`: image/png, image/x-exr, application/zip
+  std::string body;               // output grid: the grid; frames: the zip; json: the grid
+  std::vector<NamedFile> frames;  // output json: hw2_{prefix}_{k}.{png,exr}
+};
+
+struct MeshCheckResult {
+  size_t triangles = 0;
+  bool normals_from_file = false;
+  std::array<double, 3> min{}, max{};
+};
+
+struct SceneResult {
+  scene_render::SceneReport report;
+  double encode_ms = 0;
+  std::string png;
+};
+
+struct GradeResult {
+  grade::Report report;
+  std::string heatmap_png;  // empty when the submission did not render
+};
+
+// Worker side: the answer to send.
+Message answer(const CompileResult& r);
+Message answer(const RenderResult& r);
+Message answer(const MeshCheckResult& r);
+Message answer(const SceneResult& r);
+Message answer(const GradeResult& r);
+Message answer(const Error& e);
+
+// Reader side: the result an answer holds, its Error, or worker_protocol when it is malformed.
+template <class Result>
+Expected<Result> result_from(const Message& answer);
+
+// The JSON forms, shared by the wire and the HTTP responses that show them.
+nlohmann::json to_json(const Error& e);
+Error error_from_json(const nlohmann::json& j);  // an unknown code is worker_protocol
+nlohmann::json to_json(const render::VariableInfo& v);
+nlohmann::json variables_json(const std::vector<render::VariableInfo>& variables);
+nlohmann::json diagnostics_json(const std::vector<Diagnostic>& diagnostics);
+nlohmann::json to_json(const RenderTimings& t);
+nlohmann::json to_json(const MeshCheckResult& r);
+nlohmann::json to_json(const scene_render::SceneReport& r);
+nlohmann::json to_json(const scene_render::ObjectFraming& f);
+nlohmann::json to_json(const scene_render::PassDetail& d);
+
+}  // namespace shadelab::worker
