@@ -100,15 +100,11 @@ RawRequest from_form(const std::multimap<std::string, std::string>& fields, std:
   return raw;
 }
 
-Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits) {
-  ParsedJob out;
-  auto& job = out.job;
-  job.kind = kind;
-  const json& f = raw.fields;
-  for (const auto& [k, v] : f.items())
-    if (!kKnownFields.count(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
+namespace {
 
-  // Shaders: uploaded files, inline sources, or a preset.
+// Shaders: uploaded files, inline sources, or a preset (which also names the frames).
+Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& limits, worker::Job& job) {
+  const json& f = raw.fields;
   auto preset = text(f, "preset", "");
   if (!preset) return preset.take_error();
   const auto source = [&](const char* field, const char* name_field) -> Expected<shader::ShaderFile> {
@@ -133,17 +129,21 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
     job.request.vertex = p->vertex;
     job.request.fragment = p->fragment;
     job.prefix = *preset;
-  } else if (kind != worker::JobKind::mesh_check) {
-    if (!has_sources) return bad("give 'vertex' and 'fragment' shader sources, or a 'preset'");
-    job.request.vertex = std::move(*vertex);
-    job.request.fragment = std::move(*fragment);
-    for (const auto* s : {&job.request.vertex, &job.request.fragment})
-      if (s->text.size() > limits.render.max_source_bytes)
-        return make_error(ErrorCode::payload_too_large, "shader '" + s->name + "' is " + std::to_string(s->text.size()) +
-                                                            " bytes; the limit is " + std::to_string(limits.render.max_source_bytes));
+    return Ok{};
   }
+  if (kind == worker::JobKind::mesh_check) return Ok{};
+  if (!has_sources) return bad("give 'vertex' and 'fragment' shader sources, or a 'preset'");
+  job.request.vertex = std::move(*vertex);
+  job.request.fragment = std::move(*fragment);
+  for (const auto* s : {&job.request.vertex, &job.request.fragment})
+    if (s->text.size() > limits.render.max_source_bytes)
+      return make_error(ErrorCode::payload_too_large, "shader '" + s->name + "' is " + std::to_string(s->text.size()) +
+                                                          " bytes; the limit is " + std::to_string(limits.render.max_source_bytes));
+  return Ok{};
+}
 
-  auto& r = job.request;
+// Size, frames, rotation, samples and uniform values.
+Status read_render_settings(const json& f, render::RenderRequest& r) {
   auto width = integer(f, "width", r.width);
   auto height = integer(f, "height", r.height);
   auto frames = integer(f, "frames", r.frames);
@@ -160,7 +160,11 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
   auto u = uniforms(f);
   if (!u) return u.take_error();
   r.uniforms = std::move(*u);
+  return Ok{};
+}
 
+// What comes back and how: fit, prefix, output and format.
+Status read_output(const json& f, worker::Job& job) {
   if (f.contains("fit") && !f["fit"].is_boolean()) return bad("'fit' must be true or false");
   job.fit = f.value("fit", false);
   auto prefix = text(f, "prefix", job.prefix);
@@ -176,24 +180,40 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
   if (!format) return format.take_error();
   if (*format != "png" && *format != "exr") return bad("'format' must be png or exr");
   job.format = *format == "png" ? worker::Format::png : worker::Format::exr;
-  r.pixel_type = job.format == worker::Format::png ? image::PixelType::u8 : image::PixelType::f32;
+  job.request.pixel_type = job.format == worker::Format::png ? image::PixelType::u8 : image::PixelType::f32;
+  return Ok{};
+}
 
-  // Mesh: a file in this request, or a name (built-in or uploaded id, resolved by the caller).
+// Mesh: a file in this request, or a name (built-in or uploaded id, resolved by the caller).
+Status read_mesh(const RawRequest& raw, const Limits& limits, ParsedJob& out) {
   if (auto it = raw.files.find("mesh"); it != raw.files.end()) {
     if (it->second.content.size() > limits.max_mesh_bytes)
       return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
     out.mesh_upload = it->second;
-    job.mesh = mesh_id(it->second.content);
-    job.mesh_format = scene::mesh_format_of(it->second.filename);
-  } else {
-    auto mesh = text(f, "mesh", "bunny");
-    if (!mesh) return mesh.take_error();
-    job.mesh = *mesh;
+    out.job.mesh = mesh_id(it->second.content);
+    out.job.mesh_format = scene::mesh_format_of(it->second.filename);
+    return Ok{};
   }
+  auto mesh = text(raw.fields, "mesh", "bunny");
+  if (!mesh) return mesh.take_error();
+  out.job.mesh = *mesh;
+  return Ok{};
+}
 
+}  // namespace
+
+Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits) {
+  ParsedJob out;
+  out.job.kind = kind;
+  for (const auto& [k, v] : raw.fields.items())
+    if (!kKnownFields.count(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
+  if (auto s = read_shaders(raw, kind, limits, out.job); !s) return s.take_error();
+  if (auto s = read_render_settings(raw.fields, out.job.request); !s) return s.take_error();
+  if (auto s = read_output(raw.fields, out.job); !s) return s.take_error();
+  if (auto s = read_mesh(raw, limits, out); !s) return s.take_error();
   if (kind != worker::JobKind::mesh_check) {
-    if (auto valid = render::validate(r, limits.render); !valid) return valid.take_error();
-    if (auto sources = render::check_sources(r, limits.render); !sources) return sources.take_error();
+    if (auto valid = render::validate(out.job.request, limits.render); !valid) return valid.take_error();
+    if (auto sources = render::check_sources(out.job.request, limits.render); !sources) return sources.take_error();
   }
   return out;
 }
