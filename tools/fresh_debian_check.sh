@@ -38,12 +38,20 @@ for m in proc sys dev dev/pts; do
   mounts+=("$root/$m")
 done
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# Where this machine reaches the registries through a TLS-inspecting proxy, the root must trust
+# the same local certificate authorities (a user's own machine has none, and loses nothing).
+extra_env=()
+if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+  mkdir -p "$root/usr/local/share/ca-certificates"
+  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+  extra_env=(NODE_EXTRA_CA_CERTS=/etc/ssl/certs/ca-certificates.crt)
+fi
 rm -rf "$root/root/shadelab"
 git clone -q "$repo" "$root/root/shadelab"
 
 echo "fresh_debian_check: running tools/test.sh in the root (log: $root/test.log)"
 status=0
-chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 CI=true \
+chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 CI=true "${extra_env[@]}" \
   bash -c 'cd /root/shadelab && tools/test.sh' >"$root.test.log" 2>&1 || status=$?
 end=$(date +%s)
 tail -25 "$root.test.log"
