@@ -4,7 +4,7 @@
 //   build/bench/scene_bench [--reference DIR] [--repeats N]
 //
 // DIR holds scene_cycles_256.png and scene_eevee.png (the course's Blender renders; default
-// ../shared/reference/blender next to the source tree). Prints Markdown for docs/scenes.md.
+// bench/reference/ in the source tree). Prints Markdown for docs/scenes.md.
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -83,7 +83,7 @@ std::string psnr(const image::Image& a, const std::optional<image::Image>& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string reference = std::string(SHADELAB_SOURCE_DIR) + "/../shared/reference/blender";
+  std::string reference = std::string(SHADELAB_SOURCE_DIR) + "/bench/reference";
   int repeats = 15;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--reference")) reference = argv[i + 1];

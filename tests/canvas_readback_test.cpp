@@ -15,7 +15,7 @@ std::array<int, 4> blob(int r, int g, int b, int a) {
 }
 }  // namespace
 
-// The bytes Chromium wrote for these buffer values (hw2-contract.md).
+// The bytes Chromium wrote for these buffer values (docs/homework-contract.md).
 TEST(CanvasReadbackTest, MatchesChromiumsMeasuredBytes) {
   EXPECT_EQ(blob(102, 51, 26, 128), (std::array<int, 4>{203, 102, 52, 128}));
   EXPECT_EQ(blob(204, 153, 102, 128), (std::array<int, 4>{255, 255, 203, 128}));  // clamped per channel

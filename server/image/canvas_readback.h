@@ -2,7 +2,7 @@
 // From GL readback (bottom row first) to what the browser writes into the PNG.
 //
 // The WebGL canvas is premultiplied (premultipliedAlpha: true), so canvas.toBlob divides colour by
-// alpha. The rule, measured on every colour/alpha byte pair in Chromium (hw2-contract.md):
+// alpha. The rule, measured on every colour/alpha byte pair in Chromium (docs/homework-contract.md):
 //   in float32, c' = c / 255, a' = a / 255, byte = round_half_even(min(1, c' * (1 / a')) * 255);
 //   alpha 0 gives (0, 0, 0, 0). Opaque pixels pass unchanged.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The homework page's contract (../shared/hw2-contract.md, shaders/README.md): what hw2.js feeds a
+// The homework page's contract (docs/homework-contract.md, shaders/README.md): what hw2.js feeds a
 // student's program, by name, with its values. Everything here is CPU data.
 #include <array>
 #include <string_view>
