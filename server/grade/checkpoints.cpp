@@ -72,4 +72,12 @@ std::optional<Checkpoint> find_checkpoint(const std::string& name) {
   return std::nullopt;
 }
 
+Expected<GradeSpec> checkpoint_spec(const std::string& name, const GradeOptions& options) {
+  auto checkpoint = find_checkpoint(name);
+  if (!checkpoint)
+    return make_error(ErrorCode::unknown_preset, "no checkpoint '" + name + "' (checkpoints: smooth, gouraud, diffuse, specular)");
+  return GradeSpec{checkpoint->name, checkpoint->vertex, checkpoint->fragment, std::move(checkpoint->mistakes),
+                   std::move(checkpoint->probes), options};
+}
+
 }  // namespace shadelab::grade

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/expected.h"
+#include "grade/grader.h"
 #include "shader/shader_source.h"
 
 namespace shadelab::grade {
@@ -33,6 +35,19 @@ struct Checkpoint {
 };
 
 std::optional<Checkpoint> find_checkpoint(const std::string& name);
+
+// What a submission is compared against.
+struct GradeSpec {
+  std::string reference_name;  // a checkpoint, or "custom"
+  shader::ShaderFile reference_vertex, reference_fragment;
+  std::vector<Mistake> mistakes;
+  std::vector<Probe> probes;
+  GradeOptions options;
+};
+
+// The spec of one of the homework's checkpoints; unknown_preset for another name.
+Expected<GradeSpec> checkpoint_spec(const std::string& checkpoint, const GradeOptions& options);
+
 std::vector<std::string> checkpoint_names();
 
 }  // namespace shadelab::grade

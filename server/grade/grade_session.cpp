@@ -37,14 +37,6 @@ std::string render_key(const render::RenderRequest& r, const std::string& mesh_k
 
 }  // namespace
 
-Expected<GradeSpec> checkpoint_spec(const std::string& name, const GradeOptions& options) {
-  auto checkpoint = find_checkpoint(name);
-  if (!checkpoint)
-    return make_error(ErrorCode::unknown_preset, "no checkpoint '" + name + "' (checkpoints: smooth, gouraud, diffuse, specular)");
-  return GradeSpec{checkpoint->name, checkpoint->vertex, checkpoint->fragment, std::move(checkpoint->mistakes),
-                   std::move(checkpoint->probes), options};
-}
-
 Expected<GradeSession::Frames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
   Frames out;
   auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(f); });

@@ -16,18 +16,6 @@
 
 namespace shadelab::grade {
 
-// What a submission is compared against.
-struct GradeSpec {
-  std::string reference_name;  // a checkpoint, or "custom"
-  shader::ShaderFile reference_vertex, reference_fragment;
-  std::vector<Mistake> mistakes;
-  std::vector<Probe> probes;
-  GradeOptions options;
-};
-
-// The spec of one of the homework's checkpoints; unknown_preset for another name.
-Expected<GradeSpec> checkpoint_spec(const std::string& checkpoint, const GradeOptions& options);
-
 struct GradeOutput {
   Report report;
   std::string heatmap_png;  // the homework light's frames against the reference; empty when none rendered

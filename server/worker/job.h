@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
-#include "grade/grade_session.h"
+#include "grade/checkpoints.h"
 #include "render/render_request.h"
 #include "scene/scene_description.h"
 #include "worker/protocol.h"
