@@ -1,5 +1,7 @@
 #include "worker/job.h"
 
+#include <optional>
+
 #include <glm/vec3.hpp>
 
 // The scene description's wire form: each struct's fields under their C++ names. It is read only
@@ -9,6 +11,14 @@ template <>
 struct adl_serializer<glm::dvec3> {
   static void to_json(json& j, const glm::dvec3& v) { j = {v.x, v.y, v.z}; }
   static void from_json(const json& j, glm::dvec3& v) { v = {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+};
+// Optional vectors (a camera's or light's rotation, a light's target): null when unset.
+template <>
+struct adl_serializer<std::optional<glm::dvec3>> {
+  static void to_json(json& j, const std::optional<glm::dvec3>& v) { j = v ? json(*v) : json(nullptr); }
+  static void from_json(const json& j, std::optional<glm::dvec3>& v) {
+    v = j.is_null() ? std::nullopt : std::optional<glm::dvec3>(j.get<glm::dvec3>());
+  }
 };
 }  // namespace nlohmann
 
@@ -29,53 +39,10 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(World, color, strength)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RenderSettings, width, height, engine, view_transform, samples, shadow_map_size,
                                    shadow_filter_taps, reflection_map_size, workbench_shadows, framing)
 
-namespace {
-template <class T>
-nlohmann::json optional_json(const std::optional<T>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
-template <class T>
-std::optional<T> optional_from(const nlohmann::json& j) { return j.is_null() ? std::nullopt : std::optional<T>(j.get<T>()); }
-}  // namespace
-
-void to_json(nlohmann::json& j, const Camera& c) {
-  j = {{"location", c.location}, {"rotation_degrees", optional_json(c.rotation_degrees)}, {"target", c.target},
-       {"type", c.type}, {"lens_mm", c.lens_mm}, {"sensor_width_mm", c.sensor_width_mm}, {"sensor_fit", c.sensor_fit},
-       {"ortho_scale", c.ortho_scale}, {"clip_start", c.clip_start}, {"clip_end", c.clip_end}};
-}
-void from_json(const nlohmann::json& j, Camera& c) {
-  j.at("location").get_to(c.location);
-  c.rotation_degrees = optional_from<glm::dvec3>(j.at("rotation_degrees"));
-  j.at("target").get_to(c.target);
-  j.at("type").get_to(c.type);
-  j.at("lens_mm").get_to(c.lens_mm);
-  j.at("sensor_width_mm").get_to(c.sensor_width_mm);
-  j.at("sensor_fit").get_to(c.sensor_fit);
-  j.at("ortho_scale").get_to(c.ortho_scale);
-  j.at("clip_start").get_to(c.clip_start);
-  j.at("clip_end").get_to(c.clip_end);
-}
-
-void to_json(nlohmann::json& j, const Light& l) {
-  j = {{"name", l.name}, {"type", l.type}, {"color", l.color}, {"location", l.location},
-       {"rotation_degrees", optional_json(l.rotation_degrees)}, {"target", optional_json(l.target)},
-       {"power_w", l.power_w}, {"strength", l.strength}, {"radius", l.radius}, {"angle_degrees", l.angle_degrees},
-       {"spot_size_degrees", l.spot_size_degrees}, {"spot_blend", l.spot_blend}, {"size", l.size}, {"cast_shadow", l.cast_shadow}};
-}
-void from_json(const nlohmann::json& j, Light& l) {
-  j.at("name").get_to(l.name);
-  j.at("type").get_to(l.type);
-  j.at("color").get_to(l.color);
-  j.at("location").get_to(l.location);
-  l.rotation_degrees = optional_from<glm::dvec3>(j.at("rotation_degrees"));
-  l.target = optional_from<glm::dvec3>(j.at("target"));
-  j.at("power_w").get_to(l.power_w);
-  j.at("strength").get_to(l.strength);
-  j.at("radius").get_to(l.radius);
-  j.at("angle_degrees").get_to(l.angle_degrees);
-  j.at("spot_size_degrees").get_to(l.spot_size_degrees);
-  j.at("spot_blend").get_to(l.spot_blend);
-  j.at("size").get_to(l.size);
-  j.at("cast_shadow").get_to(l.cast_shadow);
-}
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Camera, location, rotation_degrees, target, type, lens_mm, sensor_width_mm, sensor_fit,
+                                   ortho_scale, clip_start, clip_end)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Light, name, type, color, location, rotation_degrees, target, power_w, strength, radius,
+                                   angle_degrees, spot_size_degrees, spot_blend, size, cast_shadow)
 
 }  // namespace shadelab::scene
 
@@ -172,7 +139,7 @@ Message to_message(const Job& job, std::string mesh_bytes) {
 
 Message to_message(const SceneJob& job) {
   Message m;
-  std::vector<PayloadPart> parts;
+  std::vector<PayloadPartView> parts;
   json formats = json::array();
   for (const auto& mesh : job.meshes) {
     parts.push_back({mesh.reference, mesh.bytes});

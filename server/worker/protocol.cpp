@@ -74,8 +74,11 @@ ReadStatus read_message(int fd, Message& message, Clock::time_point deadline) {
   return message.header.is_discarded() ? ReadStatus::malformed : ReadStatus::ok;
 }
 
-nlohmann::json pack_parts(const std::vector<PayloadPart>& parts, std::string& payload) {
+nlohmann::json pack_parts(const std::vector<PayloadPartView>& parts, std::string& payload) {
   nlohmann::json index = nlohmann::json::array();
+  size_t total = payload.size();
+  for (const auto& p : parts) total += p.bytes.size();
+  payload.reserve(total);
   for (const auto& p : parts) {
     index.push_back({{"name", p.name}, {"offset", payload.size()}, {"size", p.bytes.size()}});
     payload += p.bytes;

@@ -4,6 +4,7 @@
 //   u32 header bytes | u64 payload bytes | header (UTF-8 JSON) | payload
 #include <chrono>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -29,8 +30,13 @@ struct PayloadPart {
   std::string name;
   std::string bytes;
 };
+// A part to pack, by reference: the bytes are copied once, into the payload.
+struct PayloadPartView {
+  std::string_view name;
+  std::string_view bytes;
+};
 // Appends the parts to `payload` and returns their index.
-nlohmann::json pack_parts(const std::vector<PayloadPart>& parts, std::string& payload);
+nlohmann::json pack_parts(const std::vector<PayloadPartView>& parts, std::string& payload);
 // The parts an index names; a worker_protocol error when one lies outside the payload.
 Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, const std::string& payload);
 

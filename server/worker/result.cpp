@@ -7,7 +7,7 @@ using scene_render::PassDetail;
 
 namespace {
 
-Message ok(json result, std::vector<PayloadPart> files = {}) {
+Message ok(json result, const std::vector<PayloadPartView>& files = {}) {
   Message m;
   json index = pack_parts(files, m.payload);
   m.header = {{"ok", true}, {"result", std::move(result)}, {"files", std::move(index)}};
@@ -82,10 +82,10 @@ scene_render::SceneReport scene_report_from(const json& j) {
   return r;
 }
 
-// The files of an answer, by name.
-std::string file(const std::vector<PayloadPart>& files, std::string_view name) {
-  for (const auto& f : files)
-    if (f.name == name) return f.bytes;
+// The file of an answer of that name, moved out; empty when there is none.
+std::string take_file(std::vector<PayloadPart>& files, std::string_view name) {
+  for (auto& f : files)
+    if (f.name == name) return std::move(f.bytes);
   return {};
 }
 
@@ -125,14 +125,14 @@ MeshCheckResult read(const json& j, std::vector<PayloadPart>&) {
 
 template <>
 SceneResult read(const json& j, std::vector<PayloadPart>& files) {
-  return {scene_report_from(j.at("report")), j.at("encodeMs"), file(files, "image.png")};
+  return {scene_report_from(j.at("report")), j.at("encodeMs"), take_file(files, "image.png")};
 }
 
 template <>
 GradeResult read(const json& j, std::vector<PayloadPart>& files) {
   auto report = grade::report_from_json(j.at("report"));
   if (!report) throw json::other_error::create(501, report.error().message, &j);
-  return {std::move(*report), file(files, "heatmap.png")};
+  return {std::move(*report), take_file(files, "heatmap.png")};
 }
 
 }  // namespace
@@ -237,7 +237,7 @@ Message answer(const CompileResult& r) {
 Message answer(const RenderResult& r) {
   json constant = json::array();
   for (const auto& c : r.constant_frames) constant.push_back({{"frame", c.frame}, {"rgba", c.rgba}});
-  std::vector<PayloadPart> files{{"body", r.body}};
+  std::vector<PayloadPartView> files{{"body", r.body}};
   for (const auto& f : r.frames) files.push_back({f.name, f.bytes});
   return ok({{"warnings", r.warnings},
              {"diagnostics", diagnostics_json(r.diagnostics)},
@@ -247,7 +247,7 @@ Message answer(const RenderResult& r) {
              {"constantFrames", constant},
              {"timings", to_json(r.timings)},
              {"contentType", r.content_type}},
-            std::move(files));
+            files);
 }
 
 Message answer(const MeshCheckResult& r) { return ok(to_json(r)); }
@@ -257,9 +257,9 @@ Message answer(const SceneResult& r) {
 }
 
 Message answer(const GradeResult& r) {
-  std::vector<PayloadPart> files;
+  std::vector<PayloadPartView> files;
   if (!r.heatmap_png.empty()) files.push_back({"heatmap.png", r.heatmap_png});
-  return ok({{"report", grade::to_json(r.report)}}, std::move(files));
+  return ok({{"report", grade::to_json(r.report)}}, files);
 }
 
 Message answer(const Error& e) { return {{{"ok", false}, {"error", to_json(e)}}, {}}; }
