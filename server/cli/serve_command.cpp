@@ -46,7 +46,7 @@ Command add_serve_command(CLI::App& app) {
       ->envname("SHADELAB_MAX_SIZE")->capture_default_str();
   cmd->add_option("--max-frames", config->limits.render.max_frames, "Most frames per job")
       ->envname("SHADELAB_MAX_FRAMES")->capture_default_str();
-  cmd->add_option("--http-threads", config->http_threads, "HTTP handler threads")->envname("SHADELAB_HTTP_THREADS")->capture_default_str();
+  cmd->add_option("--http-threads", config->connections.handler_threads, "HTTP handler threads")->envname("SHADELAB_HTTP_THREADS")->capture_default_str();
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
   cmd->add_flag("--software", config->pool.force_software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
 

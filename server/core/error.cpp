@@ -39,6 +39,12 @@ constexpr ErrorCodeInfo kCodes[] = {
     {ErrorCode::not_found,                  "not_found",                  404, "No such resource",                                      false, false},
     {ErrorCode::worker_protocol,            "worker_protocol",            500, "A render worker answered something unreadable",         false, false},
     {ErrorCode::view_transform_unavailable, "view_transform_unavailable", 503, "The view transform is not available on this server",    false, false},
+    {ErrorCode::request_timeout,            "request_timeout",            408, "The request did not arrive in time",                    false, false},
+    {ErrorCode::headers_too_large,          "headers_too_large",          431, "The request head is too large",                         false, false},
+    {ErrorCode::unsupported_transfer_encoding, "unsupported_transfer_encoding", 501, "The transfer encoding is not supported",     false, false},
+    {ErrorCode::too_many_connections,       "too_many_connections",       429, "Too many connections from this address",                false, true},
+    {ErrorCode::rate_limited,               "rate_limited",               429, "Too many requests",                                     false, true},
+    {ErrorCode::unauthorized,               "unauthorized",               401, "A valid API key is required",                           false, false},
 };
 }  // namespace
 

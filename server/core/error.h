@@ -39,6 +39,14 @@ enum class ErrorCode {
   not_found,
   worker_protocol,         // a worker sent something we cannot read (a bug)
   view_transform_unavailable,  // Filmic asked for, but no OCIO config on this server
+  // What the connection layer and the tenant checks answer (server/http/connection_server.cpp,
+  // server/http/tenants.cpp) before a request reaches a route.
+  request_timeout,         // the request head or body did not arrive within its deadline
+  headers_too_large,       // the request head is over its byte limit
+  unsupported_transfer_encoding,  // a Transfer-Encoding other than chunked
+  too_many_connections,    // this address holds its share of connections already
+  rate_limited,            // this key or address is over its request rate
+  unauthorized,            // API keys are required and none, or a wrong one, was sent
 };
 
 // Everything known about a code, in one row of the table in error.cpp.

@@ -52,4 +52,22 @@ std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
   return out.str();
 }
 
+std::string render_connection_metrics(const ConnectionStats& s) {
+  std::ostringstream out;
+  out << "# TYPE shadelab_connections_accepted_total counter\nshadelab_connections_accepted_total " << s.accepted << "\n"
+      << "# TYPE shadelab_connections_refused_total counter\n"
+      << "shadelab_connections_refused_total{reason=\"capacity\"} " << s.refused_capacity << "\n"
+      << "shadelab_connections_refused_total{reason=\"per_address\"} " << s.refused_per_address << "\n"
+      << "shadelab_connections_refused_total{reason=\"overloaded\"} " << s.refused_overloaded << "\n"
+      << "# TYPE shadelab_connection_timeouts_total counter\n"
+      << "shadelab_connection_timeouts_total{phase=\"head\"} " << s.head_timeouts << "\n"
+      << "shadelab_connection_timeouts_total{phase=\"body\"} " << s.body_timeouts << "\n"
+      << "shadelab_connection_timeouts_total{phase=\"write\"} " << s.write_timeouts << "\n"
+      << "shadelab_connection_timeouts_total{phase=\"idle\"} " << s.idle_closed << "\n"
+      << "# TYPE shadelab_malformed_requests_total counter\nshadelab_malformed_requests_total " << s.malformed << "\n"
+      << "# TYPE shadelab_connections_open gauge\nshadelab_connections_open " << s.open << "\n"
+      << "# TYPE shadelab_requests_waiting gauge\nshadelab_requests_waiting " << s.waiting << "\n";
+  return out.str();
+}
+
 }  // namespace shadelab::http

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <string>
 
+#include "http/connection_server.h"
 #include "worker/pool.h"
 
 namespace shadelab::http {
@@ -31,5 +32,9 @@ class Metrics {
   std::map<std::string, Histogram> durations_, phases_;
   std::uint64_t compile_failures_ = 0, cache_hits_ = 0, cache_misses_ = 0;
 };
+
+// The connection layer's counters: accepted and refused connections, deadlines missed, open and
+// waiting.
+std::string render_connection_metrics(const ConnectionStats& s);
 
 }  // namespace shadelab::http

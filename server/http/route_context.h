@@ -25,6 +25,7 @@ struct RouteContext {
   MeshStore& meshes;
   ResponseCache& cache;
   Metrics& metrics;
+  const ConnectionServer& connections;
 
   // Runs a job and records its queue time (and a compile failure) in the metrics.
   template <class Result>

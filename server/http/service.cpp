@@ -3,10 +3,12 @@
 #include <httplib.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 #include <optional>
-#include <thread>
 
+#include "http/memory_stream.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -46,22 +48,48 @@ void answer_exception(const httplib::Request& req, httplib::Response& res, std::
   send_problem(res, make_error(ErrorCode::io_error, what), req.path);
 }
 
+// The connection layer reads bodies, so it holds them to the same limit as the routes.
+ServiceConfig with_body_limit(ServiceConfig c) {
+  c.connections.framing.max_body_bytes = c.limits.max_body_bytes;
+  return c;
+}
+
+// httplib's routing and request parsing, run on a request the connection layer read whole.
+class RequestProcessor : public httplib::Server {
+ public:
+  OutgoingResponse process(const IncomingRequest& request) {
+    OutgoingResponse response;
+    MemoryStream stream(request, response.bytes);
+    bool client_closes = false;
+    const bool ok = process_request(stream, request.last, client_closes, nullptr);
+    response.close = !ok || client_closes || request.last;
+    return response;
+  }
+};
+
 }  // namespace
 
 struct Service::Impl {
   ServiceConfig config;
-  httplib::Server server;
+  RequestProcessor server;
+  ConnectionServer connections;
   std::unique_ptr<worker::WorkerPool> pool;
   MeshStore meshes;
   ResponseCache cache;
   Metrics metrics;
   std::optional<RouteContext> context;
-  std::thread thread;
+  std::mutex mutex;
+  std::condition_variable stopped_changed;
+  bool stopped = false;
 
-  explicit Impl(ServiceConfig c) : config(std::move(c)), meshes(config.limits.max_stored_meshes), cache(config.cache_bytes) {}
+  explicit Impl(ServiceConfig c)
+      : config(with_body_limit(std::move(c))),
+        connections(config.connections, [this](IncomingRequest r) { return server.process(r); }),
+        meshes(config.limits.max_stored_meshes),
+        cache(config.cache_bytes) {}
 
   void routes() {
-    context.emplace(RouteContext{config, *pool, meshes, cache, metrics});
+    context.emplace(RouteContext{config, *pool, meshes, cache, metrics, connections});
     add_render_routes(server, *context);
     add_grade_routes(server, *context);
     add_scene_routes(server, *context);
@@ -87,29 +115,34 @@ Service::~Service() { stop(); }
 
 Expected<int> Service::start() {
   auto& i = *impl_;
+  // The port first: a server that cannot listen starts no workers.
+  auto port = i.connections.listen(i.config.host, i.config.port);
+  if (!port) return port;
   i.pool = std::make_unique<worker::WorkerPool>(i.config.pool);
   i.server.set_payload_max_length(i.config.limits.max_body_bytes);
-  const int threads = i.config.http_threads;
-  i.server.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<size_t>(threads)); };
+  // Only what httplib writes in its Keep-Alive header: the connection layer enforces both.
+  i.server.set_keep_alive_max_count(static_cast<size_t>(i.config.connections.keep_alive_requests));
+  i.server.set_keep_alive_timeout(std::max<time_t>(1, i.config.connections.keep_alive_idle.count() / 1000));
   i.routes();
-  const int port = i.config.port == 0 ? i.server.bind_to_any_port(i.config.host)
-                   : i.server.bind_to_port(i.config.host, i.config.port) ? i.config.port
-                                                                          : -1;
-  if (port <= 0) return make_error(ErrorCode::io_error, "cannot listen on " + i.config.host + ":" + std::to_string(i.config.port));
-  i.thread = std::thread([&i] { i.server.listen_after_bind(); });
+  i.connections.start();
   return port;
 }
 
 void Service::stop() {
   if (!impl_) return;
-  impl_->server.stop();
-  if (impl_->thread.joinable()) impl_->thread.join();
+  impl_->connections.stop();
   impl_->context.reset();
   impl_->pool.reset();
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->stopped = true;
+  }
+  impl_->stopped_changed.notify_all();
 }
 
 void Service::wait() {
-  if (impl_->thread.joinable()) impl_->thread.join();
+  std::unique_lock lock(impl_->mutex);
+  impl_->stopped_changed.wait(lock, [this] { return impl_->stopped; });
 }
 
 worker::WorkerPool& Service::pool() { return *impl_->pool; }

@@ -1,10 +1,11 @@
 #pragma once
-// The HTTP service: routes, admission control, the response cache, and the worker pool behind it.
-// HTTP code never sees GL: rendering happens in the workers.
+// The HTTP service: the connection layer, routes, admission control, the response cache, and the
+// worker pool behind it. HTTP code never sees GL: rendering happens in the workers.
 #include <memory>
 #include <string>
 
 #include "core/expected.h"
+#include "http/connection_server.h"
 #include "http/limits.h"
 #include "worker/pool.h"
 
@@ -13,7 +14,7 @@ namespace shadelab::http {
 struct ServiceConfig {
   std::string host = "127.0.0.1";
   int port = 8889;  // 0: any free port (tests)
-  int http_threads = 8;
+  ConnectionLimits connections;  // handler threads, deadlines, connection caps
   worker::PoolConfig pool;
   Limits limits;
   size_t cache_bytes = 64u << 20;
