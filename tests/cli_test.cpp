@@ -1,6 +1,11 @@
 // The shadelab executable end to end: exit codes, files written, compiler-style diagnostics.
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -152,6 +157,31 @@ TEST_F(CliTest, BatchGradingScoresAHangingSubmissionZeroAndGoesOn) {
     const auto results = nlohmann::json::parse(read_text(path(std::string("grades/") + who + "/results.json")));
     EXPECT_TRUE(results.contains("score") && results.contains("execution_time") && results.contains("tests")) << who;
   }
+}
+
+// A server that starts beside another on the same port would get half of its connections: the
+// kernel splits them between sockets bound with SO_REUSEPORT, as ShadeLab's used to be.
+TEST_F(CliTest, ServeOnAPortAnotherServerHoldsExitsWithAMessage) {
+  const int other = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  const int one = 1;
+  ::setsockopt(other, SOL_SOCKET, SO_REUSEPORT, &one, sizeof one);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof addr;
+  ASSERT_EQ(::bind(other, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  ASSERT_EQ(::listen(other, 8), 0);
+  ::getsockname(other, reinterpret_cast<sockaddr*>(&addr), &len);
+  // `timeout` turns a server that wrongly starts into a failure here, not a hung test.
+  const std::string cmd = "timeout 20 " + std::string(SHADELAB_CLI) + " serve --workers 1 --port " + std::to_string(ntohs(addr.sin_port)) + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ::Run run{0, ""};
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) run.output.append(buf, n);
+  run.status = pclose(pipe);
+  ::close(other);
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("already in use"), std::string::npos) << run.output;
 }
 
 TEST_F(CliTest, SingleGradeWritesJsonAndAHeatmap) {

@@ -22,6 +22,10 @@ Command add_serve_command(CLI::App& app) {
   auto cache_mb = std::make_shared<size_t>(config->cache_bytes >> 20);
   auto body_mb = std::make_shared<size_t>(config->limits.max_body_bytes >> 20);
   auto lp_threads = std::make_shared<int>(0);
+  auto head_ms = std::make_shared<long>(config->connections.head_deadline.count());
+  auto body_ms = std::make_shared<long>(config->connections.body_deadline.count());
+  auto write_ms = std::make_shared<long>(config->connections.write_deadline.count());
+  auto idle_ms = std::make_shared<long>(config->connections.keep_alive_idle.count());
 
   auto* cmd = app.add_subcommand("serve", "Serve the render API and the web page over HTTP");
   cmd->add_option("--host", config->host, "Address to listen on")->envname("SHADELAB_HOST")->capture_default_str();
@@ -47,6 +51,21 @@ Command add_serve_command(CLI::App& app) {
   cmd->add_option("--max-frames", config->limits.render.max_frames, "Most frames per job")
       ->envname("SHADELAB_MAX_FRAMES")->capture_default_str();
   cmd->add_option("--http-threads", config->connections.handler_threads, "HTTP handler threads")->envname("SHADELAB_HTTP_THREADS")->capture_default_str();
+  cmd->add_option("--max-connections", config->connections.max_connections, "Connections open at once (beyond: 503)")
+      ->envname("SHADELAB_MAX_CONNECTIONS")->capture_default_str();
+  cmd->add_option("--max-connections-per-address", config->connections.max_connections_per_address,
+                  "Connections one client address may hold (beyond: 429; 0: no cap, e.g. behind a proxy)")
+      ->envname("SHADELAB_MAX_CONNECTIONS_PER_ADDRESS")->capture_default_str();
+  cmd->add_option("--head-timeout-ms", *head_ms, "Deadline for a whole request head, from its first byte")
+      ->envname("SHADELAB_HEAD_TIMEOUT_MS")->capture_default_str();
+  cmd->add_option("--body-timeout-ms", *body_ms, "Deadline for a whole request body, after its head")
+      ->envname("SHADELAB_BODY_TIMEOUT_MS")->capture_default_str();
+  cmd->add_option("--write-timeout-ms", *write_ms, "Deadline for writing a whole response")
+      ->envname("SHADELAB_WRITE_TIMEOUT_MS")->capture_default_str();
+  cmd->add_option("--keep-alive-ms", *idle_ms, "How long an idle keep-alive connection is kept")
+      ->envname("SHADELAB_KEEP_ALIVE_MS")->capture_default_str();
+  cmd->add_option("--keep-alive-requests", config->connections.keep_alive_requests, "Requests per connection, then it is closed")
+      ->envname("SHADELAB_KEEP_ALIVE_REQUESTS")->capture_default_str();
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
   cmd->add_flag("--software", config->pool.force_software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
 
@@ -54,6 +73,10 @@ Command add_serve_command(CLI::App& app) {
     config->pool.compile_deadline = std::chrono::milliseconds(*compile_ms);
     config->pool.render_deadline = std::chrono::milliseconds(*render_ms);
     config->pool.memory_limit_bytes = *memory_mb << 20;
+    config->connections.head_deadline = std::chrono::milliseconds(*head_ms);
+    config->connections.body_deadline = std::chrono::milliseconds(*body_ms);
+    config->connections.write_deadline = std::chrono::milliseconds(*write_ms);
+    config->connections.keep_alive_idle = std::chrono::milliseconds(*idle_ms);
     config->cache_bytes = *cache_mb << 20;
     config->limits.max_body_bytes = *body_mb << 20;
     config->limits.max_mesh_bytes = config->limits.max_body_bytes;
