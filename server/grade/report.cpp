@@ -77,7 +77,7 @@ json to_json(const Report& r) {
   for (const auto& d : r.diagnostics) diagnostics.push_back(to_json(d));
   return {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},           {"maxScore", r.max_score},
           {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},           {"diagnostics", diagnostics},
-          {"warnings", r.warnings}};
+          {"warnings", r.warnings},     {"attempts", r.attempts}};
 }
 
 Expected<Report> report_from_json(const json& j) {
@@ -92,6 +92,7 @@ Expected<Report> report_from_json(const json& j) {
     for (const auto& f : j.at("frames")) r.frames.push_back(frame_from_json(f));
     for (const auto& d : j.at("diagnostics")) r.diagnostics.push_back(diagnostic_from_json(d));
     r.warnings = j.at("warnings").get<std::vector<std::string>>();
+    r.attempts = j.value("attempts", 1);
     return r;
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed grade report: ") + e.what());

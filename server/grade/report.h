@@ -37,6 +37,7 @@ struct Report {
   std::vector<FrameReport> frames;
   std::vector<Diagnostic> diagnostics;
   std::vector<std::string> warnings;
+  int attempts = 1;  // 2 when the first ran past its deadline and the grade is the retry's
 };
 
 // A graded result; `lights` names the light of each run of frames_per_light frames, in order.

@@ -20,8 +20,8 @@ struct Answered {
 // An Error when the pool is full, the worker hung, crashed or ran out of memory, or the worker
 // answered with one.
 template <class Result>
-Expected<Answered<Result>> run(WorkerPool& pool, Message job) {
-  auto future = pool.submit(std::move(job));
+Expected<Answered<Result>> run(WorkerPool& pool, Message job, WorkerPool::Lane lane = WorkerPool::Lane::normal) {
+  auto future = pool.submit(std::move(job), lane);
   if (!future) return future.take_error();
   JobResult done = future->get();
   if (!done.answered) return std::move(done.error);
@@ -32,7 +32,8 @@ Expected<Answered<Result>> run(WorkerPool& pool, Message job) {
 
 // Grading's rule: whatever the submission causes (it does not compile, hangs, crashes the driver:
 // ErrorCodeInfo::submission_caused) is its grade, score 0 and the reason; an Error is only what
-// the service itself could not do (queue full, no worker, the reference does not render).
+// the service itself could not do (queue full, no worker, the reference does not render). A
+// submission that runs out of time is graded once more before its 0 stands (report.attempts).
 Expected<Answered<GradeResult>> grade(WorkerPool& pool, const Job& job, std::string mesh_bytes);
 
 }  // namespace shadelab::worker

@@ -9,9 +9,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <time.h>
+
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 
 namespace shadelab::worker {
 
@@ -48,6 +52,46 @@ bool cap_with_cgroup(pid_t pid, int slot, size_t limit) {
 }
 
 Error worker_error(ErrorCode code, std::string message) { return make_error(code, std::move(message)); }
+
+// CPU time a process has used, all its threads (llvmpipe's rasterizer threads included).
+std::chrono::nanoseconds cpu_time(pid_t pid) {
+  clockid_t clock;
+  timespec ts{};
+  if (::clock_getcpuclockid(pid, &clock) == 0 && ::clock_gettime(clock, &ts) == 0)
+    return std::chrono::seconds(ts.tv_sec) + std::chrono::nanoseconds(ts.tv_nsec);
+  // /proc/PID/stat: utime and stime, fields 14 and 15, in clock ticks (after the parenthesised name).
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), {});
+  std::istringstream fields(text.substr(std::min(text.size(), text.rfind(')') + 2)));
+  std::string skip;
+  long long utime = 0, stime = 0;
+  for (int i = 3; i < 14; ++i) fields >> skip;
+  fields >> utime >> stime;
+  return std::chrono::nanoseconds((utime + stime) * 1'000'000'000LL / ::sysconf(_SC_CLK_TCK));
+}
+
+// What a phase of a job may use: CPU time, and a far larger wall-clock backstop.
+struct PhaseBudget {
+  std::string phase;
+  std::chrono::milliseconds cpu;
+  std::chrono::nanoseconds cpu_at_start;
+  Clock::time_point wall_cap;
+
+  PhaseBudget(std::string p, std::chrono::milliseconds limit, pid_t pid, int wall_factor)
+      : phase(std::move(p)), cpu(limit), cpu_at_start(cpu_time(pid)), wall_cap(Clock::now() + limit * std::max(1, wall_factor)) {}
+
+  bool cpu_spent(pid_t pid) const { return cpu_time(pid) - cpu_at_start >= cpu; }
+  bool wall_spent() const { return Clock::now() >= wall_cap; }
+
+  Error timeout(bool by_wall_clock, int wall_factor) const {
+    const bool compile = phase == "compile";
+    const std::string verb = compile ? "compile" : "render";
+    const std::string why = by_wall_clock ? "did not " + verb + " within " + std::to_string(cpu.count() * wall_factor) +
+                                                " ms of wall-clock time (the worker stopped making progress)"
+                                          : "used more than " + std::to_string(cpu.count()) + " ms of CPU time to " + verb;
+    return worker_error(compile ? ErrorCode::compile_timeout : ErrorCode::render_timeout, "the shader " + why + "; the worker was stopped");
+  }
+};
 }  // namespace
 
 struct WorkerPool::Slot {
@@ -162,18 +206,15 @@ struct WorkerPool::Slot {
       return result;
     }
     const PoolConfig& c = pool.config_;
-    std::string phase = "compile";
-    auto deadline = Clock::now() + c.compile_deadline;
+    PhaseBudget budget("compile", c.compile_deadline, pid, c.wall_clock_factor);
     while (true) {
       Message in;
-      // Short slices, so the memory watchdog runs while the worker is busy.
-      const auto slice = std::min(deadline, Clock::now() + std::chrono::milliseconds(50));
-      const auto status = read_message(fd, in, slice);
+      // Short slices: the memory watchdog and the CPU clock are read while the worker is busy.
+      const auto status = read_message(fd, in, Clock::now() + std::chrono::milliseconds(50));
       if (status == ReadStatus::ok) {
         const std::string event = in.header.value("event", "");
         if (event == "phase") {
-          phase = in.header.value("phase", "render");
-          deadline = Clock::now() + c.render_deadline;
+          budget = PhaseBudget(in.header.value("phase", "render"), c.render_deadline, pid, c.wall_clock_factor);
           continue;
         }
         result.answered = true;
@@ -182,16 +223,14 @@ struct WorkerPool::Slot {
       }
       if (status == ReadStatus::timeout) {
         if (!cgroup_capped && resident_bytes(pid) > c.memory_limit_bytes) {
-          result.error = death(reap(true), phase, true);
+          result.error = death(reap(true), budget.phase, true);
           return result;
         }
-        if (Clock::now() < deadline) continue;
+        const bool by_cpu = budget.cpu_spent(pid), by_wall = !by_cpu && budget.wall_spent();
+        if (!by_cpu && !by_wall) continue;
         reap(true);
         pool.timeouts_++;
-        const auto limit = phase == "compile" ? c.compile_deadline : c.render_deadline;
-        result.error = worker_error(phase == "compile" ? ErrorCode::compile_timeout : ErrorCode::render_timeout,
-                                    "the shader took longer than " + std::to_string(limit.count()) + " ms to " +
-                                        (phase == "compile" ? "compile" : "render") + "; the worker was stopped");
+        result.error = budget.timeout(by_wall, c.wall_clock_factor);
         return result;
       }
       if (status == ReadStatus::malformed) {
@@ -199,7 +238,7 @@ struct WorkerPool::Slot {
         result.error = worker_error(ErrorCode::worker_protocol, "a render worker sent a malformed message");
         return result;
       }
-      result.error = death(reap(false), phase, false);
+      result.error = death(reap(false), budget.phase, false);
       return result;
     }
   }
@@ -253,14 +292,15 @@ WorkerPool::~WorkerPool() {
   }
 }
 
-Expected<std::future<JobResult>> WorkerPool::submit(Message job) {
+Expected<std::future<JobResult>> WorkerPool::submit(Message job, Lane lane) {
   std::lock_guard lock(mutex_);
   if (queue_.size() >= config_.max_queue)
     return worker_error(ErrorCode::queue_full, "all render workers are busy and " + std::to_string(queue_.size()) +
                                                    " jobs are waiting; try again shortly");
   Pending p{std::move(job), {}, Clock::now()};
   auto future = p.promise.get_future();
-  queue_.push_back(std::move(p));
+  if (lane == Lane::retry) queue_.push_front(std::move(p));
+  else queue_.push_back(std::move(p));
   changed_.notify_one();
   return future;
 }

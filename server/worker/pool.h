@@ -3,6 +3,11 @@
 // thread that starts the worker process, hands it one job at a time, enforces the compile and
 // render deadlines and the memory cap, and kills, reaps and replaces a worker that hangs or dies.
 // The HTTP process itself never makes an EGL or GL call.
+//
+// Deadlines count the worker's CPU time, not the clock on the wall: a job's verdict must not
+// depend on how busy the machine was or what else ran beside it. A wall-clock cap, a multiple
+// of the deadline, is the backstop for a worker that stops using the CPU without answering
+// (stopped, or waiting on a hung GPU).
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -21,8 +26,9 @@ namespace shadelab::worker {
 
 struct PoolConfig {
   int workers = 2;
-  std::chrono::milliseconds compile_deadline{10'000};
-  std::chrono::milliseconds render_deadline{20'000};
+  std::chrono::milliseconds compile_deadline{10'000};  // CPU time
+  std::chrono::milliseconds render_deadline{20'000};   // CPU time
+  int wall_clock_factor = 4;                           // wall-clock cap: this many deadlines
   std::chrono::milliseconds start_deadline{15'000};
   size_t max_queue = 64;
   size_t memory_limit_bytes = size_t{2} << 30;  // per worker
@@ -54,8 +60,10 @@ class WorkerPool {
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
 
-  // A queue_full error when the bounded queue is full (the caller answers 503).
-  Expected<std::future<JobResult>> submit(Message job);
+  enum class Lane { normal, retry };
+  // A queue_full error when the bounded queue is full (the caller answers 503). A retry goes to
+  // the front of the queue: the next worker that comes free takes it, ahead of new work.
+  Expected<std::future<JobResult>> submit(Message job, Lane lane = Lane::normal);
   bool ready() const;
   PoolStats stats() const;
   std::string renderer() const;   // GL_RENDERER as the workers report it
