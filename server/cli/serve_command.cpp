@@ -66,6 +66,12 @@ Command add_serve_command(CLI::App& app) {
       ->envname("SHADELAB_KEEP_ALIVE_MS")->capture_default_str();
   cmd->add_option("--keep-alive-requests", config->connections.keep_alive_requests, "Requests per connection, then it is closed")
       ->envname("SHADELAB_KEEP_ALIVE_REQUESTS")->capture_default_str();
+  cmd->add_option("--api-keys", config->tenants.api_keys_file, "File of API keys (KEY NAME [REQUESTS_PER_MINUTE] per line); "
+                  "when given, /api/ requires Authorization: Bearer KEY")->envname("SHADELAB_API_KEYS");
+  cmd->add_option("--rate-limit", config->tenants.requests_per_minute, "Requests a minute per key, or per address without keys (0: none)")
+      ->envname("SHADELAB_RATE_LIMIT")->capture_default_str();
+  cmd->add_option("--burst", config->tenants.burst, "Requests allowed at once over the rate (0: a tenth of a minute's, at least 5)")
+      ->envname("SHADELAB_BURST")->capture_default_str();
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
   cmd->add_flag("--software", config->pool.force_software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
 

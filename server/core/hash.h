@@ -1,8 +1,10 @@
 #pragma once
-// FNV-1a, 64-bit: content addresses (mesh ids, ETags, cache keys). Not a cryptographic hash:
-// collisions are astronomically unlikely by accident, and nothing here is a security boundary
-// (an id names bytes the same client sent; a wrong cache hit would need a crafted collision of
-// two 64-bit hashes, which ETags guard against by hashing twice with different seeds).
+// FNV-1a, 64-bit: content addresses inside one request's life (ETags, cache keys). Not a
+// cryptographic hash: collisions are astronomically unlikely by accident; a wrong cache hit would
+// need a crafted collision of two 64-bit hashes, which ETags guard against by hashing twice with
+// different seeds. Where an id crosses tenants (an uploaded mesh's id is the capability to use
+// it), sha256_hex names it instead: one student must not be able to craft bytes that take the id
+// of another's file.
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -24,5 +26,8 @@ inline std::string hex64(std::uint64_t v) {
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
   return buf;
 }
+
+// SHA-256 as 64 lower-case hex digits (OpenSSL's libcrypto).
+std::string sha256_hex(std::string_view bytes);
 
 }  // namespace shadelab

@@ -78,7 +78,8 @@ const std::set<std::string> kKnownFields = {"vertex",  "fragment", "vertexName",
 
 }  // namespace
 
-std::string mesh_id(const std::string& bytes) { return "m" + hex64(fnv1a64(bytes)); }
+// 128 bits of SHA-256: an id is the capability to use an upload, so it must not be craftable.
+std::string mesh_id(const std::string& bytes) { return "m" + sha256_hex(bytes).substr(0, 32); }
 
 Expected<RawRequest> from_json_body(const std::string& body) {
   RawRequest raw;

@@ -42,11 +42,12 @@ void upload(RouteContext& c, const httplib::Request& req, httplib::Response& res
   send_json(res, 201, {{"id", job.mesh}, {"filename", file->filename}, {"format", job.mesh_format}, {"info", info}});
 }
 
-void list(RouteContext& c, httplib::Response& res) {
+void list(httplib::Response& res) {
   json builtin = json::array(), scene_builtin = json::array();
   for (const auto& n : scene::builtin_mesh_names()) builtin.push_back({{"id", n}, {"builtin", true}});
   for (const auto& n : scene::builtin_scene_mesh_names()) scene_builtin.push_back(n);
-  send_json(res, 200, {{"builtin", builtin}, {"sceneBuiltin", scene_builtin}, {"uploaded", c.meshes.list()}});
+  // Uploads are not listed: an upload's id is the capability to use it, known to its uploader only.
+  send_json(res, 200, {{"builtin", builtin}, {"sceneBuiltin", scene_builtin}});
 }
 
 void builtin_obj(const httplib::Request& req, httplib::Response& res) {
@@ -61,7 +62,7 @@ void builtin_obj(const httplib::Request& req, httplib::Response& res) {
 
 void add_mesh_routes(httplib::Server& server, RouteContext& c) {
   server.Post("/api/meshes", [&c](const httplib::Request& req, httplib::Response& res) { upload(c, req, res); });
-  server.Get("/api/meshes", [&c](const httplib::Request&, httplib::Response& res) { list(c, res); });
+  server.Get("/api/meshes", [](const httplib::Request&, httplib::Response& res) { list(res); });
   server.Get(R"(/api/meshes/([a-z]+)\.obj)", builtin_obj);
 }
 

@@ -17,11 +17,4 @@ std::optional<StoredMesh> MeshStore::get(const std::string& id) const {
   return std::nullopt;
 }
 
-nlohmann::json MeshStore::list() const {
-  std::lock_guard lock(mutex_);
-  auto out = nlohmann::json::array();
-  for (const auto& m : meshes_) out.push_back({{"id", m.id}, {"filename", m.filename}, {"format", m.format}, {"info", m.info}});
-  return out;
-}
-
 }  // namespace shadelab::http

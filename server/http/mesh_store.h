@@ -20,7 +20,6 @@ class MeshStore {
   explicit MeshStore(size_t capacity) : capacity_(capacity) {}
   void put(StoredMesh mesh);
   std::optional<StoredMesh> get(const std::string& id) const;
-  nlohmann::json list() const;  // ids, names and info; no bytes
 
  private:
   size_t capacity_;

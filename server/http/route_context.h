@@ -26,6 +26,7 @@ struct RouteContext {
   ResponseCache& cache;
   Metrics& metrics;
   const ConnectionServer& connections;
+  Tenants& tenants;
 
   // Runs a job and records its queue time (and a compile failure) in the metrics.
   template <class Result>

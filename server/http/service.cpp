@@ -37,6 +37,20 @@ void answer_httplib_error(const httplib::Request& req, httplib::Response& res) {
   res.status = status;
 }
 
+// API keys and rates apply to the API; probes, metrics and the page's files are always served.
+bool admit(Tenants& tenants, const httplib::Request& req, httplib::Response& res) {
+  if (req.path.rfind("/api/", 0) != 0) return true;
+  const auto verdict = tenants.admit(req.get_header_value("Authorization"), req.remote_addr);
+  if (!verdict.refused) return true;
+  send_problem(res, *verdict.refused, req.path);
+  if (verdict.refused->code == ErrorCode::rate_limited) {
+    res.headers.erase("Retry-After");  // the wait this tenant has, not the generic second
+    res.set_header("Retry-After", std::to_string(verdict.retry_after_seconds));
+  }
+  if (verdict.refused->code == ErrorCode::unauthorized) res.set_header("WWW-Authenticate", "Bearer");
+  return false;
+}
+
 void answer_exception(const httplib::Request& req, httplib::Response& res, std::exception_ptr ep) {
   std::string what = "internal error";
   try {
@@ -77,6 +91,7 @@ struct Service::Impl {
   MeshStore meshes;
   ResponseCache cache;
   Metrics metrics;
+  std::optional<Tenants> tenants;
   std::optional<RouteContext> context;
   std::mutex mutex;
   std::condition_variable stopped_changed;
@@ -89,7 +104,7 @@ struct Service::Impl {
         cache(config.cache_bytes) {}
 
   void routes() {
-    context.emplace(RouteContext{config, *pool, meshes, cache, metrics, connections});
+    context.emplace(RouteContext{config, *pool, meshes, cache, metrics, connections, *tenants});
     add_render_routes(server, *context);
     add_grade_routes(server, *context);
     add_scene_routes(server, *context);
@@ -98,9 +113,9 @@ struct Service::Impl {
     if (!config.web_root.empty() && !server.set_mount_point("/", config.web_root))
       std::fprintf(stderr, "shadelab: web root '%s' not found; serving the API only\n", config.web_root.c_str());
 
-    server.set_pre_routing_handler([](const httplib::Request&, httplib::Response&) {
+    server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       request_start = Clock::now();
-      return httplib::Server::HandlerResponse::Unhandled;
+      return admit(*tenants, req, res) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
     });
     server.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
       metrics.request(metrics_route(req), res.status, std::chrono::duration<double>(Clock::now() - request_start).count());
@@ -116,6 +131,13 @@ Service::~Service() { stop(); }
 Expected<int> Service::start() {
   auto& i = *impl_;
   // The port first: a server that cannot listen starts no workers.
+  std::vector<ApiKey> keys;
+  if (!i.config.tenants.api_keys_file.empty()) {
+    auto read = read_api_keys(i.config.tenants.api_keys_file);
+    if (!read) return read.take_error();
+    keys = std::move(*read);
+  }
+  i.tenants.emplace(i.config.tenants, std::move(keys));
   auto port = i.connections.listen(i.config.host, i.config.port);
   if (!port) return port;
   i.pool = std::make_unique<worker::WorkerPool>(i.config.pool);

@@ -7,6 +7,7 @@
 #include "core/expected.h"
 #include "http/connection_server.h"
 #include "http/limits.h"
+#include "http/tenants.h"
 #include "worker/pool.h"
 
 namespace shadelab::http {
@@ -15,6 +16,7 @@ struct ServiceConfig {
   std::string host = "127.0.0.1";
   int port = 8889;  // 0: any free port (tests)
   ConnectionLimits connections;  // handler threads, deadlines, connection caps
+  TenantLimits tenants;          // API keys and request rates
   worker::PoolConfig pool;
   Limits limits;
   size_t cache_bytes = 64u << 20;

@@ -35,7 +35,8 @@ void add_service_routes(httplib::Server& server, RouteContext& c) {
     send_json(res, ready ? 200 : 503, {{"ready", ready}, {"renderer", c.pool.renderer()}});
   });
   server.Get("/metrics", [&c](const httplib::Request&, httplib::Response& res) {
-    res.set_content(c.metrics.render(c.pool.stats(), c.pool.ready()) + render_connection_metrics(c.connections.stats()),
+    res.set_content(c.metrics.render(c.pool.stats(), c.pool.ready()) + render_connection_metrics(c.connections.stats()) +
+                        c.tenants.render_metrics(),
                     "text/plain; version=0.0.4");
   });
 }

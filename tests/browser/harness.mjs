@@ -11,9 +11,9 @@ export const repo = path.resolve(here, "../..");
 export const artifacts = process.env.SHADELAB_ARTIFACTS ?? path.join(repo, "build", "browser-artifacts");
 mkdirSync(artifacts, { recursive: true });
 
-export async function startServer() {
+export async function startServer(extraArgs = []) {
   const bin = process.env.SHADELAB_BIN ?? path.join(repo, "build", "shadelab");
-  const child = spawn(bin, ["serve", "--port", "0", "--workers", "2", "--web-root", path.join(repo, "web")], {
+  const child = spawn(bin, ["serve", "--port", "0", "--workers", "2", "--web-root", path.join(repo, "web"), ...extraArgs], {
     stdio: ["ignore", "ignore", "pipe"],
   });
   const port = await new Promise((resolve, reject) => {
@@ -47,9 +47,10 @@ export async function startBrowser() {
 }
 
 // A page with console errors collected; waits for the page's own start-up.
-export async function openPage(browser, base) {
+export async function openPage(browser, base, { onDialog } = {}) {
   const context = await browser.newContext({ viewport: { width: 1400, height: 1000 }, acceptDownloads: true });
   const page = await context.newPage();
+  if (onDialog) page.on("dialog", onDialog);
   const consoleErrors = [];
   page.on("console", (m) => m.type() === "error" && consoleErrors.push(m.text()));
   page.on("pageerror", (e) => consoleErrors.push(String(e)));

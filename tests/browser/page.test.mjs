@@ -1,6 +1,7 @@
 // The page in Debian's chromium against the real server: what a student does with it.
 import assert from "node:assert/strict";
-import { readFileSync } from "node:fs";
+import { mkdtempSync, readFileSync, writeFileSync } from "node:fs";
+import os from "node:os";
 import path from "node:path";
 import { after, before, describe, test } from "node:test";
 
@@ -27,6 +28,27 @@ function zipNames(buffer) {
 }
 
 describe("the page", () => {
+  test("asks once for the course key where the server requires one, and then works", async () => {
+    const keys = path.join(mkdtempSync(path.join(os.tmpdir(), "shadelab-keys-")), "keys");
+    writeFileSync(keys, "student-key-0123456789 alice\n");
+    const keyed = await startServer(["--api-keys", keys]);
+    try {
+      const asked = [];
+      const { page, context, consoleErrors } = await openPage(browser, keyed.base, {
+        onDialog: (d) => { asked.push(d.message()); d.accept("student-key-0123456789"); },
+      });
+      await page.waitForFunction(() => document.querySelectorAll("#preset option").length > 0, null, { timeout: 30000 });
+      assert.equal(asked.length, 1, `asked ${asked.length} times`);
+      assert.equal(await page.evaluate(() => localStorage.getItem("shadelab.apiKey")), "student-key-0123456789");
+      const rendered = await page.evaluate(async () => (await window.shadelab.renderOnServer(), true));
+      assert.ok(rendered);
+      assert.deepEqual(consoleErrors.filter((e) => !e.includes("401")), []);
+      await context.close();
+    } finally {
+      await keyed.stop();
+    }
+  });
+
   test("loads without console errors and draws the mesh on its own canvas", async () => {
     const { page, context, consoleErrors } = await openPage(browser, server.base);
     const lit = await page.evaluate(() => {

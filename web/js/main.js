@@ -58,8 +58,22 @@ async function applyLocally() {
   return errors.length === 0;
 }
 
+// Every API call: where the server requires keys (serve --api-keys) it answers 401, and the page
+// asks for the student's key once and keeps it in this browser.
+async function api(path, init = {}) {
+  for (let attempt = 0; ; attempt++) {
+    const key = localStorage.getItem("shadelab.apiKey");
+    const headers = { ...(init.headers ?? {}), ...(key ? { Authorization: `Bearer ${key}` } : {}) };
+    const response = await fetch(path, { ...init, headers });
+    if (response.status !== 401 || attempt > 0) return response;
+    const entered = window.prompt("This ShadeLab server needs your course API key:");
+    if (!entered) return response;
+    localStorage.setItem("shadelab.apiKey", entered.trim());
+  }
+}
+
 async function loadMesh(name) {
-  const response = await fetch(`/api/meshes/${name}.obj`);
+  const response = await api(`/api/meshes/${name}.obj`);
   if (!response.ok) throw new Error(`cannot load ${name}`);
   view.setMesh(parseObj(await response.text()));
   state.dirty = true;
@@ -89,7 +103,7 @@ function job(output) {
 }
 
 async function post(output) {
-  const response = await fetch("/api/render", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(job(output)) });
+  const response = await api("/api/render", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(job(output)) });
   if (response.ok) return response;
   const problem = await response.json().catch(() => ({ detail: response.statusText, diagnostics: [] }));
   for (const stage of ["vertex", "fragment"])
@@ -189,7 +203,7 @@ async function choosePreset(name, presets) {
 async function uploadMesh(file) {
   const form = new FormData();
   form.append("mesh", file, file.name);
-  const response = await fetch("/api/meshes", { method: "POST", body: form });
+  const response = await api("/api/meshes", { method: "POST", body: form });
   const body = await response.json();
   if (!response.ok) return status("local-status", `Mesh upload: ${body.detail}`, true);
   state.uploadedId = body.id;
@@ -201,7 +215,7 @@ async function uploadMesh(file) {
 const report = (p) => p.catch((e) => { if (!e.problem) status("server-status", e.message, true); });
 
 async function init() {
-  const presets = await (await fetch("/api/presets")).json();
+  const presets = await (await api("/api/presets")).json();
   for (const p of presets) $("preset").append(new Option(p.name, p.name, false, p.name === "specular"));
   $("preset").value = "specular";
   await loadMesh("bunny");

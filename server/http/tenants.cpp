@@ -1,0 +1,110 @@
+#include "http/tenants.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace shadelab::http {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr size_t kMaxBuckets = 100'000;  // addresses remembered at once; full buckets go first
+
+std::string bearer_token(const std::string& authorization) {
+  constexpr std::string_view kScheme = "Bearer ";
+  if (authorization.size() <= kScheme.size()) return "";
+  if (!std::equal(kScheme.begin(), kScheme.end(), authorization.begin(),
+                  [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b)); }))
+    return "";
+  return authorization.substr(kScheme.size());
+}
+
+}  // namespace
+
+Expected<std::vector<ApiKey>> read_api_keys(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return make_error(ErrorCode::io_error, "cannot read the API keys file '" + path + "'");
+  std::vector<ApiKey> keys;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream fields(line);
+    ApiKey k;
+    if (!(fields >> k.key)) continue;
+    std::string rate;
+    if (!(fields >> k.name) || (fields >> rate && !(std::istringstream(rate) >> k.requests_per_minute)) || k.requests_per_minute < 0)
+      return make_error(ErrorCode::invalid_argument, path + ":" + std::to_string(number) + ": expected KEY NAME [REQUESTS_PER_MINUTE]");
+    if (!std::all_of(k.name.begin(), k.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; }))
+      return make_error(ErrorCode::invalid_argument, path + ":" + std::to_string(number) + ": a name may hold letters, digits, '_', '-' and '.'");
+    if (k.key.size() < 16)
+      return make_error(ErrorCode::invalid_argument, path + ":" + std::to_string(number) + ": a key must have at least 16 characters");
+    keys.push_back(std::move(k));
+  }
+  if (keys.empty()) return make_error(ErrorCode::invalid_argument, "the API keys file '" + path + "' holds no keys");
+  return keys;
+}
+
+Tenants::Tenants(TenantLimits limits, std::vector<ApiKey> keys) : limits_(std::move(limits)) {
+  for (auto& k : keys) keys_.emplace(k.key, std::move(k));
+}
+
+Tenants::Verdict Tenants::admit(const std::string& authorization, const std::string& address) {
+  std::string tenant = "address " + address;
+  double rate = limits_.requests_per_minute;
+  if (!keys_.empty()) {
+    const auto key = keys_.find(bearer_token(authorization));
+    if (key == keys_.end()) {
+      std::lock_guard lock(mutex_);
+      ++unauthorized_;
+      return {make_error(ErrorCode::unauthorized, authorization.empty() ? "send an API key: Authorization: Bearer KEY"
+                                                                        : "that API key is not known to this server"),
+              0};
+    }
+    tenant = "key " + key->second.name;
+    if (key->second.requests_per_minute > 0) rate = key->second.requests_per_minute;
+    std::lock_guard lock(mutex_);
+    ++requests_by_key_[key->second.name];
+  }
+  if (rate <= 0) return {};
+  const int wait = take(tenant, rate);
+  if (wait == 0) return {};
+  return {make_error(ErrorCode::rate_limited, "over " + std::to_string(static_cast<long>(rate)) + " requests a minute for this " +
+                                                  (keys_.empty() ? "address" : "key") + "; retry in " + std::to_string(wait) + " s"),
+          wait};
+}
+
+int Tenants::take(const std::string& tenant, double per_minute) {
+  // --burst is for the default rate; a key with a rate of its own gets a burst in proportion.
+  const double base = limits_.requests_per_minute > 0 ? limits_.requests_per_minute : per_minute;
+  const double burst = limits_.burst > 0 ? limits_.burst * per_minute / base : std::max(5.0, per_minute / 10);
+  const double per_second = per_minute / 60;
+  const auto now = Clock::now();
+  std::lock_guard lock(mutex_);
+  if (buckets_.size() >= kMaxBuckets)
+    std::erase_if(buckets_, [&](const auto& entry) {
+      return entry.second.tokens + per_second * std::chrono::duration<double>(now - entry.second.refilled).count() >= burst;
+    });
+  Bucket& b = buckets_.try_emplace(tenant, Bucket{burst, now}).first->second;
+  b.tokens = std::min(burst, b.tokens + per_second * std::chrono::duration<double>(now - b.refilled).count());
+  b.refilled = now;
+  if (b.tokens >= 1) {
+    b.tokens -= 1;
+    return 0;
+  }
+  ++rate_limited_;
+  return std::max(1, static_cast<int>(std::ceil((1 - b.tokens) / per_second)));
+}
+
+std::string Tenants::render_metrics() const {
+  std::lock_guard lock(mutex_);
+  std::ostringstream out;
+  out << "# TYPE shadelab_unauthorized_total counter\nshadelab_unauthorized_total " << unauthorized_ << "\n"
+      << "# TYPE shadelab_rate_limited_total counter\nshadelab_rate_limited_total " << rate_limited_ << "\n"
+      << "# TYPE shadelab_key_requests_total counter\n";
+  for (const auto& [name, n] : requests_by_key_) out << "shadelab_key_requests_total{key=\"" << name << "\"} " << n << "\n";
+  return out.str();
+}
+
+}  // namespace shadelab::http
