@@ -204,7 +204,7 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--heatmap", f->heatmap, "Write the difference heat map grid PNG here (single submission)");
   cmd->add_option("--out", f->out, "Batch: folder for <student>/results.json and summary.csv")->capture_default_str();
   cmd->add_option("--workers", f->workers, "Render workers (default: one per core)");
-  cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission")->capture_default_str();
+  cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission, in CPU time (a timeout is retried once)")->capture_default_str();
   cmd->add_flag("--software", f->software, "Force Mesa's software renderer");
   return [f] {
     if (!f->submissions.empty()) return run_batch(*f);

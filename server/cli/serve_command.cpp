@@ -36,10 +36,13 @@ Command add_serve_command(CLI::App& app) {
       ->envname("SHADELAB_LP_THREADS");
   cmd->add_option("--queue", config->pool.max_queue, "Jobs that may wait for a worker before 503")
       ->envname("SHADELAB_QUEUE")->capture_default_str();
-  cmd->add_option("--compile-timeout-ms", *compile_ms, "Deadline for compiling and linking a shader pair")
+  cmd->add_option("--compile-timeout-ms", *compile_ms, "CPU-time deadline for compiling and linking a shader pair")
       ->envname("SHADELAB_COMPILE_TIMEOUT_MS")->capture_default_str();
-  cmd->add_option("--render-timeout-ms", *render_ms, "Deadline for rendering and encoding a job")
+  cmd->add_option("--render-timeout-ms", *render_ms, "CPU-time deadline for rendering and encoding a job")
       ->envname("SHADELAB_RENDER_TIMEOUT_MS")->capture_default_str();
+  cmd->add_option("--wall-clock-factor", config->pool.wall_clock_factor,
+                  "Wall-clock cap on a compile or render, in deadlines (the backstop for a worker that stops using the CPU)")
+      ->envname("SHADELAB_WALL_CLOCK_FACTOR")->capture_default_str();
   cmd->add_option("--memory-mb", *memory_mb, "Memory cap per worker (cgroup v2 memory.max, else resident-set watchdog)")
       ->envname("SHADELAB_MEMORY_MB")->capture_default_str();
   cmd->add_option("--cpu-limit-s", config->pool.cpu_limit_seconds, "RLIMIT_CPU per worker process (a backstop)")

@@ -225,7 +225,7 @@ struct ConnectionServer::Impl {
   }
 
   void resume_accepting() {
-    if (accept_paused_until == Clock::time_point{} || Clock::now() < accept_paused_until) return;
+    if (stopping || accept_paused_until == Clock::time_point{} || Clock::now() < accept_paused_until) return;
     accept_paused_until = {};
     epoll_event ev{};
     ev.events = EPOLLIN;
@@ -239,8 +239,7 @@ struct ConnectionServer::Impl {
       return refuse(fd, make_error(ErrorCode::queue_full, "the server holds as many connections as it serves; try again shortly"));
     }
     const int cap = limits.max_connections_per_address;
-    if (cap > 0 && per_address[peer.ip] >= cap) {
-      if (per_address[peer.ip] == 0) per_address.erase(peer.ip);
+    if (const auto held = per_address.find(peer.ip); cap > 0 && held != per_address.end() && held->second >= cap) {
       count(&ConnectionStats::refused_per_address);
       return refuse(fd, make_error(ErrorCode::too_many_connections, "this address already holds " + std::to_string(cap) +
                                                                         " connections; reuse them (keep-alive) or close some"));

@@ -1,0 +1,289 @@
+// Deadline-night soak and slow-connection probe against the real service (docs/deploy.md keeps
+// the figures).
+//   build/bench/soak_bench [path/to/shadelab] [soak seconds, default 60; 0: slow connections only]
+// Starts `shadelab serve` with its defaults on a free loopback port, then:
+//   1. slow connections: /livez and canonical-render latency idle, then with 16 and with 200
+//      connections that send one header line every 0.5 s (spread over 10 loopback addresses);
+//   2. soak: 8 clients for the given time, each request one of render (the canonical grid job, a
+//      fresh shader each), grade (specular checkpoint), scene (two objects, a fresh colour each) or
+//      hostile (a shader that does not compile, or one that never ends); requests by kind and
+//      status (every status not expected for its kind counts as unexpected), p50/p99 per kind,
+//      and the resident memory of the server and its workers at start, peak and end.
+#include <httplib.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/presets.h"
+#include "support/raw_socket.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
+}
+
+// The specular preset with a line no earlier request compiled (Mesa caches programs by their IR).
+std::pair<std::string, std::string> fresh_shaders(unsigned serial, const std::string& extra = "") {
+  auto p = *shadelab::render::find_preset("specular");
+  const std::string from = "void main(void) {";
+  p.fragment.text.insert(p.fragment.text.find(from) + from.size(),
+                         "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;" + extra);
+  return {p.vertex.text, p.fragment.text};
+}
+
+// Memory of a process and its children (the workers), from /proc/PID/smaps_rollup: the sum of
+// their resident sets (which counts each shared library once per process, as `ps` does) and of
+// their proportional sets (shared pages split between the processes that map them: what the
+// machine really holds).
+struct Memory {
+  size_t rss = 0, pss = 0;
+};
+
+Memory tree_memory(pid_t root) {
+  Memory total;
+  for (const auto& e : std::filesystem::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(e.path() / "stat");
+    std::string text((std::istreambuf_iterator<char>(stat)), {});
+    const auto close = text.rfind(')');
+    if (close == std::string::npos) continue;
+    char state;
+    int ppid = 0;
+    std::sscanf(text.c_str() + close + 2, "%c %d", &state, &ppid);
+    if (std::stoi(name) != root && ppid != root) continue;
+    std::ifstream rollup(e.path() / "smaps_rollup");
+    std::string field;
+    std::getline(rollup, field);  // the address range line
+    size_t kib = 0;
+    while (rollup >> field >> kib) {
+      if (field == "Rss:") total.rss += kib << 10;
+      if (field == "Pss:") total.pss += kib << 10;
+      rollup.ignore(1 << 10, '\n');
+    }
+  }
+  return total;
+}
+
+struct Server {
+  pid_t pid = -1;
+  int port = 0;
+};
+
+Server start(const std::string& bin) {
+  Server s;
+  s.port = 19000 + static_cast<int>(getpid() % 1000);
+  s.pid = fork();
+  if (s.pid == 0) {
+    execl(bin.c_str(), bin.c_str(), "serve", "--port", std::to_string(s.port).c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  httplib::Client c("127.0.0.1", s.port);
+  for (int i = 0; i < 3000; ++i) {
+    if (auto r = c.Get("/readyz"); r && r->status == 200) return s;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  std::fprintf(stderr, "the server did not become ready\n");
+  std::exit(1);
+}
+
+httplib::Client client(int port) {
+  httplib::Client c("127.0.0.1", port);
+  c.set_read_timeout(180, 0);
+  c.set_write_timeout(60, 0);
+  return c;
+}
+
+// ---- 1. slow connections ----------------------------------------------------------------------
+
+struct Probe {
+  std::vector<double> livez, render;
+  int failures = 0;
+};
+
+// 40 /livez probes and 8 canonical renders, each given 5 s; a starved server fails them (and the
+// probe gives up after 30 s, counting the rest as failed).
+Probe probe(int port, std::atomic<unsigned>& serial) {
+  Probe p;
+  const auto give_up = Clock::now() + std::chrono::seconds(30);
+  for (int i = 0; i < 48; ++i) {
+    auto c = client(port);
+    c.set_connection_timeout(5, 0);
+    c.set_read_timeout(5, 0);
+    const auto t = Clock::now();
+    httplib::Result r = i < 40 ? c.Get("/livez") : [&] {
+      const auto [v, f] = fresh_shaders(serial++);
+      return c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", "bunny"}}.dump(), "application/json");
+    }();
+    (i < 40 ? p.livez : p.render).push_back(ms(Clock::now() - t));
+    p.failures += !r || r->status != 200;
+    if (Clock::now() > give_up) {
+      p.failures += 47 - i;
+      break;
+    }
+  }
+  return p;
+}
+
+Probe probe_under_slow_clients(int port, int connections, std::atomic<unsigned>& serial) {
+  std::atomic<bool> stop{false};
+  std::thread attacker([&] {
+    std::vector<shadelab::testkit::RawSocket> sockets;
+    const auto open = [&](int i) {
+      shadelab::testkit::RawSocket s(port, "127.0.0." + std::to_string(2 + i % 10));
+      s.send("GET /livez HTTP/1.1\r\nHost: slow\r\n");
+      return s;
+    };
+    for (int i = 0; i < connections; ++i) sockets.push_back(open(i));
+    while (!stop) {
+      for (int i = 0; i < connections; ++i)
+        if (!sockets[static_cast<size_t>(i)].send("X-Slow: 1\r\n")) sockets[static_cast<size_t>(i)] = open(i);
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  Probe p = probe(port, serial);
+  stop = true;
+  attacker.join();
+  return p;
+}
+
+void slow_connections(int port, std::atomic<unsigned>& serial) {
+  std::printf("## Slow connections (one header line every 0.5 s per connection)\n\n");
+  std::printf("| slow connections | /livez p50 ms | /livez p99 ms | render p50 ms | render p99 ms | failed |\n| --- | --- | --- | --- | --- | --- |\n");
+  const auto row = [](int n, const Probe& p) {
+    std::printf("| %d | %.2f | %.2f | %.0f | %.0f | %d |\n", n, percentile(p.livez, 0.5), percentile(p.livez, 0.99),
+                percentile(p.render, 0.5), percentile(p.render, 0.99), p.failures);
+  };
+  row(0, probe(port, serial));
+  for (int n : {16, 200}) row(n, probe_under_slow_clients(port, n, serial));
+  std::printf("\n");
+}
+
+// ---- 2. soak ------------------------------------------------------------------------------------
+
+enum class Kind { render, grade, scene, hostile };
+const char* name(Kind k) { return k == Kind::render ? "render" : k == Kind::grade ? "grade" : k == Kind::scene ? "scene" : "hostile"; }
+
+struct Outcome {
+  std::map<int, int> statuses;  // 0: no response
+  std::vector<double> latencies;
+  int unexpected = 0;
+};
+
+// One request of a kind; returns its status (0: no response) and whether that status is expected.
+std::pair<int, bool> request(httplib::Client& c, Kind kind, unsigned serial, int nth, const json& scene) {
+  if (kind == Kind::render || kind == Kind::grade) {
+    const auto [v, f] = fresh_shaders(serial);
+    json job{{"vertex", v}, {"fragment", f}, {"mesh", "bunny"}};
+    if (kind == Kind::grade) job["reference"] = "specular";
+    auto r = c.Post(kind == Kind::grade ? "/api/grade" : "/api/render", job.dump(), "application/json");
+    return {r ? r->status : 0, r && r->status == 200};
+  }
+  if (kind == Kind::scene) {
+    json s = scene;
+    s["objects"][0]["material"]["baseColor"][0] = 0.8 - (serial % 1000) * 1e-4;
+    auto r = c.Post("/api/scene", s.dump(), "application/json");
+    return {r ? r->status : 0, r && r->status == 200};
+  }
+  // Hostile: alternately a shader that does not compile and one that never ends.
+  const bool hang = nth % 2 == 1;
+  // The loop's result decides the pixel, so no compiler may drop it.
+  const auto [v, f] = fresh_shaders(serial, hang ? "\n    float s = gl_FragCoord.x; while (true) { s = sin(s); if (s > 2.0) break; }"
+                                                   "\n    if (s > 1.5) discard;"
+                                                 : "\n    this is not GLSL;");
+  auto r = c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", "bunny"}}.dump(), "application/json");
+  return {r ? r->status : 0, r && r->status == 422};
+}
+
+void soak(const Server& server, int seconds, std::atomic<unsigned>& serial) {
+  const json scene = json::parse(client(server.port).Get("/api/scenes/two_objects")->body);
+  std::atomic<bool> stop{false};
+  const Memory at_start = tree_memory(server.pid);
+  Memory peak = at_start;
+  std::thread sampler([&] {
+    while (!stop) {
+      const Memory now = tree_memory(server.pid);
+      peak = {std::max(peak.rss, now.rss), std::max(peak.pss, now.pss)};
+      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    }
+  });
+  std::map<Kind, Outcome> outcomes;
+  std::mutex m;
+  const auto until = Clock::now() + std::chrono::seconds(seconds);
+  std::vector<std::thread> clients;
+  for (int i = 0; i < 8; ++i)
+    clients.emplace_back([&, i] {
+      auto c = client(server.port);
+      // Clients 0-2 render, 3-4 grade, 5-6 render scenes, 7 is hostile.
+      const Kind kind = i < 3 ? Kind::render : i < 5 ? Kind::grade : i < 7 ? Kind::scene : Kind::hostile;
+      for (int nth = 0; Clock::now() < until; ++nth) {
+        const auto t = Clock::now();
+        const auto [status, expected] = request(c, kind, serial++, nth, scene);
+        std::lock_guard lock(m);
+        auto& o = outcomes[kind];
+        ++o.statuses[status];
+        o.latencies.push_back(ms(Clock::now() - t));
+        o.unexpected += !expected;
+      }
+    });
+  for (auto& t : clients) t.join();
+  stop = true;
+  sampler.join();
+  const Memory at_end = tree_memory(server.pid);
+  std::this_thread::sleep_for(std::chrono::seconds(5));
+  const Memory settled = tree_memory(server.pid);
+
+  std::printf("## Soak: 8 clients for %d s (3 render, 2 grade, 2 scene, 1 hostile)\n\n", seconds);
+  std::printf("| kind | requests | by status | unexpected | p50 ms | p99 ms |\n| --- | --- | --- | --- | --- | --- |\n");
+  for (const auto& [kind, o] : outcomes) {
+    std::string by;
+    for (const auto& [status, n] : o.statuses) by += (by.empty() ? "" : ", ") + std::to_string(n) + "× " + std::to_string(status);
+    std::printf("| %s | %zu | %s | %d | %.0f | %.0f |\n", name(kind), o.latencies.size(), by.c_str(), o.unexpected,
+                percentile(o.latencies, 0.5), percentile(o.latencies, 0.99));
+  }
+  std::printf("\n| memory of the server and its workers | start | peak | end | 5 s later |\n| --- | --- | --- | --- | --- |\n");
+  std::printf("| resident sets summed (MiB) | %zu | %zu | %zu | %zu |\n", at_start.rss >> 20, peak.rss >> 20, at_end.rss >> 20, settled.rss >> 20);
+  std::printf("| proportional sets summed (MiB) | %zu | %zu | %zu | %zu |\n", at_start.pss >> 20, peak.pss >> 20, at_end.pss >> 20,
+              settled.pss >> 20);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string bin = argc > 1 ? argv[1] : "build/shadelab";
+  const int seconds = argc > 2 ? std::atoi(argv[2]) : 60;
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each table row as it is measured
+  const Server server = start(bin);
+  const auto ready = client(server.port).Get("/readyz");
+  std::printf("renderer: %s, %u cores\n\n", json::parse(ready->body).value("renderer", "").c_str(), std::thread::hardware_concurrency());
+  std::atomic<unsigned> serial{std::random_device{}() % 100000000u};
+  slow_connections(server.port, serial);
+  if (seconds > 0) soak(server, seconds, serial);
+  kill(server.pid, SIGTERM);
+  waitpid(server.pid, nullptr, 0);
+  return 0;
+}
