@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -219,6 +220,20 @@ std::pair<int, bool> request(httplib::Client& c, Kind kind, unsigned serial, int
   return {r ? r->status : 0, r && r->status == 422};
 }
 
+void print_soak(int seconds, const std::map<Kind, Outcome>& outcomes, const std::array<Memory, 4>& memory) {
+  std::printf("## Soak: 8 clients for %d s (3 render, 2 grade, 2 scene, 1 hostile)\n\n", seconds);
+  std::printf("| kind | requests | by status | unexpected | p50 ms | p99 ms |\n| --- | --- | --- | --- | --- | --- |\n");
+  for (const auto& [kind, o] : outcomes) {
+    std::string by;
+    for (const auto& [status, n] : o.statuses) by += (by.empty() ? "" : ", ") + std::to_string(n) + "× " + std::to_string(status);
+    std::printf("| %s | %zu | %s | %d | %.0f | %.0f |\n", name(kind), o.latencies.size(), by.c_str(), o.unexpected,
+                percentile(o.latencies, 0.5), percentile(o.latencies, 0.99));
+  }
+  std::printf("\n| memory of the server and its workers | start | peak | end | 5 s later |\n| --- | --- | --- | --- | --- |\n");
+  std::printf("| resident sets summed (MiB) | %zu | %zu | %zu | %zu |\n", memory[0].rss >> 20, memory[1].rss >> 20, memory[2].rss >> 20, memory[3].rss >> 20);
+  std::printf("| proportional sets summed (MiB) | %zu | %zu | %zu | %zu |\n", memory[0].pss >> 20, memory[1].pss >> 20, memory[2].pss >> 20, memory[3].pss >> 20);
+}
+
 void soak(const Server& server, int seconds, std::atomic<unsigned>& serial) {
   const json scene = json::parse(client(server.port).Get("/api/scenes/two_objects")->body);
   std::atomic<bool> stop{false};
@@ -257,18 +272,7 @@ void soak(const Server& server, int seconds, std::atomic<unsigned>& serial) {
   std::this_thread::sleep_for(std::chrono::seconds(5));
   const Memory settled = tree_memory(server.pid);
 
-  std::printf("## Soak: 8 clients for %d s (3 render, 2 grade, 2 scene, 1 hostile)\n\n", seconds);
-  std::printf("| kind | requests | by status | unexpected | p50 ms | p99 ms |\n| --- | --- | --- | --- | --- | --- |\n");
-  for (const auto& [kind, o] : outcomes) {
-    std::string by;
-    for (const auto& [status, n] : o.statuses) by += (by.empty() ? "" : ", ") + std::to_string(n) + "× " + std::to_string(status);
-    std::printf("| %s | %zu | %s | %d | %.0f | %.0f |\n", name(kind), o.latencies.size(), by.c_str(), o.unexpected,
-                percentile(o.latencies, 0.5), percentile(o.latencies, 0.99));
-  }
-  std::printf("\n| memory of the server and its workers | start | peak | end | 5 s later |\n| --- | --- | --- | --- | --- |\n");
-  std::printf("| resident sets summed (MiB) | %zu | %zu | %zu | %zu |\n", at_start.rss >> 20, peak.rss >> 20, at_end.rss >> 20, settled.rss >> 20);
-  std::printf("| proportional sets summed (MiB) | %zu | %zu | %zu | %zu |\n", at_start.pss >> 20, peak.pss >> 20, at_end.pss >> 20,
-              settled.pss >> 20);
+  print_soak(seconds, outcomes, {at_start, peak, at_end, settled});
 }
 
 }  // namespace

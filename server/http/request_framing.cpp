@@ -114,20 +114,22 @@ Framed frame_chunked(std::string_view bytes, size_t pos, const FramingLimits& li
   return f;
 }
 
-}  // namespace
-
-Framed frame_request(std::string_view bytes, const FramingLimits& limits) {
-  // The head ends at its first empty line ("\r\n\r\n", or bare "\n\n" from lenient clients).
-  size_t head_end = std::string_view::npos;
+// Where the head ends: after its first empty line ("\r\n\r\n", or bare "\n\n" from lenient
+// clients); npos while there is none yet.
+size_t head_end_of(std::string_view bytes) {
   for (size_t pos = 0; pos < bytes.size();) {
     const size_t eol = bytes.find('\n', pos);
     if (eol == std::string_view::npos) break;
-    if (pos > 0 && (eol == pos || (eol == pos + 1 && bytes[pos] == '\r'))) {
-      head_end = eol + 1;
-      break;
-    }
+    if (pos > 0 && (eol == pos || (eol == pos + 1 && bytes[pos] == '\r'))) return eol + 1;
     pos = eol + 1;
   }
+  return std::string_view::npos;
+}
+
+}  // namespace
+
+Framed frame_request(std::string_view bytes, const FramingLimits& limits) {
+  const size_t head_end = head_end_of(bytes);
   if (head_end == std::string_view::npos || head_end > limits.max_head_bytes) {
     if (std::min(bytes.size(), head_end) > limits.max_head_bytes)
       return invalid(ErrorCode::headers_too_large, "the request head is over " + std::to_string(limits.max_head_bytes >> 10) + " KiB");
