@@ -10,6 +10,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstring>
@@ -33,7 +34,11 @@ constexpr auto kDrainGrace = std::chrono::seconds(5);
 constexpr auto kRefusalWrite = std::chrono::seconds(1);
 // After an error reply the client may still be sending (a body over the limit): its bytes are
 // read and dropped for a while, so the reply is not lost to a reset (nginx's lingering close).
+// A quiet client is let go after kLinger; one that keeps sending, after kLingerAtMost or
+// kLingerBodies bodies' worth of bytes (a 17 MiB body against a 16 MiB limit must still be read).
 constexpr auto kLinger = std::chrono::seconds(2);
+constexpr auto kLingerAtMost = std::chrono::seconds(10);
+constexpr size_t kLingerBodies = 4;
 
 // A complete HTTP/1.1 response that closes the connection, for what this layer answers itself.
 std::string refusal(const Error& error) {
@@ -78,6 +83,7 @@ struct Connection {
   bool close_after_write = false;
   bool linger_after_write = false;  // an error reply: drain what the client still sends, then close
   size_t drained = 0;
+  Clock::time_point linger_until;
   Wait wait = Wait::head;
   Clock::time_point deadline;
 };
@@ -346,16 +352,21 @@ struct ConnectionServer::Impl {
     c.phase = Phase::lingering;
     std::string().swap(c.in);
     watch(c, EPOLLIN | EPOLLRDHUP);
+    c.linger_until = Clock::now() + kLingerAtMost;
     set_deadline(c, Wait::linger, kLinger);
   }
 
   void drain_ready(Connection& c) {
     char sink[65536];
+    const size_t most = kLingerBodies * (limits.framing.max_body_bytes + limits.framing.max_head_bytes);
     while (true) {
       const ssize_t n = ::recv(c.fd, sink, sizeof sink, 0);
-      if (n > 0 && (c.drained += static_cast<size_t>(n)) <= limits.framing.max_body_bytes + limits.framing.max_head_bytes) continue;
+      if (n > 0 && (c.drained += static_cast<size_t>(n)) <= most) continue;
       if (n < 0 && errno == EINTR) continue;
-      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return;
+      if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(c.linger_until - Clock::now());
+        return set_deadline(c, Wait::linger, std::clamp<std::chrono::milliseconds>(left, std::chrono::milliseconds(0), kLinger));
+      }
       return close(c);  // the client is done, or sent more than any request may
     }
   }
