@@ -11,6 +11,10 @@ packages=(
   # libraries
   libglm-dev libopenimageio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
   libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
+  # the optional shared store (Redis client), and the Kubernetes manifests' test (YAML)
+  libhiredis-dev libyaml-cpp-dev
+  # the local cluster and its tests: nginx in front of the replicas, Redis behind them
+  nginx redis-server
   # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them
   blender-data
   # tests and benchmarks; the browser tests drive Debian's chromium with playwright-core
@@ -40,5 +44,14 @@ if [[ $(id -u) -ne 0 ]]; then
   sudo=(sudo)
 fi
 export DEBIAN_FRONTEND=noninteractive
+# nginx and redis-server would start their system services on install; ShadeLab starts its own
+# instances (tools/cluster.sh, the tests), so the packages' services stay stopped. A policy-rc.d
+# that denies every start does that, and is removed again unless the machine already had one.
+policy=/usr/sbin/policy-rc.d
+if [[ ! -e $policy ]]; then
+  printf '#!/bin/sh\nexit 101\n' | "${sudo[@]}" tee "$policy" >/dev/null
+  "${sudo[@]}" chmod 755 "$policy"
+  trap '"${sudo[@]}" rm -f "$policy"' EXIT
+fi
 "${sudo[@]}" apt-get update -qq
 "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -65,6 +65,21 @@ void add_tenant_flags(CLI::App* cmd, http::TenantLimits& t) {
       ->envname("SHADELAB_RATE_LIMIT")->capture_default_str();
   cmd->add_option("--burst", t.burst, "Requests allowed at once over the rate (0: a tenth of a minute's, at least 5)")
       ->envname("SHADELAB_BURST")->capture_default_str();
+  cmd->add_option("--trusted-proxy", t.trusted_proxies,
+                  "Address or CIDR range of a proxy in front (nginx, an ingress) whose X-Forwarded-For names the client "
+                  "for per-address rates (repeatable)")
+      ->envname("SHADELAB_TRUSTED_PROXIES")->delimiter(',');
+}
+
+// Several replicas behind a load balancer share uploads and rendered results through Redis.
+void add_shared_store_flags(CLI::App* cmd, store::SharedStoreConfig& s) {
+  cmd->add_option("--redis", s.url, "Shared store for uploaded meshes and rendered results (redis://HOST[:PORT][/DB]); "
+                  "without it, each server keeps its own in memory")->envname("SHADELAB_REDIS");
+  add_milliseconds(cmd, "--redis-timeout-ms", s.timeout, "Deadline to connect to Redis and for each command (then: recompute)",
+                   "SHADELAB_REDIS_TIMEOUT_MS");
+  cmd->add_option_function<long>("--redis-ttl-s", [&s](long seconds) { s.time_to_live = std::chrono::seconds(seconds); },
+                                 "Expiry of each shared entry, in seconds (Redis also evicts by LRU under its maxmemory)")
+      ->envname("SHADELAB_REDIS_TTL_S")->default_str(std::to_string(s.time_to_live.count()));
 }
 
 // Serves until SIGINT or SIGTERM, which a thread takes to stop the server cleanly (workers reaped).
@@ -81,7 +96,8 @@ int serve(const http::ServiceConfig& config) {
     std::cerr << "error: " << port.error().message << "\n";
     return 1;
   }
-  std::cerr << "shadelab: serving on http://" << config.host << ":" << *port << " with " << config.pool.workers << " render workers\n";
+  std::cerr << "shadelab: serving on http://" << config.host << ":" << *port << " with " << config.pool.workers << " render workers"
+            << (config.shared_store.url.empty() ? std::string() : ", sharing through " + config.shared_store.url) << "\n";
   std::thread([&service, stop_signals] {
     int sig = 0;
     sigwait(&stop_signals, &sig);
@@ -116,6 +132,7 @@ Command add_serve_command(CLI::App& app) {
       ->envname("SHADELAB_MAX_FRAMES")->capture_default_str();
   add_connection_flags(cmd, config->connections);
   add_tenant_flags(cmd, config->tenants);
+  add_shared_store_flags(cmd, config->shared_store);
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
 
   return [=] {

@@ -45,6 +45,7 @@ constexpr ErrorCodeInfo kCodes[] = {
     {ErrorCode::too_many_connections,       "too_many_connections",       429, "Too many connections from this address",                false, true},
     {ErrorCode::rate_limited,               "rate_limited",               429, "Too many requests",                                     false, true},
     {ErrorCode::unauthorized,               "unauthorized",               401, "A valid API key is required",                           false, false},
+    {ErrorCode::store_unavailable,          "store_unavailable",          503, "The shared store is unavailable",                       false, true},
 };
 }  // namespace
 

@@ -47,6 +47,8 @@ enum class ErrorCode {
   too_many_connections,    // this address holds its share of connections already
   rate_limited,            // this key or address is over its request rate
   unauthorized,            // API keys are required and none, or a wrong one, was sent
+  // What a replica answers when the shared store (server/store/) holds the only copy it could use.
+  store_unavailable,       // an uploaded mesh is on another replica and Redis cannot be reached
 };
 
 // Everything known about a code, in one row of the table in error.cpp.

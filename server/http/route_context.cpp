@@ -43,16 +43,19 @@ Expected<std::string> RouteContext::mesh_bytes(ParsedJob& parsed) const {
   if (!parsed.mesh_upload.content.empty()) return parsed.mesh_upload.content;
   const auto& names = scene::builtin_mesh_names();
   if (std::find(names.begin(), names.end(), parsed.job.mesh) != names.end()) return std::string();
-  const auto stored = meshes.get(parsed.job.mesh);
-  if (!stored)
+  auto stored = meshes.get(parsed.job.mesh);
+  if (!stored) return stored.take_error();
+  if (!*stored)
     return make_error(ErrorCode::mesh_not_found, "no mesh '" + parsed.job.mesh + "': use bunny, teapot, or the id POST /api/meshes returned");
-  parsed.job.mesh_format = stored->format;
-  return stored->bytes;
+  parsed.job.mesh_format = (*stored)->format;
+  return (*stored)->bytes;
 }
 
 std::string RouteContext::etag_of(const worker::Message& job, const std::string& form) const {
   const std::string key = form + '\0' + json_text(job.header, -1) + '\0' + job.payload + '\0' + pool.renderer();
-  return "\"" + hex64(fnv1a64(key)) + hex64(fnv1a64(key, 0x9e3779b97f4a7c15ull)) + "\"";
+  // SHA-256, not FNV: with a shared store the key crosses tenants, and a crafted collision would
+  // let one student's job be answered with another's response.
+  return "\"" + sha256_hex(key).substr(0, 32) + "\"";
 }
 
 bool RouteContext::answered_from_cache(const httplib::Request& req, httplib::Response& res, const std::string& etag) {

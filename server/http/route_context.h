@@ -27,6 +27,7 @@ struct RouteContext {
   Metrics& metrics;
   const ConnectionServer& connections;
   Tenants& tenants;
+  store::SharedStore* shared;  // null without --redis
 
   // Runs a job and records its queue time (and a compile failure) in the metrics.
   template <class Result>

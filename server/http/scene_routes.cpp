@@ -93,13 +93,14 @@ Expected<std::vector<worker::SceneMeshBytes>> scene_meshes(RouteContext& c, cons
       out.push_back({ref, scene::mesh_format_of(f->second.filename), f->second.content});
     } else if (!scene::is_builtin_scene_mesh(ref)) {
       const auto stored = c.meshes.get(ref);
-      if (!stored) {
+      if (!stored) return stored.error();
+      if (!*stored) {
         std::string builtins;
         for (const auto& n : scene::builtin_scene_mesh_names()) builtins += (builtins.empty() ? "" : ", ") + n;
         return make_error(ErrorCode::mesh_not_found, "objects[" + std::to_string(i) + "].mesh: no mesh '" + ref + "' (built-ins: " +
                                                          builtins + "; or an id from POST /api/meshes, or a multipart file part of that name)");
       }
-      out.push_back({ref, stored->format, stored->bytes});
+      out.push_back({ref, (*stored)->format, (*stored)->bytes});
     }
   }
   return out;

@@ -38,9 +38,10 @@ void answer_httplib_error(const httplib::Request& req, httplib::Response& res) {
 }
 
 // API keys and rates apply to the API; probes, metrics and the page's files are always served.
-bool admit(Tenants& tenants, const httplib::Request& req, httplib::Response& res) {
+bool admit(Tenants& tenants, const TenantLimits& limits, const httplib::Request& req, httplib::Response& res) {
   if (req.path.rfind("/api/", 0) != 0) return true;
-  const auto verdict = tenants.admit(req.get_header_value("Authorization"), req.remote_addr);
+  const std::string client = client_address(req.remote_addr, req.get_header_value("X-Forwarded-For"), limits.trusted_proxies);
+  const auto verdict = tenants.admit(req.get_header_value("Authorization"), client);
   if (!verdict.refused) return true;
   send_problem(res, *verdict.refused, req.path);
   if (verdict.refused->code == ErrorCode::rate_limited) {
@@ -68,6 +69,16 @@ ServiceConfig with_body_limit(ServiceConfig c) {
   return c;
 }
 
+std::unique_ptr<store::SharedStore> open_shared(const store::SharedStoreConfig& config, std::optional<Error>& error) {
+  if (config.url.empty()) return nullptr;
+  auto opened = store::SharedStore::open(config);
+  if (!opened) {
+    error = opened.take_error();
+    return nullptr;
+  }
+  return std::move(*opened);
+}
+
 // httplib's routing and request parsing, run on a request the connection layer read whole.
 class RequestProcessor : public httplib::Server {
  public:
@@ -88,6 +99,8 @@ struct Service::Impl {
   RequestProcessor server;
   ConnectionServer connections;
   std::unique_ptr<worker::WorkerPool> pool;
+  std::unique_ptr<store::SharedStore> shared;
+  std::optional<Error> shared_error;  // a malformed --redis, reported by start()
   MeshStore meshes;
   ResponseCache cache;
   Metrics metrics;
@@ -100,11 +113,12 @@ struct Service::Impl {
   explicit Impl(ServiceConfig c)
       : config(with_body_limit(std::move(c))),
         connections(config.connections, [this](IncomingRequest r) { return server.process(r); }),
-        meshes(config.limits.max_stored_meshes),
-        cache(config.cache_bytes) {}
+        shared(open_shared(config.shared_store, shared_error)),
+        meshes(config.limits.max_stored_meshes, shared.get()),
+        cache(config.cache_bytes, shared.get()) {}
 
   void routes() {
-    context.emplace(RouteContext{config, *pool, meshes, cache, metrics, connections, *tenants});
+    context.emplace(RouteContext{config, *pool, meshes, cache, metrics, connections, *tenants, shared.get()});
     add_render_routes(server, *context);
     add_grade_routes(server, *context);
     add_scene_routes(server, *context);
@@ -115,7 +129,7 @@ struct Service::Impl {
 
     server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       request_start = Clock::now();
-      return admit(*tenants, req, res) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
+      return admit(*tenants, config.tenants, req, res) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
     });
     server.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
       metrics.request(metrics_route(req), res.status, std::chrono::duration<double>(Clock::now() - request_start).count());
@@ -130,6 +144,8 @@ Service::~Service() { stop(); }
 
 Expected<int> Service::start() {
   auto& i = *impl_;
+  if (i.shared_error) return *i.shared_error;
+  if (auto ranges = check_address_ranges(i.config.tenants.trusted_proxies); !ranges) return ranges.take_error();
   // The port first: a server that cannot listen starts no workers.
   std::vector<ApiKey> keys;
   if (!i.config.tenants.api_keys_file.empty()) {

@@ -8,6 +8,7 @@
 #include "http/connection_server.h"
 #include "http/limits.h"
 #include "http/tenants.h"
+#include "store/shared_store.h"
 #include "worker/pool.h"
 
 namespace shadelab::http {
@@ -20,6 +21,7 @@ struct ServiceConfig {
   worker::PoolConfig pool;
   Limits limits;
   size_t cache_bytes = 64u << 20;
+  store::SharedStoreConfig shared_store;  // Redis shared by the replicas; empty url: none
   std::string web_root;  // served at /; empty: no static files
 };
 

@@ -36,7 +36,7 @@ void add_service_routes(httplib::Server& server, RouteContext& c) {
   });
   server.Get("/metrics", [&c](const httplib::Request&, httplib::Response& res) {
     res.set_content(c.metrics.render(c.pool.stats(), c.pool.ready()) + render_connection_metrics(c.connections.stats()) +
-                        c.tenants.render_metrics(),
+                        c.tenants.render_metrics() + (c.shared ? c.shared->render_metrics() : std::string()),
                     "text/plain; version=0.0.4");
   });
 }

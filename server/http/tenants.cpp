@@ -1,5 +1,7 @@
 #include "http/tenants.h"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -105,6 +107,88 @@ std::string Tenants::render_metrics() const {
       << "# TYPE shadelab_key_requests_total counter\n";
   for (const auto& [name, n] : requests_by_key_) out << "shadelab_key_requests_total{key=\"" << name << "\"} " << n << "\n";
   return out.str();
+}
+
+}  // namespace shadelab::http
+
+namespace shadelab::http {
+
+namespace {
+
+// An address as bytes (4 for IPv4, 16 for IPv6); empty when it is neither.
+std::string address_bytes(const std::string& text) {
+  unsigned char buf[16];
+  if (inet_pton(AF_INET, text.c_str(), buf) == 1) return std::string(reinterpret_cast<char*>(buf), 4);
+  if (inet_pton(AF_INET6, text.c_str(), buf) == 1) return std::string(reinterpret_cast<char*>(buf), 16);
+  return "";
+}
+
+struct Range {
+  std::string network;
+  int prefix_bits = 0;
+};
+
+std::optional<Range> parse_range(const std::string& text) {
+  const auto slash = text.find('/');
+  Range r{address_bytes(text.substr(0, slash)), 0};
+  if (r.network.empty()) return std::nullopt;
+  const int max_bits = static_cast<int>(r.network.size()) * 8;
+  r.prefix_bits = max_bits;
+  if (slash != std::string::npos) {
+    const std::string bits = text.substr(slash + 1);
+    if (bits.empty() || bits.size() > 3 || !std::all_of(bits.begin(), bits.end(), [](char c) { return c >= '0' && c <= '9'; })) return std::nullopt;
+    r.prefix_bits = std::stoi(bits);
+    if (r.prefix_bits > max_bits) return std::nullopt;
+  }
+  return r;
+}
+
+bool in_range(const std::string& address, const Range& r) {
+  if (address.size() != r.network.size()) return false;
+  for (int bit = 0; bit < r.prefix_bits; ++bit) {
+    const int mask = 0x80 >> (bit % 8);
+    if ((address[bit / 8] & mask) != (r.network[bit / 8] & mask)) return false;
+  }
+  return true;
+}
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+}  // namespace
+
+bool address_in(const std::string& address, const std::vector<std::string>& ranges) {
+  const std::string bytes = address_bytes(address);
+  if (bytes.empty()) return false;
+  for (const auto& text : ranges)
+    if (const auto r = parse_range(text); r && in_range(bytes, *r)) return true;
+  return false;
+}
+
+Status check_address_ranges(const std::vector<std::string>& ranges) {
+  for (const auto& r : ranges)
+    if (!parse_range(r)) return make_error(ErrorCode::invalid_argument, "--trusted-proxy takes an address or a CIDR range; got '" + r + "'");
+  return Ok{};
+}
+
+std::string client_address(const std::string& peer, const std::string& forwarded_for, const std::vector<std::string>& trusted_proxies) {
+  if (trusted_proxies.empty() || !address_in(peer, trusted_proxies)) return peer;
+  std::string client = peer;
+  size_t end = forwarded_for.size();
+  while (end > 0) {
+    const size_t comma = forwarded_for.rfind(',', end - 1);
+    const size_t begin = comma == std::string::npos ? 0 : comma + 1;
+    const std::string hop = trim(forwarded_for.substr(begin, end - begin));
+    if (address_bytes(hop).empty()) break;  // not an address: stop believing the chain here
+    client = hop;
+    if (!address_in(hop, trusted_proxies)) break;
+    if (comma == std::string::npos) break;
+    end = comma;
+  }
+  return client;
 }
 
 }  // namespace shadelab::http

@@ -26,7 +26,18 @@ struct TenantLimits {
   double requests_per_minute = 0;   // per key, or per address without keys; 0: no limit
   double burst = 0;                 // requests at once at the default rate (a key with its own rate: in proportion);
                                     // 0: a tenth of a minute's rate, at least 5
+  std::vector<std::string> trusted_proxies;  // addresses or CIDR ranges whose X-Forwarded-For is believed
 };
+
+// The client a request comes from: its peer's address, or where the peer is a trusted proxy
+// (nginx, an ingress controller), the last address in X-Forwarded-For that is not itself a trusted
+// proxy. Only what trusted proxies appended is believed: a client can write any X-Forwarded-For,
+// but nginx appends the address it saw, so the right-most untrusted entry is the real one.
+std::string client_address(const std::string& peer, const std::string& forwarded_for, const std::vector<std::string>& trusted_proxies);
+// Whether `address` is in one of `ranges` ("10.0.0.0/8", "127.0.0.1", "fd00::/8").
+bool address_in(const std::string& address, const std::vector<std::string>& ranges);
+// A malformed range is an invalid_argument naming it.
+Status check_address_ranges(const std::vector<std::string>& ranges);
 
 // The keys file: one key per line, `KEY NAME [REQUESTS_PER_MINUTE]`; `#` starts a comment.
 Expected<std::vector<ApiKey>> read_api_keys(const std::string& path);

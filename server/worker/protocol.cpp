@@ -44,16 +44,53 @@ ReadStatus read_all(int fd, char* data, size_t size, Clock::time_point deadline)
 }
 }  // namespace
 
+namespace {
+// Student text (file names, driver logs) may hold invalid UTF-8: replace it, never throw.
+std::string header_text(const Message& message) {
+  return message.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+struct Prefix {
+  char bytes[12];
+  Prefix(size_t header_size, size_t payload_size) {
+    const auto h = static_cast<std::uint32_t>(header_size);
+    const auto p = static_cast<std::uint64_t>(payload_size);
+    std::memcpy(bytes, &h, 4);
+    std::memcpy(bytes + 4, &p, 8);
+  }
+};
+}  // namespace
+
 bool write_message(int fd, const Message& message) {
-  // Student text (file names, driver logs) may hold invalid UTF-8: replace it, never throw.
-  const std::string header = message.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  char prefix[12];
-  const auto header_size = static_cast<std::uint32_t>(header.size());
-  const auto payload_size = static_cast<std::uint64_t>(message.payload.size());
-  std::memcpy(prefix, &header_size, 4);
-  std::memcpy(prefix + 4, &payload_size, 8);
-  return write_all(fd, prefix, sizeof prefix) && write_all(fd, header.data(), header.size()) &&
+  const std::string header = header_text(message);
+  const Prefix prefix(header.size(), message.payload.size());
+  return write_all(fd, prefix.bytes, sizeof prefix.bytes) && write_all(fd, header.data(), header.size()) &&
          write_all(fd, message.payload.data(), message.payload.size());
+}
+
+std::string encode_message(const Message& message) {
+  const std::string header = header_text(message);
+  const Prefix prefix(header.size(), message.payload.size());
+  std::string out;
+  out.reserve(sizeof prefix.bytes + header.size() + message.payload.size());
+  out.append(prefix.bytes, sizeof prefix.bytes).append(header).append(message.payload);
+  return out;
+}
+
+Expected<Message> decode_message(std::string_view bytes) {
+  const auto malformed = [] { return make_error(ErrorCode::worker_protocol, "a stored message is truncated or malformed"); };
+  std::uint32_t header_size = 0;
+  std::uint64_t payload_size = 0;
+  if (bytes.size() < 12) return malformed();
+  std::memcpy(&header_size, bytes.data(), 4);
+  std::memcpy(&payload_size, bytes.data() + 4, 8);
+  if (header_size > kMaxHeaderBytes || payload_size > kMaxPayloadBytes || bytes.size() != 12 + header_size + payload_size)
+    return malformed();
+  Message message;
+  message.header = nlohmann::json::parse(bytes.substr(12, header_size), nullptr, false);
+  if (message.header.is_discarded()) return malformed();
+  message.payload = bytes.substr(12 + header_size);
+  return message;
 }
 
 ReadStatus read_message(int fd, Message& message, Clock::time_point deadline) {

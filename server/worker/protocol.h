@@ -25,6 +25,11 @@ enum class ReadStatus { ok, timeout, closed, malformed };
 // Waits until `deadline` for a whole message.
 ReadStatus read_message(int fd, Message& message, std::chrono::steady_clock::time_point deadline);
 
+// The same layout in one string, for a message kept outside a socket (the shared store's values).
+std::string encode_message(const Message& message);
+// A worker_protocol error when `bytes` is not exactly one well-formed message.
+Expected<Message> decode_message(std::string_view bytes);
+
 // Files carried in a payload back to back; the header holds their index, [{name, offset, size}].
 struct PayloadPart {
   std::string name;
