@@ -1,6 +1,7 @@
 // shadelab grade: one submission, or a folder of them (one folder per student), graded against a
 // checkpoint through render workers, so a submission that hangs or crashes is scored 0 with the
-// reason while the batch goes on.
+// reason while the batch goes on. With --server, the batch is graded by a ShadeLab server (or a
+// cluster behind nginx) instead; --shard splits it over a job array. Both resume (class_batch.h).
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -8,7 +9,9 @@
 #include <iterator>
 #include <thread>
 
+#include "cli/class_batch.h"
 #include "cli/commands.h"
+#include "cli/server_grader.h"
 #include "cli/environment.h"
 #include "grade/report.h"
 #include "grade/grade_session.h"
@@ -25,7 +28,9 @@ using nlohmann::json;
 struct GradeFlags {
   std::string vert, frag, submissions, reference = "specular", mesh = "bunny", out = "grades", output, heatmap;
   std::string format = "json", size = "640x480";
-  int frames = 9, workers = 0;
+  int frames = 9, workers = 0, concurrency = 0;
+  std::string server, api_key, shard = "0/1";
+  long retry_for_s = 300;
   double threshold = 0.016, max_failing = 0.01, max_score = 1.0;
   bool spatial = false;
   long timeout_ms = 10000;
@@ -99,15 +104,6 @@ void write(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
-std::string csv(std::string s) {
-  for (auto& c : s)
-    if (c == '\n') c = ' ';
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
   worker::PoolConfig c;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -131,56 +127,50 @@ int run_single(const GradeFlags& f) {
   return 0;
 }
 
-int run_batch(const GradeFlags& f) {
-  std::vector<fs::path> students;
-  for (const auto& e : fs::directory_iterator(f.submissions))
-    if (e.is_directory()) students.push_back(e.path());
-  std::sort(students.begin(), students.end());
-  if (students.empty()) {
-    std::cerr << "error: no submission folders in " << f.submissions << "\n";
-    return 2;
-  }
-  worker::WorkerPool pool(pool_config(f, static_cast<int>(students.size())));
-  std::vector<Graded> outcomes(students.size());
-  std::atomic<size_t> done{0};
-  std::mutex print;
-  const auto progress = [&](const std::string& who) {
-    std::lock_guard lock(print);
-    const size_t n = done, total = students.size(), width = 30;
-    std::cerr << "\r[" << std::string(n * width / total, '#') << std::string(width - n * width / total, ' ') << "] " << n << "/"
-              << total << " " << who << std::string(20, ' ') << std::flush;
-  };
-  // One thread per submission just waits on the pool, which runs them `workers` at a time.
-  std::vector<std::thread> threads;
-  for (size_t i = 0; i < students.size(); ++i)
-    threads.emplace_back([&, i] {
-      const auto pair = find_pair(students[i], f.reference);
-      if (!pair) {
-        outcomes[i].result.report = grade::failed_submission(
-            make_error(ErrorCode::invalid_argument, "no shader pair found (expected *_vert.js and *_frag.js)"), f.reference, f.max_score);
-      } else {
-        outcomes[i] = grade_one(pool, f, pair->first, pair->second);
-      }
-      ++done;
-      progress(students[i].filename().string());
-    });
-  for (auto& t : threads) t.join();
-  std::cerr << "\n";
+// The POST /api/grade request for one submission, with the same options the in-process batch uses.
+nlohmann::json server_request(const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+  int width = 0, height = 0;
+  std::sscanf(f.size.c_str(), "%dx%d", &width, &height);
+  return {{"vertex", read_text(vert)}, {"vertexName", vert.filename().string()}, {"fragment", read_text(frag)},
+          {"fragmentName", frag.filename().string()}, {"reference", f.reference}, {"mesh", f.mesh}, {"frames", f.frames},
+          {"width", width}, {"height", height}, {"threshold", f.threshold}, {"maxFailingFraction", f.max_failing},
+          {"spatialTolerance", f.spatial}, {"maxScore", f.max_score}, {"format", "json"}};
+}
 
-  std::string summary = "student,score,max_score,pass,diagnosis,message\n";
-  double total = 0;
-  for (size_t i = 0; i < students.size(); ++i) {
-    const auto& r = outcomes[i].result.report;
-    const std::string who = students[i].filename().string();
-    write(fs::path(f.out) / who / "results.json", grade::to_gradescope(r, outcomes[i].seconds).dump(2) + "\n");
-    summary += csv(who) + "," + std::to_string(r.score) + "," + std::to_string(r.max_score) + "," + (r.pass ? "true" : "false") + "," +
-               csv(r.diagnosis) + "," + csv(r.messages.empty() ? "" : r.messages[0]) + "\n";
-    total += r.score;
+// A folder without a shader pair is graded 0 with the reason, wherever the batch runs.
+std::optional<StudentGrade> without_pair(const GradeFlags& f, const Student& s, std::optional<std::pair<fs::path, fs::path>>& pair) {
+  pair = find_pair(s.dir, f.reference);
+  if (pair) return std::nullopt;
+  return StudentGrade{grade::failed_submission(make_error(ErrorCode::invalid_argument, "no shader pair found (expected *_vert.js and *_frag.js)"),
+                                               f.reference, f.max_score), 0};
+}
+
+int run_batch(const GradeFlags& f) {
+  auto shard = parse_shard(f.shard);
+  if (!shard) return fail(shard.error());
+  BatchOptions options{f.submissions, f.out, f.concurrency, *shard};
+  if (!f.server.empty()) {
+    const ServerOptions server{f.server, f.api_key, std::chrono::seconds(f.retry_for_s)};
+    if (options.concurrency <= 0) options.concurrency = 4;
+    return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
+      std::optional<std::pair<fs::path, fs::path>> pair;
+      if (auto zero = without_pair(f, s, pair)) return *zero;
+      auto graded = grade_on_server(server, server_request(f, pair->first, pair->second));
+      if (!graded) return graded.take_error();
+      return StudentGrade{std::move(graded->report), graded->seconds};
+    });
   }
-  write(fs::path(f.out) / "summary.csv", summary);
-  std::cerr << "graded " << students.size() << " submissions, mean score " << total / static_cast<double>(students.size())
-            << "; results in " << f.out << "/\n";
-  return 0;
+  // In process: as many submissions in flight as the pool has workers, and one more queued.
+  size_t count = 0;
+  for (const auto& e : fs::directory_iterator(f.submissions)) count += e.is_directory() ? 1 : 0;
+  worker::WorkerPool pool(pool_config(f, static_cast<int>(count)));
+  if (options.concurrency <= 0) options.concurrency = pool_config(f, static_cast<int>(count)).workers + 1;
+  return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
+    std::optional<std::pair<fs::path, fs::path>> pair;
+    if (auto zero = without_pair(f, s, pair)) return *zero;
+    Graded graded = grade_one(pool, f, pair->first, pair->second);
+    return StudentGrade{std::move(graded.result.report), graded.seconds};
+  });
 }
 
 }  // namespace
@@ -204,6 +194,14 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--heatmap", f->heatmap, "Write the difference heat map grid PNG here (single submission)");
   cmd->add_option("--out", f->out, "Batch: folder for <student>/results.json and summary.csv")->capture_default_str();
   cmd->add_option("--workers", f->workers, "Render workers (default: one per core)");
+  cmd->add_option("--server", f->server, "Batch: grade through this ShadeLab server or cluster (http://HOST:PORT) instead of local workers")
+      ->envname("SHADELAB_SERVER");
+  cmd->add_option("--api-key", f->api_key, "Batch with --server: the API key to send")->envname("SHADELAB_API_KEY");
+  cmd->add_option("--concurrency", f->concurrency, "Batch: submissions in flight at once (default: 4 with --server, else workers + 1)");
+  cmd->add_option("--shard", f->shard, "Batch: grade only shard I of N (0 <= I < N), e.g. --shard $SLURM_ARRAY_TASK_ID/8")
+      ->capture_default_str();
+  cmd->add_option("--retry-for-s", f->retry_for_s, "Batch with --server: how long to keep retrying one submission, then stop")
+      ->capture_default_str();
   cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission, in CPU time (a timeout is retried once)")->capture_default_str();
   cmd->add_flag("--software", f->software, "Force Mesa's software renderer");
   return [f] {

@@ -1,0 +1,211 @@
+#include "cli/class_batch.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "core/hash.h"
+
+namespace shadelab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// One finished student, as the journal and the summary hold it.
+struct Entry {
+  std::string student;
+  double score = 0, max_score = 0;
+  bool pass = false;
+  std::string diagnosis, message;
+};
+
+json to_json(const Entry& e) {
+  return {{"student", e.student}, {"score", e.score}, {"maxScore", e.max_score}, {"pass", e.pass},
+          {"diagnosis", e.diagnosis}, {"message", e.message}};
+}
+
+std::optional<Entry> entry_from(const std::string& line) {
+  const json j = json::parse(line, nullptr, false);
+  if (!j.is_object() || !j.contains("student") || !j["student"].is_string()) return std::nullopt;  // a line cut short by a kill
+  return Entry{j["student"], j.value("score", 0.0), j.value("maxScore", 0.0), j.value("pass", false),
+               j.value("diagnosis", ""), j.value("message", "")};
+}
+
+std::string journal_name(const Shard& s) {
+  if (s.count == 1) return "graded.jsonl";
+  return "graded-shard-" + std::to_string(s.index) + "-of-" + std::to_string(s.count) + ".jsonl";
+}
+
+// Every student any journal in `out` records (this shard's and, in a shared folder, the others').
+std::map<std::string, Entry> read_journals(const fs::path& out) {
+  std::map<std::string, Entry> entries;
+  if (!fs::is_directory(out)) return entries;
+  for (const auto& f : fs::directory_iterator(out)) {
+    const std::string name = f.path().filename().string();
+    if (!name.starts_with("graded") || !name.ends_with(".jsonl")) continue;
+    std::ifstream in(f.path());
+    for (std::string line; std::getline(in, line);)
+      if (auto e = entry_from(line)) entries[e->student] = std::move(*e);
+  }
+  return entries;
+}
+
+// Appends whole lines with one write each (O_APPEND), so a kill leaves at most one cut line,
+// which the reader skips; a cut line is ended first so the next one starts clean.
+class Journal {
+ public:
+  explicit Journal(const fs::path& path) : fd_(::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644)) {
+    if (fd_ >= 0 && fs::file_size(path) > 0) {
+      std::ifstream in(path, std::ios::binary);
+      in.seekg(-1, std::ios::end);
+      if (in.get() != '\n') append_raw("\n");
+    }
+  }
+  ~Journal() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  bool ok() const { return fd_ >= 0; }
+  void append(const Entry& e) { append_raw(to_json(e).dump() + "\n"); }
+
+ private:
+  void append_raw(const std::string& text) {
+    std::lock_guard lock(mutex_);
+    if (::write(fd_, text.data(), text.size()) != static_cast<ssize_t>(text.size())) std::cerr << "\nwarning: the journal write failed\n";
+  }
+  int fd_;
+  std::mutex mutex_;
+};
+
+// Written beside and renamed over: a reader never sees half a file.
+void write_atomically(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
+  std::ofstream(temporary, std::ios::binary) << text;
+  fs::rename(temporary, path);
+}
+
+std::string csv(std::string s) {
+  for (auto& c : s)
+    if (c == '\n') c = ' ';
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+void write_summary(const fs::path& out, const std::map<std::string, Entry>& entries) {
+  std::string summary = "student,score,max_score,pass,diagnosis,message\n";
+  for (const auto& [who, e] : entries)
+    summary += csv(who) + "," + std::to_string(e.score) + "," + std::to_string(e.max_score) + "," + (e.pass ? "true" : "false") + "," +
+               csv(e.diagnosis) + "," + csv(e.message) + "\n";
+  write_atomically(out / "summary.csv", summary);
+}
+
+std::vector<Student> students_of(const BatchOptions& o) {
+  std::vector<Student> students;
+  for (const auto& e : fs::directory_iterator(o.submissions))
+    if (e.is_directory() && in_shard(e.path().filename().string(), o.shard)) students.push_back({e.path().filename().string(), e.path()});
+  std::sort(students.begin(), students.end(), [](const Student& a, const Student& b) { return a.name < b.name; });
+  return students;
+}
+
+class ProgressBar {
+ public:
+  ProgressBar(size_t total, size_t done) : total_(std::max<size_t>(total, 1)), done_(done) {}
+  void finished(const std::string& who) {
+    std::lock_guard lock(mutex_);
+    const size_t n = ++done_, width = 30, filled = n * width / total_;
+    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << n << "/" << total_ << " " << who
+              << std::string(20, ' ') << std::flush;
+  }
+
+ private:
+  size_t total_, done_;
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+Expected<Shard> parse_shard(const std::string& text) {
+  Shard s;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &s.index, &s.count, &extra) != 2 || s.count < 1 || s.index < 0 || s.index >= s.count)
+    return make_error(ErrorCode::invalid_argument, "--shard takes I/N with 0 <= I < N (a job array's task index and size); got '" + text + "'");
+  return s;
+}
+
+bool in_shard(const std::string& student, const Shard& shard) {
+  return fnv1a64(student) % static_cast<std::uint64_t>(shard.count) == static_cast<std::uint64_t>(shard.index);
+}
+
+int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
+  const auto students = students_of(o);
+  if (students.empty()) {
+    std::cerr << "error: no submission folders in " << o.submissions << (o.shard.count > 1 ? " for this shard" : "") << "\n";
+    return 2;
+  }
+  fs::create_directories(o.out);
+  const auto earlier = read_journals(o.out);
+  std::vector<Student> todo;
+  for (const auto& s : students)
+    if (!earlier.contains(s.name)) todo.push_back(s);
+  if (todo.size() < students.size())
+    std::cerr << students.size() - todo.size() << " of " << students.size() << " already graded in " << o.out.string() << "; grading the other "
+              << todo.size() << "\n";
+
+  Journal journal(o.out / journal_name(o.shard));
+  if (!journal.ok()) {
+    std::cerr << "error: cannot write the journal in " << o.out << "\n";
+    return 1;
+  }
+  ProgressBar progress(students.size(), students.size() - todo.size());
+  std::atomic<size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex first_error_mutex;
+  std::optional<Error> first_error;
+  const auto work = [&] {
+    for (size_t i; !stop && (i = next++) < todo.size();) {
+      const Student& s = todo[i];
+      auto graded = grade_student(s);
+      if (!graded) {
+        std::lock_guard lock(first_error_mutex);
+        if (!first_error) first_error = graded.take_error();
+        stop = true;
+        return;
+      }
+      const auto& r = graded->report;
+      write_atomically(o.out / s.name / "results.json", grade::to_gradescope(r, graded->seconds).dump(2) + "\n");
+      journal.append({s.name, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0]});
+      progress.finished(s.name);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < std::max(1, std::min<int>(o.concurrency, static_cast<int>(todo.size()))); ++t) threads.emplace_back(work);
+  for (auto& t : threads) t.join();
+  std::cerr << "\n";
+
+  const auto entries = read_journals(o.out);
+  write_summary(o.out, entries);
+  if (first_error) {
+    std::cerr << "error: the batch stopped: " << first_error->message << " [" << info(first_error->code).name << "]\n"
+              << "run the same command again to grade the rest (finished students are kept)\n";
+    return 1;
+  }
+  double total = 0;
+  for (const auto& s : students) total += entries.at(s.name).score;
+  std::cerr << "graded " << students.size() << " submissions" << (o.shard.count > 1 ? " in this shard" : "") << ", mean score "
+            << total / static_cast<double>(students.size()) << "; results in " << o.out.string() << "/\n";
+  return 0;
+}
+
+}  // namespace shadelab::cli

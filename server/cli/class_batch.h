@@ -1,0 +1,54 @@
+#pragma once
+// A class graded as a batch, however each submission is graded (by this process's render
+// workers, or by a ShadeLab server): one folder per student, K at a time, a progress bar, and
+// a journal that makes the batch resumable and splittable.
+//
+// | file in --out                         | what                                                   |
+// |---------------------------------------|--------------------------------------------------------|
+// | <student>/results.json                | Gradescope's results.json for that student             |
+// | graded.jsonl (graded-shard-I-of-N.jsonl) | one line per finished student, appended as each ends |
+// | summary.csv                           | every student found in the journals, sorted           |
+//
+// A student with a line in any journal is not graded again, so the same command run again (or a
+// job array's task rerun) carries on where it stopped. `--shard I/N` takes the students whose
+// name hashes to I modulo N: stable when students are added, so shards never overlap.
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "core/expected.h"
+#include "grade/report.h"
+
+namespace shadelab::cli {
+
+struct Shard {
+  int index = 0, count = 1;  // 0 <= index < count
+};
+// "I/N", 0 <= I < N.
+Expected<Shard> parse_shard(const std::string& text);
+bool in_shard(const std::string& student, const Shard& shard);
+
+struct Student {
+  std::string name;
+  std::filesystem::path dir;
+};
+
+struct StudentGrade {
+  grade::Report report;
+  double seconds = 0;
+};
+
+// Grades one student. An Error stops the batch (a wrong API key, a server gone for minutes):
+// the student is not recorded, and the next run grades them.
+using GradeStudent = std::function<Expected<StudentGrade>(const Student&)>;
+
+struct BatchOptions {
+  std::filesystem::path submissions, out;
+  int concurrency = 1;
+  Shard shard;
+};
+
+// Exit status: 0 when every student of the shard is graded, 1 when the batch stopped on an error.
+int run_class_batch(const BatchOptions& options, const GradeStudent& grade_student);
+
+}  // namespace shadelab::cli
