@@ -73,7 +73,7 @@ void add_tenant_flags(CLI::App* cmd, http::TenantLimits& t) {
 
 // Several replicas behind a load balancer share uploads and rendered results through Redis.
 void add_shared_store_flags(CLI::App* cmd, store::SharedStoreConfig& s) {
-  cmd->add_option("--redis", s.url, "Shared store for uploaded meshes and rendered results (redis://HOST[:PORT][/DB]); "
+  cmd->add_option("--redis", s.url, "Shared store for uploaded meshes and rendered results (redis://HOST[:PORT][/DB] or unix:///PATH); "
                   "without it, each server keeps its own in memory")->envname("SHADELAB_REDIS");
   add_milliseconds(cmd, "--redis-timeout-ms", s.timeout, "Deadline to connect to Redis and for each command (then: recompute)",
                    "SHADELAB_REDIS_TIMEOUT_MS");

@@ -29,9 +29,15 @@ bool parse_int(std::string_view text, int& out) {
 
 Expected<RedisAddress> parse_redis_url(std::string_view url) {
   const auto bad = [&] {
-    return make_error(ErrorCode::invalid_argument, "--redis takes redis://HOST[:PORT][/DB] or HOST[:PORT]; got '" + std::string(url) + "'");
+    return make_error(ErrorCode::invalid_argument,
+                      "--redis takes redis://HOST[:PORT][/DB], HOST[:PORT] or unix:///PATH; got '" + std::string(url) + "'");
   };
   RedisAddress a;
+  if (url.starts_with("unix://")) {
+    a.socket_path = url.substr(7);
+    if (a.socket_path.empty() || a.socket_path[0] != '/') return bad();
+    return a;
+  }
   std::string_view rest = url;
   if (rest.starts_with("redis://")) rest.remove_prefix(8);
   if (const auto slash = rest.find('/'); slash != std::string_view::npos) {
@@ -63,7 +69,9 @@ struct SharedStore::Connection {
 
 SharedStore::SharedStore(SharedStoreConfig config, RedisAddress address)
     : config_(std::move(config)), address_(std::move(address)) {
-  description_ = "redis://" + address_.host + ":" + std::to_string(address_.port) + "/" + std::to_string(address_.db);
+  description_ = address_.socket_path.empty()
+                     ? "redis://" + address_.host + ":" + std::to_string(address_.port) + "/" + std::to_string(address_.db)
+                     : "unix://" + address_.socket_path;
 }
 
 SharedStore::~SharedStore() = default;
@@ -97,9 +105,11 @@ Expected<std::unique_ptr<SharedStore::Connection>> SharedStore::acquire() {
     }
   }
   auto c = std::make_unique<Connection>();
-  c->context = redisConnectWithTimeout(address_.host.c_str(), address_.port, to_timeval(config_.timeout));
+  const timeval timeout = to_timeval(config_.timeout);
+  c->context = address_.socket_path.empty() ? redisConnectWithTimeout(address_.host.c_str(), address_.port, timeout)
+                                            : redisConnectUnixWithTimeout(address_.socket_path.c_str(), timeout);
   if (!c->context || c->context->err) return failed(c->context ? c->context->errstr : "cannot allocate a connection");
-  redisSetTimeout(c->context, to_timeval(config_.timeout));
+  redisSetTimeout(c->context, timeout);
   std::string error;
   if (address_.db != 0 && !c->command(error, "SELECT %d", address_.db)) return failed(error);
   return c;

@@ -21,11 +21,12 @@ struct redisContext;
 namespace shadelab::store {
 
 struct RedisAddress {
+  std::string socket_path;  // a Unix socket (Redis on the same machine), else host and port
   std::string host;
   int port = 6379;
   int db = 0;
 };
-// `redis://HOST[:PORT][/DB]` or `HOST[:PORT]`.
+// `redis://HOST[:PORT][/DB]`, `HOST[:PORT]`, or `unix:///PATH/TO/redis.sock`.
 Expected<RedisAddress> parse_redis_url(std::string_view url);
 
 struct SharedStoreConfig {
