@@ -122,6 +122,41 @@ TEST(TenantTest, WithoutKeysTheRateIsPerAddress) {
   EXPECT_EQ(probe->status, 200);
 }
 
+// Behind nginx every connection comes from the proxy: the client is the address nginx appended.
+TEST(TenantTest, BehindATrustedProxyTheRateIsPerForwardedClient) {
+  auto config = test_config();
+  config.tenants.requests_per_minute = 60;
+  config.tenants.burst = 2;
+  config.tenants.trusted_proxies = {"127.0.0.0/8"};
+  RunningService server(config);
+  ASSERT_TRUE(server.ok()) << server.failure;
+  const auto status_for = [&](const std::string& forwarded_for) {
+    auto r = server.client().Get("/api/presets", {{"X-Forwarded-For", forwarded_for}});
+    return r ? r->status : 0;
+  };
+  // Two students behind the proxy: each has a bucket of their own.
+  EXPECT_EQ(status_for("203.0.113.7"), 200);
+  EXPECT_EQ(status_for("203.0.113.7"), 200);
+  EXPECT_EQ(status_for("203.0.113.7"), 429);
+  EXPECT_EQ(status_for("198.51.100.9"), 200);
+  // What a client wrote itself sits left of what nginx appended, and is not believed.
+  EXPECT_EQ(status_for("198.51.100.77, 203.0.113.7"), 429);
+}
+
+TEST(TenantTest, ForwardedForIsBelievedOnlyFromTrustedProxies) {
+  const std::vector<std::string> trusted = {"10.0.0.0/8", "fd00::/8", "192.0.2.1"};
+  EXPECT_EQ(http::client_address("198.51.100.1", "203.0.113.7", trusted), "198.51.100.1");  // not a proxy: its own address
+  EXPECT_EQ(http::client_address("10.1.2.3", "203.0.113.7", trusted), "203.0.113.7");
+  EXPECT_EQ(http::client_address("10.1.2.3", "1.1.1.1, 203.0.113.7, 10.9.9.9", trusted), "203.0.113.7");  // two proxies
+  EXPECT_EQ(http::client_address("192.0.2.1", "not-an-address", trusted), "192.0.2.1");
+  EXPECT_EQ(http::client_address("fd12::1", "2001:db8::5", trusted), "2001:db8::5");
+  EXPECT_EQ(http::client_address("10.1.2.3", "", trusted), "10.1.2.3");
+  EXPECT_FALSE(http::address_in("11.0.0.1", trusted));
+  EXPECT_TRUE(http::check_address_ranges({"10.0.0.0/8", "::1"}));
+  EXPECT_FALSE(http::check_address_ranges({"10.0.0.0/33"}));
+  EXPECT_FALSE(http::check_address_ranges({"nginx"}));
+}
+
 TEST(TenantTest, AnUnreadableKeysFileStopsTheStart) {
   auto config = test_config();
   config.tenants.api_keys_file = "/nonexistent/keys";

@@ -5,6 +5,7 @@
 #include "core/embedded_files.h"
 #include "grade/grade_session.h"
 #include "worker/job.h"
+#include "worker/protocol.h"
 #include "worker/result.h"
 
 using namespace shadelab;
@@ -129,3 +130,24 @@ TEST(WireTest, CompileMeshGradeAndSceneResultsRoundTrip) {
   EXPECT_EQ(back.report.detail<scene_render::FramingDetail>()->guard_band_renders, 1);
   EXPECT_EQ(back.png, "png");
 }
+
+namespace shadelab::worker {
+namespace {
+
+// The shared store keeps messages as one string: the socket's layout, checked as strictly.
+TEST(WireTest, AMessageKeptAsBytesComesBackWholeOrNotAtAll) {
+  const Message m{{{"etag", "\"abc\""}, {"n", 3}}, std::string("\x89PNG\0\1\2", 7)};
+  const std::string bytes = encode_message(m);
+  auto back = decode_message(bytes);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->header, m.header);
+  EXPECT_EQ(back->payload, m.payload);
+  for (size_t cut : {size_t{0}, size_t{5}, size_t{12}, bytes.size() - 1}) EXPECT_FALSE(decode_message(bytes.substr(0, cut))) << cut;
+  EXPECT_FALSE(decode_message(bytes + "x"));
+  std::string garbled = bytes;
+  garbled[12] = '!';  // the header is no longer JSON
+  EXPECT_FALSE(decode_message(garbled));
+}
+
+}  // namespace
+}  // namespace shadelab::worker

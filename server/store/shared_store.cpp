@@ -1,6 +1,8 @@
 #include "store/shared_store.h"
 
 #include <hiredis/hiredis.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/time.h>
 
 #include <charconv>
@@ -19,6 +21,36 @@ struct ReplyDeleter {
   void operator()(redisReply* r) const { freeReplyObject(r); }
 };
 using Reply = std::unique_ptr<redisReply, ReplyDeleter>;
+
+// hiredis writes with write(), not send(MSG_NOSIGNAL): a Redis that went away must not end this
+// process with SIGPIPE. The signal is blocked for this thread during a command, and one it raised
+// is taken off the pending set before the mask is restored (unless it was pending before).
+class SigpipeBlocked {
+ public:
+  SigpipeBlocked() {
+    sigemptyset(&pipe_);
+    sigaddset(&pipe_, SIGPIPE);
+    sigset_t pending;
+    sigpending(&pending);
+    was_pending_ = sigismember(&pending, SIGPIPE) == 1;
+    pthread_sigmask(SIG_BLOCK, &pipe_, &old_);
+  }
+  ~SigpipeBlocked() {
+    sigset_t pending;
+    sigpending(&pending);
+    if (!was_pending_ && sigismember(&pending, SIGPIPE) == 1) {
+      const timespec now{0, 0};
+      sigtimedwait(&pipe_, nullptr, &now);
+    }
+    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  SigpipeBlocked(const SigpipeBlocked&) = delete;
+  SigpipeBlocked& operator=(const SigpipeBlocked&) = delete;
+
+ private:
+  sigset_t pipe_, old_;
+  bool was_pending_ = false;
+};
 
 bool parse_int(std::string_view text, int& out) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
@@ -60,6 +92,7 @@ struct SharedStore::Connection {
   }
   // A reply that is not an error, or null (the connection is then unusable).
   Reply command(std::string& error, const char* format, auto... args) {
+    const SigpipeBlocked no_sigpipe;
     Reply reply(static_cast<redisReply*>(redisCommand(context, format, args...)));
     if (!reply) error = context->errstr[0] ? context->errstr : "no reply";
     else if (reply->type == REDIS_REPLY_ERROR) error = std::string(reply->str, reply->len), reply.reset();

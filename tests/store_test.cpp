@@ -1,0 +1,141 @@
+// The shared store against a real redis-server (on a Unix socket in a folder of the test's own):
+// values round-trip, a dead or hung Redis is an error within the timeout and is then left alone,
+// and the store comes back by itself.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <thread>
+
+#include "store/shared_store.h"
+
+namespace shadelab::store {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+class RedisServer {
+ public:
+  explicit RedisServer(const fs::path& dir) : socket_((dir / "redis.sock").string()), log_((dir / "redis.log").string()) {
+    fs::create_directories(dir);
+    start();
+  }
+  ~RedisServer() { stop(); }
+  void start() {
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+      ::execlp("redis-server", "redis-server", "--port", "0", "--unixsocket", socket_.c_str(), "--save", "", "--appendonly", "no",
+               "--logfile", log_.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    const auto deadline = Clock::now() + 10s;
+    while (!fs::exists(socket_) && Clock::now() < deadline) std::this_thread::sleep_for(10ms);
+  }
+  void stop() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, nullptr, 0);
+    fs::remove(socket_);
+    pid_ = 0;
+  }
+  void pause() const { ::kill(pid_, SIGSTOP); }
+  void resume() const { ::kill(pid_, SIGCONT); }
+  std::string url() const { return "unix://" + socket_; }
+
+ private:
+  std::string socket_, log_;
+  pid_t pid_ = 0;
+};
+
+fs::path test_dir() {
+  return fs::temp_directory_path() / ("shadelab_store_" + std::to_string(::getpid()) + "_" +
+                                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
+}
+
+std::unique_ptr<SharedStore> open_store(const std::string& url) {
+  SharedStoreConfig config;
+  config.url = url;
+  config.timeout = 200ms;
+  config.retry_after = 500ms;
+  auto store = SharedStore::open(config);
+  EXPECT_TRUE(store);
+  return store ? std::move(*store) : nullptr;
+}
+
+TEST(SharedStoreTest, ValuesRoundTripBinarySafe) {
+  RedisServer redis(test_dir());
+  auto store = open_store(redis.url());
+  const std::string value("\0png\r\n\xff", 8);
+  ASSERT_TRUE(store->put("k", value));
+  auto got = store->get("k");
+  ASSERT_TRUE(got);
+  ASSERT_TRUE(*got);
+  EXPECT_EQ(**got, value);
+  auto missing = store->get("nothing here");
+  ASSERT_TRUE(missing);
+  EXPECT_FALSE(*missing);
+  EXPECT_NE(store->render_metrics().find("shadelab_shared_store_requests_total{outcome=\"hit\"} 1"), std::string::npos);
+  fs::remove_all(test_dir());
+}
+
+TEST(SharedStoreTest, AHungRedisCostsOneTimeoutThenIsLeftAloneUntilItIsBack) {
+  RedisServer redis(test_dir());
+  auto store = open_store(redis.url());
+  ASSERT_TRUE(store->put("k", "v"));
+  redis.pause();
+  auto start = Clock::now();
+  auto hung = store->get("k");
+  ASSERT_FALSE(hung);
+  EXPECT_EQ(hung.error().code, ErrorCode::store_unavailable);
+  EXPECT_LT(Clock::now() - start, 2s) << "the command timeout did not hold";
+  start = Clock::now();
+  EXPECT_FALSE(store->get("k"));  // marked down: no second timeout
+  EXPECT_LT(Clock::now() - start, 50ms);
+  EXPECT_NE(store->render_metrics().find("shadelab_shared_store_up 0"), std::string::npos);
+  redis.resume();
+  std::this_thread::sleep_for(600ms);  // past retry_after
+  auto back = store->get("k");
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(back->value_or(""), "v");
+  fs::remove_all(test_dir());
+}
+
+TEST(SharedStoreTest, ADeadRedisIsAnErrorAndARestartedOneIsUsedAgain) {
+  RedisServer redis(test_dir());
+  auto store = open_store(redis.url());
+  ASSERT_TRUE(store->put("k", "v"));
+  redis.stop();
+  EXPECT_FALSE(store->get("k"));
+  redis.start();  // empty, as the supervisor restarts it
+  std::this_thread::sleep_for(600ms);
+  auto after = store->get("k");
+  ASSERT_TRUE(after);
+  EXPECT_FALSE(*after) << "a restarted Redis holds nothing: a miss, recomputed";
+  fs::remove_all(test_dir());
+}
+
+TEST(SharedStoreTest, AddressesAreParsedOrRefused) {
+  auto tcp = parse_redis_url("redis://cache.internal:6380/2");
+  ASSERT_TRUE(tcp);
+  EXPECT_EQ(tcp->host, "cache.internal");
+  EXPECT_EQ(tcp->port, 6380);
+  EXPECT_EQ(tcp->db, 2);
+  auto bare = parse_redis_url("localhost");
+  ASSERT_TRUE(bare);
+  EXPECT_EQ(bare->port, 6379);
+  auto unix_socket = parse_redis_url("unix:///run/redis.sock");
+  ASSERT_TRUE(unix_socket);
+  EXPECT_EQ(unix_socket->socket_path, "/run/redis.sock");
+  for (const char* bad : {"", "redis://", "redis://h:0", "redis://h:99999", "h:port", "redis://h/x", "unix://relative"})
+    EXPECT_FALSE(parse_redis_url(bad)) << bad;
+}
+
+}  // namespace
+}  // namespace shadelab::store
