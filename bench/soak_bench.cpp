@@ -1,14 +1,17 @@
 // Deadline-night soak and slow-connection probe against the real service (docs/deploy.md keeps
 // the figures).
-//   build/bench/soak_bench [path/to/shadelab] [soak seconds, default 60; 0: slow connections only]
-// Starts `shadelab serve` with its defaults on a free loopback port, then:
+//   build/bench/soak_bench [path/to/shadelab] [soak seconds, default 60; 0: slow connections only] [replicas]
+// Starts `shadelab serve` with its defaults on a free loopback port (or, given a number of
+// replicas, tools/cluster.sh: Redis, that many replicas and nginx in front), then:
 //   1. slow connections: /livez and canonical-render latency idle, then with 16 and with 200
-//      connections that send one header line every 0.5 s (spread over 10 loopback addresses);
+//      connections that send one header line every 0.5 s (spread over 40 loopback addresses), and
+//      against a cluster with 1,000;
 //   2. soak: 8 clients for the given time, each request one of render (the canonical grid job, a
 //      fresh shader each), grade (specular checkpoint), scene (two objects, a fresh colour each) or
 //      hostile (a shader that does not compile, or one that never ends); requests by kind and
 //      status (every status not expected for its kind counts as unexpected), p50/p99 per kind,
-//      and the resident memory of the server and its workers at start, peak and end.
+//      and the resident memory of the server and its workers (or of the whole cluster) at start,
+//      peak and end.
 #include <httplib.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -32,6 +35,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/presets.h"
+#include "support/local_cluster.h"
 #include "support/raw_socket.h"
 
 namespace {
@@ -63,19 +67,28 @@ struct Memory {
   size_t rss = 0, pss = 0;
 };
 
+int parent_of(int pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), {});
+  const auto close = text.rfind(')');
+  int ppid = 0;
+  char state;
+  if (close != std::string::npos) std::sscanf(text.c_str() + close + 2, "%c %d", &state, &ppid);
+  return ppid;
+}
+
+bool descends_from(int pid, int root) {
+  for (int p = pid, hops = 0; p > 1 && hops < 16; p = parent_of(p), ++hops)
+    if (p == root) return true;
+  return false;
+}
+
 Memory tree_memory(pid_t root) {
   Memory total;
   for (const auto& e : std::filesystem::directory_iterator("/proc")) {
     const std::string name = e.path().filename();
     if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream stat(e.path() / "stat");
-    std::string text((std::istreambuf_iterator<char>(stat)), {});
-    const auto close = text.rfind(')');
-    if (close == std::string::npos) continue;
-    char state;
-    int ppid = 0;
-    std::sscanf(text.c_str() + close + 2, "%c %d", &state, &ppid);
-    if (std::stoi(name) != root && ppid != root) continue;
+    if (!descends_from(std::stoi(name), root)) continue;
     std::ifstream rollup(e.path() / "smaps_rollup");
     std::string field;
     std::getline(rollup, field);  // the address range line
@@ -154,7 +167,7 @@ Probe probe_under_slow_clients(int port, int connections, std::atomic<unsigned>&
   std::thread attacker([&] {
     std::vector<shadelab::testkit::RawSocket> sockets;
     const auto open = [&](int i) {
-      shadelab::testkit::RawSocket s(port, "127.0.0." + std::to_string(2 + i % 10));
+      shadelab::testkit::RawSocket s(port, "127.0.0." + std::to_string(2 + i % 40));
       s.send("GET /livez HTTP/1.1\r\nHost: slow\r\n");
       return s;
     };
@@ -172,7 +185,7 @@ Probe probe_under_slow_clients(int port, int connections, std::atomic<unsigned>&
   return p;
 }
 
-void slow_connections(int port, std::atomic<unsigned>& serial) {
+void slow_connections(int port, std::atomic<unsigned>& serial, bool cluster) {
   std::printf("## Slow connections (one header line every 0.5 s per connection)\n\n");
   std::printf("| slow connections | /livez p50 ms | /livez p99 ms | render p50 ms | render p99 ms | failed |\n| --- | --- | --- | --- | --- | --- |\n");
   const auto row = [](int n, const Probe& p) {
@@ -180,7 +193,8 @@ void slow_connections(int port, std::atomic<unsigned>& serial) {
                 percentile(p.render, 0.5), percentile(p.render, 0.99), p.failures);
   };
   row(0, probe(port, serial));
-  for (int n : {16, 200}) row(n, probe_under_slow_clients(port, n, serial));
+  for (int n : {16, 200, 1000})
+    if (n < 1000 || cluster) row(n, probe_under_slow_clients(port, n, serial));
   std::printf("\n");
 }
 
@@ -280,13 +294,35 @@ void soak(const Server& server, int seconds, std::atomic<unsigned>& serial) {
 int main(int argc, char** argv) {
   const std::string bin = argc > 1 ? argv[1] : "build/shadelab";
   const int seconds = argc > 2 ? std::atoi(argv[2]) : 60;
+  const int replicas = argc > 3 ? std::atoi(argv[3]) : 0;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // each table row as it is measured
-  const Server server = start(bin);
+  std::unique_ptr<shadelab::testkit::LocalCluster> cluster;
+  Server server;
+  if (replicas > 0) {
+    // The 8 clients share one address here, where a class has one each: nginx's per-address
+    // request rate would count them as one student.
+    setenv("SHADELAB_NGINX_API_RATE", "1000", 1);
+    setenv("SHADELAB_NGINX_API_BURST", "1000", 1);
+    cluster = std::make_unique<shadelab::testkit::LocalCluster>(std::filesystem::temp_directory_path() / "shadelab_soak_cluster", replicas);
+    if (!cluster->up()) {
+      std::fprintf(stderr, "the cluster did not start:\n%s\n", cluster->log_text().c_str());
+      return 1;
+    }
+    server = {cluster->pid(), cluster->port()};
+    std::printf("cluster: nginx in front of %d replicas (tools/cluster.sh)\n", replicas);
+  } else {
+    server = start(bin);
+  }
   const auto ready = client(server.port).Get("/readyz");
+  if (!ready || ready->status != 200) {
+    std::fprintf(stderr, "the server is not ready\n");
+    return 1;
+  }
   std::printf("renderer: %s, %u cores\n\n", json::parse(ready->body).value("renderer", "").c_str(), std::thread::hardware_concurrency());
   std::atomic<unsigned> serial{std::random_device{}() % 100000000u};
-  slow_connections(server.port, serial);
+  slow_connections(server.port, serial, cluster != nullptr);
   if (seconds > 0) soak(server, seconds, serial);
+  if (cluster) return cluster->stop();
   kill(server.pid, SIGTERM);
   waitpid(server.pid, nullptr, 0);
   return 0;

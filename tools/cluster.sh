@@ -32,11 +32,14 @@ done
 nginx_bin=$(command -v nginx || echo /usr/sbin/nginx)
 [[ -n $dir ]] || dir=$(mktemp -d -t shadelab-cluster.XXXXXX)
 mkdir -p "$dir/nginx-temp"
+rm -f "$dir/cluster.state" "$dir"/replica-*.log  # an earlier cluster's, in a reused folder
 dir=$(cd "$dir" && pwd)
 # nginx's workers run as an unprivileged user when it is started as root: they must reach the temp folders.
 chmod 755 "$dir" "$dir/nginx-temp"
 cores=$(nproc)
 ((workers > 0)) || workers=$(( cores / replicas > 0 ? cores / replicas : 1 ))
+# The replicas share this machine's cores: each worker's llvmpipe gets its share, not all of them.
+lp_threads=$(( cores / (replicas * workers) > 0 ? cores / (replicas * workers) : 1 ))
 
 declare -A replica_pid replica_port
 redis_pid="" nginx_pid="" stopping=0
@@ -70,6 +73,10 @@ wait_until() {  # SECONDS WHAT COMMAND...
   done
 }
 
+new_line_says() {  # LOG EARLIER_LINES TEXT
+  tail -n +$(($2 + 1)) "$1" | grep -q "$3"
+}
+
 start_redis() {
   # Bounded and evicting: the replicas keep what they need themselves, Redis only shares it.
   redis-server --port 0 --unixsocket "$socket" --unixsocketperm 700 --save '' --appendonly no \
@@ -82,11 +89,13 @@ start_redis() {
 # Starts replica I on its port (0 the first time: the kernel picks one, read back from its log).
 start_replica() {
   local i=$1 log="$dir/replica-$1.log"
-  "$bin" serve --host 127.0.0.1 --port "${replica_port[$i]:-0}" --workers "$workers" --redis "unix://$socket" \
+  local earlier=0  # lines an earlier run of this replica wrote: its port is not this one's
+  [[ -f $log ]] && earlier=$(wc -l <"$log")
+  "$bin" serve --host 127.0.0.1 --port "${replica_port[$i]:-0}" --workers "$workers" --lp-threads "$lp_threads" --redis "unix://$socket" \
     --trusted-proxy 127.0.0.1 --max-connections-per-address 0 "${serve_flags[@]}" >>"$log" 2>&1 &
   replica_pid[$i]=$!
-  wait_until 30 "replica $i" grep -q "serving on" "$log"
-  replica_port[$i]=$(grep -o 'serving on http://[^ ]*' "$log" | tail -1 | sed 's/.*://')
+  wait_until 30 "replica $i" new_line_says "$log" "$earlier" "serving on"
+  replica_port[$i]=$(tail -n +$((earlier + 1)) "$log" | grep -o 'serving on http://[^ ]*' | tail -1 | sed 's/.*://')
   wait_until 60 "replica $i readiness" http_ok 127.0.0.1 "${replica_port[$i]}" /readyz
 }
 

@@ -45,6 +45,9 @@ class LocalCluster {
 
   LocalCluster(const std::filesystem::path& dir, int replicas) : dir_(dir), port_(unused_port()) {
     std::filesystem::create_directories(dir_);
+    // What an earlier cluster left here must not be read as this one's (the log is truncated by
+    // the child only after the fork: reading it before that would find the old "listening on").
+    for (const char* stale : {"cluster.log", "cluster.state"}) std::filesystem::remove(dir_ / stale);
     const std::string log = (dir_ / "cluster.log").string();
     const std::string script = std::string(SHADELAB_SOURCE_DIR) + "/tools/cluster.sh";
     const std::string replicas_text = std::to_string(replicas), port_text = std::to_string(port_), dir_text = dir_.string();
@@ -89,6 +92,7 @@ class LocalCluster {
   }
 
   bool up() const { return up_; }
+  pid_t pid() const { return script_; }  // tools/cluster.sh: every process of the cluster descends from it
   bool running() const { return script_ > 0 && ::waitpid(script_, nullptr, WNOHANG) == 0; }
   int port() const { return port_; }
   const std::filesystem::path& dir() const { return dir_; }
