@@ -131,6 +131,25 @@ class ClusterTest : public ::testing::Test {
     return ports;
   }
 
+  // While Redis hangs, an upload stays on the replica that took it: the others answer
+  // store_unavailable (503, which nginx sends on to the next replica), never a wrong 404 or another mesh.
+  void expect_an_upload_renders_where_it_is_or_nowhere(httplib::Client& c) const {
+    const std::string obj = read_text(std::string(SHADELAB_SOURCE_DIR) + "/assets/teapot.obj");
+    const auto up = c.Post("/api/meshes?filename=during_outage.obj", obj, "application/octet-stream");
+    ASSERT_TRUE(up && up->status == 201) << (up ? up->body : "no answer");
+    const std::string id = nlohmann::json::parse(up->body)["id"];
+    std::set<std::string> mesh_bodies;
+    for (int port : replica_ports()) {
+      httplib::Client direct("127.0.0.1", port);
+      direct.set_read_timeout(60s);
+      const auto res = direct.Post("/api/render", small_job(1, id), "application/json");
+      ASSERT_TRUE(res);
+      if (res->status == 200) mesh_bodies.insert(res->body);
+      else EXPECT_EQ(nlohmann::json::parse(res->body).value("code", ""), "store_unavailable") << res->status << " " << res->body;
+    }
+    EXPECT_EQ(mesh_bodies.size(), 1u) << "the replica that took the upload renders it; no other renders something else";
+  }
+
   fs::path dir_;
   std::unique_ptr<LocalCluster> cluster_;
 };
@@ -255,22 +274,7 @@ TEST_F(ClusterTest, ARedisOutageCostsRecomputingNotRightAnswers) {
 
   // Hung (SIGSTOP: every command times out), then gone (SIGKILL: the supervisor starts an empty one).
   ASSERT_EQ(::kill(redis.pid, SIGSTOP), 0);
-  // An upload now stays on the replica that took it: the others answer store_unavailable (503,
-  // which nginx sends on to the next replica), never a wrong 404 or another mesh.
-  const std::string obj = read_text(std::string(SHADELAB_SOURCE_DIR) + "/assets/teapot.obj");
-  const auto up = c.Post("/api/meshes?filename=during_outage.obj", obj, "application/octet-stream");
-  ASSERT_TRUE(up && up->status == 201) << (up ? up->body : "no answer");
-  const std::string id = nlohmann::json::parse(up->body)["id"];
-  std::set<std::string> mesh_bodies;
-  for (int port : replica_ports()) {
-    httplib::Client direct("127.0.0.1", port);
-    direct.set_read_timeout(60s);
-    const auto res = direct.Post("/api/render", small_job(1, id), "application/json");
-    ASSERT_TRUE(res);
-    if (res->status == 200) mesh_bodies.insert(res->body);
-    else EXPECT_EQ(nlohmann::json::parse(res->body).value("code", ""), "store_unavailable") << res->status << " " << res->body;
-  }
-  EXPECT_EQ(mesh_bodies.size(), 1u) << "the replica that took the upload renders it; no other renders something else";
+  expect_an_upload_renders_where_it_is_or_nowhere(c);
   for (int i = 0; i < 6; ++i) {
     const auto again = c.Post("/api/render", small_job(0), "application/json");
     ASSERT_TRUE(again) << "no answer while Redis hangs";

@@ -148,27 +148,24 @@ bool in_shard(const std::string& student, const Shard& shard) {
   return fnv1a64(student) % static_cast<std::uint64_t>(shard.count) == static_cast<std::uint64_t>(shard.index);
 }
 
-int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
-  const auto students = students_of(o);
-  if (students.empty()) {
-    std::cerr << "error: no submission folders in " << o.submissions << (o.shard.count > 1 ? " for this shard" : "") << "\n";
-    return 2;
-  }
-  fs::create_directories(o.out);
-  const auto earlier = read_journals(o.out);
+namespace {
+
+// The shard's students no journal in `out` holds yet.
+std::vector<Student> not_yet_graded(const std::vector<Student>& students, const fs::path& out) {
+  const auto earlier = read_journals(out);
   std::vector<Student> todo;
   for (const auto& s : students)
     if (!earlier.contains(s.name)) todo.push_back(s);
   if (todo.size() < students.size())
-    std::cerr << students.size() - todo.size() << " of " << students.size() << " already graded in " << o.out.string() << "; grading the other "
+    std::cerr << students.size() - todo.size() << " of " << students.size() << " already graded in " << out.string() << "; grading the other "
               << todo.size() << "\n";
+  return todo;
+}
 
-  Journal journal(o.out / journal_name(o.shard));
-  if (!journal.ok()) {
-    std::cerr << "error: cannot write the journal in " << o.out << "\n";
-    return 1;
-  }
-  ProgressBar progress(students.size(), students.size() - todo.size());
+// Grades `todo` on `concurrency` threads, recording each as it ends; the first error stops the
+// others taking new students (those in flight are finished and recorded).
+std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>& todo, const GradeStudent& grade_student, Journal& journal,
+                               ProgressBar& progress) {
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex first_error_mutex;
@@ -193,16 +190,37 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
   for (int t = 0; t < std::max(1, std::min<int>(o.concurrency, static_cast<int>(todo.size()))); ++t) threads.emplace_back(work);
   for (auto& t : threads) t.join();
   std::cerr << "\n";
+  return first_error;
+}
+
+}  // namespace
+
+int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
+  const auto students = students_of(o);
+  if (students.empty()) {
+    std::cerr << "error: no submission folders in " << o.submissions << (o.shard.count > 1 ? " for this shard" : "") << "\n";
+    return 2;
+  }
+  fs::create_directories(o.out);
+  const auto todo = not_yet_graded(students, o.out);
+  Journal journal(o.out / journal_name(o.shard));
+  if (!journal.ok()) {
+    std::cerr << "error: cannot write the journal in " << o.out << "\n";
+    return 1;
+  }
+  ProgressBar progress(students.size(), students.size() - todo.size());
+  const auto error = grade_all(o, todo, grade_student, journal, progress);
 
   const auto entries = read_journals(o.out);
   write_summary(o.out, entries);
-  if (first_error) {
-    std::cerr << "error: the batch stopped: " << first_error->message << " [" << info(first_error->code).name << "]\n"
+  if (error) {
+    std::cerr << "error: the batch stopped: " << error->message << " [" << info(error->code).name << "]\n"
               << "run the same command again to grade the rest (finished students are kept)\n";
     return 1;
   }
   double total = 0;
-  for (const auto& s : students) total += entries.at(s.name).score;
+  for (const auto& s : students)
+    if (const auto e = entries.find(s.name); e != entries.end()) total += e->second.score;
   std::cerr << "graded " << students.size() << " submissions" << (o.shard.count > 1 ? " in this shard" : "") << ", mean score "
             << total / static_cast<double>(students.size()) << "; results in " << o.out.string() << "/\n";
   return 0;
