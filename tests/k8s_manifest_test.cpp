@@ -155,20 +155,25 @@ class ManifestServer {
     ::close(out[1]);
     std::string said;
     char buf[256];
-    for (ssize_t n; said.find("serving on") == std::string::npos && (n = ::read(out[0], buf, sizeof buf)) > 0;) said.append(buf, n);
-    ::close(out[0]);
+    // Until the whole line that names the port (or the end: the server stopped, and said why).
+    const std::regex serving("serving on http://[0-9.]+:([0-9]+) .*\n");
     std::smatch m;
-    if (std::regex_search(said, m, std::regex("serving on http://[0-9.]+:([0-9]+)"))) port_ = std::stoi(m[1]);
+    for (ssize_t n; !std::regex_search(said, m, serving) && (n = ::read(out[0], buf, sizeof buf)) > 0;) said.append(buf, n);
+    ::close(out[0]);
+    if (std::regex_search(said, m, serving)) port_ = std::stoi(m[1]);
+    said_ = said;
   }
   ~ManifestServer() {
     ::kill(pid_, SIGTERM);
     ::waitpid(pid_, nullptr, 0);
   }
   int port() const { return port_; }
+  const std::string& said() const { return said_; }
 
  private:
   pid_t pid_ = 0;
   int port_ = 0;
+  std::string said_;
 };
 
 int answer(int port, const std::string& path) {
@@ -199,7 +204,7 @@ TEST(K8sManifests, ProbesAndPortsAreTheServersOwn) {
     EXPECT_EQ(c.spec["livenessProbe"]["httpGet"]["path"].as<std::string>(), "/livez") << c.where;
 
     const ManifestServer server(c);
-    ASSERT_GT(server.port(), 0) << c.where << ": the server did not start with the manifest's flags";
+    ASSERT_GT(server.port(), 0) << c.where << ": the server did not start with the manifest's flags; it said:\n" << server.said();
     EXPECT_EQ(answer(server.port(), c.spec["readinessProbe"]["httpGet"]["path"].as<std::string>()), 200) << c.where;
     EXPECT_EQ(answer(server.port(), c.spec["livenessProbe"]["httpGet"]["path"].as<std::string>()), 200) << c.where;
   }

@@ -94,8 +94,9 @@ start_replica() {
   "$bin" serve --host 127.0.0.1 --port "${replica_port[$i]:-0}" --workers "$workers" --lp-threads "$lp_threads" --redis "unix://$socket" \
     --trusted-proxy 127.0.0.1 --max-connections-per-address 0 "${serve_flags[@]}" >>"$log" 2>&1 &
   replica_pid[$i]=$!
-  wait_until 30 "replica $i" new_line_says "$log" "$earlier" "serving on"
-  replica_port[$i]=$(tail -n +$((earlier + 1)) "$log" | grep -o 'serving on http://[^ ]*' | tail -1 | sed 's/.*://')
+  # The whole line: " with" follows the port, so a line still being written is not read short.
+  wait_until 30 "replica $i" new_line_says "$log" "$earlier" "serving on http://[0-9.]*:[0-9]* with"
+  replica_port[$i]=$(tail -n +$((earlier + 1)) "$log" | grep -o 'serving on http://[0-9.]*:[0-9]* with' | tail -1 | sed 's/.*:\([0-9]*\) with/\1/')
   wait_until 60 "replica $i readiness" http_ok 127.0.0.1 "${replica_port[$i]}" /readyz
 }
 

@@ -96,8 +96,11 @@ int serve(const http::ServiceConfig& config) {
     std::cerr << "error: " << port.error().message << "\n";
     return 1;
   }
-  std::cerr << "shadelab: serving on http://" << config.host << ":" << *port << " with " << config.pool.workers << " render workers"
-            << (config.shared_store.url.empty() ? std::string() : ", sharing through " + config.shared_store.url) << "\n";
+  // One write: scripts and tests read the port off this line, and must never see half of it.
+  const std::string serving = "shadelab: serving on http://" + config.host + ":" + std::to_string(*port) + " with " +
+                              std::to_string(config.pool.workers) + " render workers" +
+                              (config.shared_store.url.empty() ? std::string() : ", sharing through " + config.shared_store.url) + "\n";
+  std::cerr << serving << std::flush;
   std::thread([&service, stop_signals] {
     int sig = 0;
     sigwait(&stop_signals, &sig);

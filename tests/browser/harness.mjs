@@ -20,7 +20,7 @@ export async function startServer(extraArgs = []) {
     let err = "";
     child.stderr.on("data", (d) => {
       err += d;
-      const m = err.match(/serving on http:\/\/[^:]+:(\d+)/);
+      const m = err.match(/serving on http:\/\/[^:]+:(\d+) with/);  // the whole port, not a prefix of it
       if (m) resolve(Number(m[1]));
     });
     child.on("exit", (code) => reject(new Error(`server exited (${code}): ${err}`)));
