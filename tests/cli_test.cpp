@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/files.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -53,10 +54,7 @@ class CliTest : public ::testing::Test {
   fs::path dir_;
 };
 
-std::string read_text(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
+using shadelab::testkit::read_text;
 
 std::vector<std::uint8_t> read_bytes(const std::string& p) {
   std::ifstream in(p, std::ios::binary);

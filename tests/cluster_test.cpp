@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/files.h"
 #include "support/local_cluster.h"
 #include "support/raw_socket.h"
 
@@ -26,11 +27,8 @@ using namespace std::chrono_literals;
 using shadelab::testkit::LocalCluster;
 using shadelab::testkit::process_alive;
 using shadelab::testkit::RawSocket;
+using shadelab::testkit::read_text;
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // A small render job (one frame, 64x48) that differs by `variant`, so each is a real render.
 std::string small_job(int variant, const std::string& mesh = "bunny") {

@@ -6,6 +6,8 @@
 #include <httplib.h>
 #include <yaml-cpp/yaml.h>
 
+#include "support/files.h"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -46,10 +48,7 @@ std::vector<Manifest> of_kind(const std::string& kind) {
   return out;
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
+using shadelab::testkit::read_text;
 
 std::string run_output(const std::string& command) {
   FILE* pipe = popen(command.c_str(), "r");

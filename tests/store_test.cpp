@@ -54,10 +54,17 @@ class RedisServer {
   pid_t pid_ = 0;
 };
 
-fs::path test_dir() {
-  return fs::temp_directory_path() / ("shadelab_store_" + std::to_string(::getpid()) + "_" +
-                                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-}
+// A redis-server of the test's own, in a folder removed afterwards (also when an assertion failed).
+class SharedStoreTest : public ::testing::Test {
+ protected:
+  fs::path dir_ = fs::temp_directory_path() / ("shadelab_store_" + std::to_string(::getpid()) + "_" +
+                                               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  RedisServer redis{dir_};
+  void TearDown() override {
+    redis.stop();
+    fs::remove_all(dir_);
+  }
+};
 
 std::unique_ptr<SharedStore> open_store(const std::string& url) {
   SharedStoreConfig config;
@@ -69,8 +76,7 @@ std::unique_ptr<SharedStore> open_store(const std::string& url) {
   return store ? std::move(*store) : nullptr;
 }
 
-TEST(SharedStoreTest, ValuesRoundTripBinarySafe) {
-  RedisServer redis(test_dir());
+TEST_F(SharedStoreTest, ValuesRoundTripBinarySafe) {
   auto store = open_store(redis.url());
   const std::string value("\0png\r\n\xff", 8);
   ASSERT_TRUE(store->put("k", value));
@@ -82,11 +88,9 @@ TEST(SharedStoreTest, ValuesRoundTripBinarySafe) {
   ASSERT_TRUE(missing);
   EXPECT_FALSE(*missing);
   EXPECT_NE(store->render_metrics().find("shadelab_shared_store_requests_total{outcome=\"hit\"} 1"), std::string::npos);
-  fs::remove_all(test_dir());
 }
 
-TEST(SharedStoreTest, AHungRedisCostsOneTimeoutThenIsLeftAloneUntilItIsBack) {
-  RedisServer redis(test_dir());
+TEST_F(SharedStoreTest, AHungRedisCostsOneTimeoutThenIsLeftAloneUntilItIsBack) {
   auto store = open_store(redis.url());
   ASSERT_TRUE(store->put("k", "v"));
   redis.pause();
@@ -104,11 +108,9 @@ TEST(SharedStoreTest, AHungRedisCostsOneTimeoutThenIsLeftAloneUntilItIsBack) {
   auto back = store->get("k");
   ASSERT_TRUE(back) << back.error().message;
   EXPECT_EQ(back->value_or(""), "v");
-  fs::remove_all(test_dir());
 }
 
-TEST(SharedStoreTest, ADeadRedisIsAnErrorAndARestartedOneIsUsedAgain) {
-  RedisServer redis(test_dir());
+TEST_F(SharedStoreTest, ADeadRedisIsAnErrorAndARestartedOneIsUsedAgain) {
   auto store = open_store(redis.url());
   ASSERT_TRUE(store->put("k", "v"));
   redis.stop();
@@ -118,10 +120,9 @@ TEST(SharedStoreTest, ADeadRedisIsAnErrorAndARestartedOneIsUsedAgain) {
   auto after = store->get("k");
   ASSERT_TRUE(after);
   EXPECT_FALSE(*after) << "a restarted Redis holds nothing: a miss, recomputed";
-  fs::remove_all(test_dir());
 }
 
-TEST(SharedStoreTest, AddressesAreParsedOrRefused) {
+TEST(RedisAddressTest, AddressesAreParsedOrRefused) {
   auto tcp = parse_redis_url("redis://cache.internal:6380/2");
   ASSERT_TRUE(tcp);
   EXPECT_EQ(tcp->host, "cache.internal");

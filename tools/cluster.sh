@@ -106,8 +106,13 @@ start_nginx() {
     # One failure takes a replica out for 2 s; nginx then tries it again (a restarted one comes back).
     upstreams+="    server 127.0.0.1:${replica_port[$i]} max_fails=1 fail_timeout=2s;"$'\n'
   done
-  local flag
-  for flag in "${serve_flags[@]}"; do [[ $flag == --max-body-mb=* ]] && max_body_mb=${flag#*=}; done
+  local k  # the replicas' --max-body-mb, in either form, is nginx's body limit too
+  for ((k = 0; k < ${#serve_flags[@]}; k++)); do
+    case ${serve_flags[k]} in
+      --max-body-mb=*) max_body_mb=${serve_flags[k]#*=} ;;
+      --max-body-mb) max_body_mb=${serve_flags[k + 1]:-$max_body_mb} ;;
+    esac
+  done
   awk -v upstreams="$upstreams" -v run_dir="$dir" -v listen="$host:$port" -v body="$max_body_mb" \
     -v rate="${SHADELAB_NGINX_API_RATE:-20}" -v burst="${SHADELAB_NGINX_API_BURST:-40}" -v conns="${SHADELAB_NGINX_CONNECTIONS_PER_ADDRESS:-32}" '
     { gsub(/@RUN_DIR@/, run_dir); gsub(/@LISTEN@/, listen); gsub(/@MAX_BODY_MB@/, body); gsub(/@API_RATE@/, rate);

@@ -163,8 +163,9 @@ int run_batch(const GradeFlags& f) {
   // In process: as many submissions in flight as the pool has workers, and one more queued.
   size_t count = 0;
   for (const auto& e : fs::directory_iterator(f.submissions)) count += e.is_directory() ? 1 : 0;
-  worker::WorkerPool pool(pool_config(f, static_cast<int>(count)));
-  if (options.concurrency <= 0) options.concurrency = pool_config(f, static_cast<int>(count)).workers + 1;
+  const worker::PoolConfig config = pool_config(f, static_cast<int>(count));
+  worker::WorkerPool pool(config);
+  if (options.concurrency <= 0) options.concurrency = config.workers + 1;
   return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
     std::optional<std::pair<fs::path, fs::path>> pair;
     if (auto zero = without_pair(f, s, pair)) return *zero;

@@ -13,11 +13,12 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
 #include <thread>
+
+#include "support/files.h"
 
 namespace shadelab::testkit {
 
@@ -93,16 +94,23 @@ class LocalCluster {
 
   bool up() const { return up_; }
   pid_t pid() const { return script_; }  // tools/cluster.sh: every process of the cluster descends from it
-  bool running() const { return script_ > 0 && ::waitpid(script_, nullptr, WNOHANG) == 0; }
+  // Reaps a script that has ended, keeping its status for stop().
+  bool running() {
+    int status = 0;
+    if (script_ <= 0 || ::waitpid(script_, &status, WNOHANG) == 0) return script_ > 0;
+    script_ = 0;
+    exit_status_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return false;
+  }
   int port() const { return port_; }
   const std::filesystem::path& dir() const { return dir_; }
   std::string url() const { return "http://127.0.0.1:" + std::to_string(port_); }
-  std::string log_text() const { return read((dir_ / "cluster.log").string()); }
+  std::string log_text() const { return read_text(dir_ / "cluster.log"); }
 
   // cluster.state as the script last wrote it: "nginx", "redis", "replica 1", ...
   std::map<std::string, Process> state() const {
     std::map<std::string, Process> out;
-    std::istringstream in(read((dir_ / "cluster.state").string()));
+    std::istringstream in(read_text(dir_ / "cluster.state"));
     for (std::string line; std::getline(in, line);) {
       std::istringstream fields(line);
       std::string kind, where;
@@ -122,11 +130,6 @@ class LocalCluster {
   }
 
  private:
-  static std::string read(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-  }
-
   std::filesystem::path dir_;
   int port_;
   pid_t script_ = 0;
