@@ -56,7 +56,7 @@ Expected<std::vector<render::UniformSetting>> uniforms(const json& fields) {
     const auto add = [&](const json& v) -> Status {
       if (v.is_boolean()) s.values.push_back(v.get<bool>() ? 1.0 : 0.0);
       else if (v.is_number()) s.values.push_back(v.get<double>());
-      else return bad("uniform '" + name + "' must be numbers or booleans; got " + v.dump());
+      else return bad("uniform '" + s.name + "' must be numbers or booleans; got " + v.dump());
       return Ok{};
     };
     if (value.is_array()) {

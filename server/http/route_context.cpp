@@ -21,24 +21,6 @@ void send_json(httplib::Response& res, int status, const json& body) {
   res.set_content(json_text(body), "application/json");
 }
 
-Expected<RawRequest> read_request(const httplib::Request& req) {
-  if (req.is_multipart_form_data()) {
-    std::multimap<std::string, std::string> fields;
-    std::map<std::string, UploadedFile> files;
-    for (const auto& [name, part] : req.files) {
-      if (part.filename.empty()) fields.emplace(name, part.content);
-      else files[name] = {part.filename, part.content};
-    }
-    return from_form(fields, std::move(files));
-  }
-  if (req.method == "GET") return from_form(req.params, {});
-  const std::string type = req.get_header_value("Content-Type");
-  if (type.rfind("application/x-www-form-urlencoded", 0) == 0) return from_form(req.params, {});
-  if (!type.empty() && type.find("json") == std::string::npos)
-    return make_error(ErrorCode::invalid_argument, "send JSON (Content-Type: application/json) or multipart/form-data; got " + type);
-  return from_json_body(req.body);
-}
-
 Expected<std::string> RouteContext::mesh_bytes(ParsedJob& parsed) const {
   if (!parsed.mesh_upload.content.empty()) return parsed.mesh_upload.content;
   const auto& names = scene::builtin_mesh_names();

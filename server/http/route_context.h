@@ -11,6 +11,7 @@
 
 #include "core/expected.h"
 #include "http/api_request.h"
+#include "http/request_reader.h"
 #include "http/mesh_store.h"
 #include "http/metrics.h"
 #include "http/response_cache.h"
@@ -54,11 +55,6 @@ struct RouteContext {
   // Sends `response` and keeps it under `etag`.
   void send_and_cache(httplib::Response& res, const std::string& etag, CachedResponse response);
 };
-
-// The request in neutral form, whichever encoding the client used: a JSON object body,
-// multipart/form-data (text parts become fields, file parts files), a urlencoded form or a GET
-// query. One reader for every route, so every route answers a bad body in the same words.
-Expected<RawRequest> read_request(const httplib::Request& req);
 
 void send_problem(httplib::Response& res, const Error& e, const std::string& instance);
 void send_json(httplib::Response& res, int status, const nlohmann::json& body);

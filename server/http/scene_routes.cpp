@@ -57,30 +57,6 @@ std::string scene_features_header(const scene_render::SceneReport& report) {
 
 namespace {
 
-// The scene and the mesh files sent with it: a JSON body, or multipart with the scene in the part
-// "scene" and mesh files in parts the objects name.
-struct SceneUpload {
-  json scene;
-  std::map<std::string, UploadedFile> files;
-};
-
-Expected<SceneUpload> read_scene(const httplib::Request& req) {
-  auto raw = read_request(req);
-  if (!raw) return raw.take_error();
-  if (!req.is_multipart_form_data()) return SceneUpload{std::move(raw->fields), {}};
-  SceneUpload upload{nullptr, std::move(raw->files)};
-  if (auto part = upload.files.find("scene"); part != upload.files.end()) {
-    upload.scene = json::parse(part->second.content, nullptr, false);
-    upload.files.erase(part);
-  } else if (raw->fields.contains("scene")) {
-    upload.scene = raw->fields["scene"];  // a text part, already parsed as JSON where it is JSON
-  } else {
-    return make_error(ErrorCode::invalid_argument, "send the scene JSON in the multipart part 'scene'");
-  }
-  if (upload.scene.is_discarded() || upload.scene.is_string()) return make_error(ErrorCode::invalid_argument, "the scene is not valid JSON");
-  return upload;
-}
-
 // Every mesh the objects name that is not built in: a file part of that name, or an uploaded id.
 Expected<std::vector<worker::SceneMeshBytes>> scene_meshes(RouteContext& c, const scene::SceneDescription& scene,
                                                            const std::map<std::string, UploadedFile>& files) {

@@ -54,33 +54,39 @@ struct Collector {
     }
     for (unsigned f = 0; f < m.mNumFaces; ++f) {
       const aiFace& face = m.mFaces[f];
-      if (face.mNumIndices != 3) {
+      if (face.mNumIndices < 3) {
         ++mesh.skipped_primitives;
         continue;
       }
-      if (mesh.triangle_count() >= limits.max_triangles) {
-        problem = "too many triangles";
-        return;
-      }
-      for (unsigned k = 0; k < 3; ++k) {
-        const unsigned idx = face.mIndices[k];
-        if (idx >= m.mNumVertices) {
-          problem = "face " + std::to_string(f + 1) + " refers to vertex " + std::to_string(idx + 1) + " of " +
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
+        if (face.mIndices[k] >= m.mNumVertices) {
+          problem = "face " + std::to_string(f + 1) + " refers to vertex " + std::to_string(face.mIndices[k] + 1) + " of " +
                     std::to_string(m.mNumVertices);
           return;
         }
-        const aiVector3D& p = m.mVertices[idx];
-        mesh.positions.push_back(glm::vec3(world * glm::vec4(p.x, p.y, p.z, 1.f)));
-        if (m.HasNormals()) {
-          const aiVector3D& n = m.mNormals[idx];
-          const glm::vec3 transformed = normal_matrix * glm::vec3(n.x, n.y, n.z);
-          const float length = glm::length(transformed);
-          mesh.normals.push_back(length > 0.f ? transformed / length : glm::vec3(0.f));
-        } else {
-          mesh.normals.emplace_back(0.f);
+      // A polygon is a fan around its first corner, in the file's corner order (as the homework
+      // page's loader draws it).
+      for (unsigned k = 1; k + 1 < face.mNumIndices; ++k) {
+        if (mesh.triangle_count() >= limits.max_triangles) {
+          problem = "too many triangles";
+          return;
         }
+        for (const unsigned idx : {face.mIndices[0], face.mIndices[k], face.mIndices[k + 1]}) corner(m, idx, world, normal_matrix);
       }
     }
+  }
+
+  void corner(const aiMesh& m, unsigned idx, const glm::mat4& world, const glm::mat3& normal_matrix) {
+    const aiVector3D& p = m.mVertices[idx];
+    mesh.positions.push_back(glm::vec3(world * glm::vec4(p.x, p.y, p.z, 1.f)));
+    if (!m.HasNormals()) {
+      mesh.normals.emplace_back(0.f);
+      return;
+    }
+    const aiVector3D& n = m.mNormals[idx];
+    const glm::vec3 transformed = normal_matrix * glm::vec3(n.x, n.y, n.z);
+    const float length = glm::length(transformed);
+    mesh.normals.push_back(length > 0.f && std::isfinite(length) ? transformed / length : glm::vec3(0.f));
   }
 };
 
@@ -90,9 +96,11 @@ Expected<Mesh> load_mesh(std::span<const std::uint8_t> bytes, const std::string&
                          const MeshLimits& limits) {
   if (bytes.empty()) return make_error(ErrorCode::mesh_empty, "the mesh file '" + name + "' is empty");
   Assimp::Importer importer;
-  // Triangulate fans polygons in corner order; no step that reorders or welds vertices runs, so
-  // faces keep the file's order. ValidateDataStructure rejects out-of-range indices.
-  const unsigned flags = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
+  // No step that reorders or welds vertices runs, so faces keep the file's order; polygons are
+  // triangulated here, not by aiProcess_Triangulate, whose assertions abort the process on some
+  // malformed files (tests/fuzz/regressions/mesh_loader). ValidateDataStructure rejects
+  // out-of-range indices.
+  const unsigned flags = aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, format_hint.c_str());
   if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     return make_error(ErrorCode::mesh_parse_failed,

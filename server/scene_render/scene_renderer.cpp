@@ -52,19 +52,6 @@ class PassClock {
 
 }  // namespace
 
-std::string_view PassTiming::name() const {
-  struct Name {
-    std::string_view operator()(const SetupDetail&) const { return "setup"; }
-    std::string_view operator()(const ShadowDetail&) const { return "shadow"; }
-    std::string_view operator()(const ReflectionDetail&) const { return "reflection"; }
-    std::string_view operator()(const MainDetail&) const { return "main"; }
-    std::string_view operator()(const ViewDetail&) const { return "view"; }
-    std::string_view operator()(const ReadbackDetail&) const { return "readback"; }
-    std::string_view operator()(const FramingDetail&) const { return "framing"; }
-  };
-  return std::visit(Name{}, detail);
-}
-
 Expected<scene::Mesh> resolve_builtin_mesh(const std::string& reference) { return scene::builtin_scene_mesh(reference); }
 
 Expected<std::shared_ptr<const GpuMesh>> RenderState::mesh(const std::string& reference, scene::Shading shading,

@@ -1,5 +1,6 @@
 #include "shader/driver_log.h"
 
+#include <charconv>
 #include <regex>
 #include <sstream>
 
@@ -11,6 +12,15 @@ struct Located {
   std::string severity, message;
 };
 
+// A line or column number; 0 (unknown) when it does not fit an int (a driver's log is read,
+// not trusted: std::stoi would throw).
+int number(const std::ssub_match& digits) {
+  int value = 0;
+  const std::string text = digits.str();
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() ? value : 0;
+}
+
 bool parse_line(const std::string& text, Located& out) {
   static const std::regex mesa(R"(^\s*\d+:(\d+)\((\d+)\):\s*(?:preprocessor\s+)?(error|warning):\s*(.*)$)");
   static const std::regex nvidia(R"(^\s*\d+\((\d+)\)\s*:\s*(error|warning)\s*\w*:\s*(.*)$)");
@@ -18,11 +28,11 @@ bool parse_line(const std::string& text, Located& out) {
   static const std::regex bare(R"(^\s*(error|warning):\s*(.*)$)");
   std::smatch m;
   if (std::regex_match(text, m, mesa)) {
-    out = {std::stoi(m[1]), std::stoi(m[2]), m[3], m[4]};
+    out = {number(m[1]), number(m[2]), m[3], m[4]};
   } else if (std::regex_match(text, m, nvidia)) {
-    out = {std::stoi(m[1]), 0, m[2], m[3]};
+    out = {number(m[1]), 0, m[2], m[3]};
   } else if (std::regex_match(text, m, angle)) {
-    out = {std::stoi(m[2]), 0, m[1] == "ERROR" ? "error" : "warning", m[3]};
+    out = {number(m[2]), 0, m[1] == "ERROR" ? "error" : "warning", m[3]};
   } else if (std::regex_match(text, m, bare)) {
     out = {0, 0, m[1], m[2]};
   } else {

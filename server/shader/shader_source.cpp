@@ -81,22 +81,53 @@ bool looks_like_module(const std::string& text) {
 }
 
 // Appends one unwrapped character, opening a new GLSL line in the map after each newline.
+// A new run starts wherever the file and the GLSL stop advancing together: a line's start, an
+// escape sequence, a line continuation.
 struct Emitter {
   UnwrappedSource& out;
   bool at_line_start = true;
+  int glsl_line = 1, glsl_column = 1;
+  LineOrigin next_in_file{0, 0};  // where the next character continues the current run
 
   void put(char ch, int file_line, int file_column) {
+    out.glsl.push_back(ch);
+    if ((static_cast<unsigned char>(ch) & 0xC0) == 0x80) return;  // within the character just put
     if (at_line_start) {
       out.lines.push_back({file_line, file_column});
       at_line_start = false;
     }
-    out.glsl.push_back(ch);
-    if (ch == '\n') at_line_start = true;
+    if (out.runs.empty() || file_line != next_in_file.file_line || file_column != next_in_file.file_column ||
+        glsl_column == 1)
+      out.runs.push_back({glsl_line, glsl_column, {file_line, file_column}});
+    next_in_file = {file_line, file_column + 1};
+    if (ch == '\n') {
+      ++glsl_line, glsl_column = 1;
+      at_line_start = true;
+    } else {
+      ++glsl_column;
+    }
   }
   void finish(int file_line, int file_column) {
-    if (at_line_start) out.lines.push_back({file_line, file_column});
+    if (at_line_start) {
+      out.lines.push_back({file_line, file_column});
+      out.runs.push_back({glsl_line, 1, {file_line, file_column}});
+    }
   }
 };
+
+// Characters (not UTF-8 continuation bytes) on 1-based `line` of `text`.
+int glsl_line_length(const std::string& text, int line) {
+  size_t begin = 0;
+  for (int l = 1; l < line && begin != std::string::npos; ++l) {
+    begin = text.find('\n', begin);
+    if (begin != std::string::npos) ++begin;
+  }
+  if (begin == std::string::npos) return 0;
+  const size_t end = std::min(text.find('\n', begin), text.size());
+  int characters = 0;
+  for (size_t i = begin; i < end; ++i) characters += (static_cast<unsigned char>(text[i]) & 0xC0) != 0x80;
+  return characters;
+}
 
 int hex_value(char c) {
   if (c >= '0' && c <= '9') return c - '0';
@@ -193,7 +224,10 @@ UnwrappedSource identity(const std::string& text) {
   UnwrappedSource out;
   out.glsl = text;
   const auto lines = std::count(text.begin(), text.end(), '\n') + 1;
-  for (int i = 1; i <= lines; ++i) out.lines.push_back({i, 1});
+  for (int i = 1; i <= lines; ++i) {
+    out.lines.push_back({i, 1});
+    out.runs.push_back({i, 1, {i, 1}});
+  }
   return out;
 }
 
@@ -225,9 +259,20 @@ Status check_version(const ShaderFile& file, const UnwrappedSource& src, Stage s
 }  // namespace
 
 LineOrigin UnwrappedSource::locate(int glsl_line, int glsl_column) const {
-  if (lines.empty() || glsl_line < 1) return {glsl_line, glsl_column};
-  const auto& origin = lines[static_cast<size_t>(std::min<int>(glsl_line, static_cast<int>(lines.size())) - 1)];
-  return {origin.file_line, glsl_column > 0 ? origin.file_column + glsl_column - 1 : 0};
+  if (lines.empty() || glsl_line < 1) return {0, 0};
+  const int line = std::min<int>(glsl_line, static_cast<int>(lines.size()));
+  const auto& origin = lines[static_cast<size_t>(line - 1)];
+  // A column past the end of its line (a driver's, or a line clamped above) is no place in the
+  // file: the line alone is located.
+  if (glsl_column < 1 || line != glsl_line || glsl_column > glsl_line_length(glsl, line) + 1) return {origin.file_line, 0};
+  // The last run that starts at or before (line, column): within it, one GLSL character is one
+  // file character.
+  const auto after = std::upper_bound(runs.begin(), runs.end(), std::pair{line, glsl_column}, [](const std::pair<int, int>& at, const MappedRun& r) {
+    return at < std::pair{r.glsl_line, r.glsl_column};
+  });
+  if (after == runs.begin() || std::prev(after)->glsl_line != line) return {origin.file_line, origin.file_column};
+  const MappedRun& run = *std::prev(after);
+  return {run.origin.file_line, run.origin.file_column + (glsl_column - run.glsl_column)};
 }
 
 Expected<UnwrappedSource> unwrap(const ShaderFile& file, Stage stage, const SourceLimits& limits) {

@@ -23,13 +23,23 @@ struct LineOrigin {
   int file_column = 1;  // 1-based column of the GLSL line's first character
 };
 
+// From (glsl_line, glsl_column) on, each GLSL character comes from the next file character, up
+// to the next run: escapes (`\n`, `\u00e9`) and line continuations start new runs.
+struct MappedRun {
+  int glsl_line = 1, glsl_column = 1;  // 1-based; columns count characters, not bytes
+  LineOrigin origin;
+};
+
 struct UnwrappedSource {
   std::string glsl;                 // what the driver compiles
-  std::vector<LineOrigin> lines;    // one per GLSL line
+  std::vector<LineOrigin> lines;    // one per GLSL line: where it starts in the file
+  std::vector<MappedRun> runs;      // ordered by GLSL position
   bool from_js_module = false;
   std::vector<std::string> warnings;
 
-  // Maps a GLSL (line, column), both 1-based (column 0 = unknown), into the file.
+  // Maps a GLSL (line, column), both 1-based (column 0 = unknown), into the file. A line before
+  // the first is unknown ({0, 0}); one past the last is the last line; a column outside its line
+  // is unknown (0).
   LineOrigin locate(int glsl_line, int glsl_column) const;
 };
 

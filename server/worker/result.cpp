@@ -151,8 +151,12 @@ Error error_from_json(const json& j) {
     return e;
   }
   e.code = *code;
-  e.message = j.value("message", "");
-  e.driver_log = j.value("driverLog", "");
+  // The worker runs student code: what it sends is read, not trusted (a missing or non-string
+  // message is the code's title, never an empty detail or an exception).
+  const auto text = [&j](const char* key) { return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : std::string(); };
+  e.message = text("message");
+  if (e.message.empty()) e.message = std::string(info(e.code).title);
+  e.driver_log = text("driverLog");
   if (j.contains("diagnostics") && j["diagnostics"].is_array()) e.diagnostics = diagnostics_from(j["diagnostics"]);
   return e;
 }
