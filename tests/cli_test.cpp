@@ -227,3 +227,22 @@ TEST_F(CliTest, SingleGradeWritesJsonAndAHeatmap) {
   EXPECT_EQ(r["score"], 1.0);
   EXPECT_EQ(shadelab::testkit::decode(read_bytes(path("heat.png"))).width, 192);
 }
+
+// A full disk (/dev/full answers every write with ENOSPC): a clear error and a failing exit, never
+// a silent short file; and no half-written file left under an output's real name.
+TEST_F(CliTest, AFullDiskIsAnErrorNotASilentShortFile) {
+  const auto full = run_cli("render --preset smooth --frames 1 --size 32x24 --grid /dev/full");
+  EXPECT_EQ(full.status, 1) << full.output;
+  EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
+  EXPECT_NE(full.output.find("[io_error]"), std::string::npos) << full.output;
+
+  write("scene.json", R"({"objects":[{"mesh":"cube"}],"render":{"width":64,"height":48,"engine":"workbench"}})");
+  const auto scene = run_cli("scene " + path("scene.json") + " -o /dev/full");
+  EXPECT_NE(scene.status, 0) << scene.output;
+  EXPECT_NE(scene.output.find("No space left on device"), std::string::npos) << scene.output;
+
+  const auto ok = run_cli("render --preset smooth --frames 1 --size 32x24 --grid " + path("out/grid.png"));
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(path("out/grid.png")));
+  for (const auto& f : fs::directory_iterator(path("out"))) EXPECT_EQ(f.path().filename(), "grid.png") << "a temporary left behind";
+}

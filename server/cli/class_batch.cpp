@@ -1,4 +1,5 @@
 #include "cli/class_batch.h"
+#include "cli/file_output.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -86,13 +87,6 @@ class Journal {
   std::mutex mutex_;
 };
 
-// Written beside and renamed over: a reader never sees half a file.
-void write_atomically(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
-  std::ofstream(temporary, std::ios::binary) << text;
-  fs::rename(temporary, path);
-}
 
 std::string csv(std::string s) {
   for (auto& c : s)
@@ -103,12 +97,12 @@ std::string csv(std::string s) {
   return out + "\"";
 }
 
-void write_summary(const fs::path& out, const std::map<std::string, Entry>& entries) {
+Status write_summary(const fs::path& out, const std::map<std::string, Entry>& entries) {
   std::string summary = "student,score,max_score,pass,diagnosis,message\n";
   for (const auto& [who, e] : entries)
     summary += csv(who) + "," + std::to_string(e.score) + "," + std::to_string(e.max_score) + "," + (e.pass ? "true" : "false") + "," +
                csv(e.diagnosis) + "," + csv(e.message) + "\n";
-  write_atomically(out / "summary.csv", summary);
+  return write_file(out / "summary.csv", summary);
 }
 
 std::vector<Student> students_of(const BatchOptions& o) {
@@ -181,7 +175,14 @@ std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>
         return;
       }
       const auto& r = graded->report;
-      write_atomically(o.out / s.name / "results.json", grade::to_gradescope(r, graded->seconds).dump(2) + "\n");
+      // A student whose results cannot be written (a full disk) is not journaled: the batch
+      // stops, and the next run grades them again.
+      if (auto written = write_file(o.out / s.name / "results.json", grade::to_gradescope(r, graded->seconds).dump(2) + "\n"); !written) {
+        std::lock_guard lock(first_error_mutex);
+        if (!first_error) first_error = written.take_error();
+        stop = true;
+        return;
+      }
       journal.append({s.name, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0]});
       progress.finished(s.name);
     }
@@ -209,10 +210,10 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
     return 1;
   }
   ProgressBar progress(students.size(), students.size() - todo.size());
-  const auto error = grade_all(o, todo, grade_student, journal, progress);
+  auto error = grade_all(o, todo, grade_student, journal, progress);
 
   const auto entries = read_journals(o.out);
-  write_summary(o.out, entries);
+  if (auto summary = write_summary(o.out, entries); !summary && !error) error = summary.take_error();
   if (error) {
     std::cerr << "error: the batch stopped: " << error->message << " [" << info(error->code).name << "]\n"
               << "run the same command again to grade the rest (finished students are kept)\n";

@@ -11,6 +11,7 @@
 
 #include "cli/class_batch.h"
 #include "cli/commands.h"
+#include "cli/file_output.h"
 #include "cli/server_grader.h"
 #include "cli/environment.h"
 #include "grade/report.h"
@@ -99,10 +100,7 @@ Graded grade_one(worker::WorkerPool& pool, const GradeFlags& f, const fs::path& 
   return {std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
 }
 
-void write(const fs::path& path, const std::string& text) {
-  if (path.has_parent_path()) fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << text;
-}
+
 
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
   worker::PoolConfig c;
@@ -121,8 +119,9 @@ int run_single(const GradeFlags& f) {
   const auto& report = graded.result.report;
   const json out = f.format == "gradescope" ? grade::to_gradescope(report, graded.seconds) : grade::to_json(report);
   if (f.output.empty()) std::cout << out.dump(2) << "\n";
-  else write(f.output, out.dump(2) + "\n");
-  if (!f.heatmap.empty() && !graded.result.heatmap_png.empty()) write(f.heatmap, graded.result.heatmap_png);
+  else if (auto s = write_file(f.output, out.dump(2) + "\n"); !s) return fail(s.error());
+  if (!f.heatmap.empty() && !graded.result.heatmap_png.empty())
+    if (auto s = write_file(f.heatmap, graded.result.heatmap_png); !s) return fail(s.error());
   for (const auto& m : report.messages) std::cerr << m << "\n";
   return 0;
 }

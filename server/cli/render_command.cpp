@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include "cli/commands.h"
+#include "cli/file_output.h"
 #include "core/number_list.h"
 #include "cli/environment.h"
 #include "image/encode.h"
@@ -46,10 +47,7 @@ Expected<render::UniformSetting> parse_uniform(const std::string& text) {
 }
 
 Status write_file(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!out) return make_error(ErrorCode::io_error, "cannot write '" + path.string() + "'");
-  return Ok{};
+  return cli::write_file(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
 Expected<scene::Mesh> load_mesh_arg(const RenderFlags& f) {

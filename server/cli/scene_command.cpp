@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "cli/commands.h"
+#include "cli/file_output.h"
 #include "cli/environment.h"
 #include "egl/headless_context.h"
 #include "image/encode.h"
@@ -72,16 +73,13 @@ Command add_scene_command(CLI::App& app) {
     if (!rendered) return fail(rendered.error());
     auto png = image::encode_png(rendered->image);
     if (!png) return fail(png.error());
-    std::ofstream out(flags->output, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(png->data()), static_cast<std::streamsize>(png->size()));
-    if (!out) return fail(make_error(ErrorCode::io_error, "cannot write '" + flags->output + "'"));
+    if (auto s = write_file(flags->output, {reinterpret_cast<const char*>(png->data()), png->size()}); !s) return fail(s.error());
 
     const nlohmann::json report = worker::to_json(rendered->report);
     if (flags->report == "-") {
       std::cout << report.dump(2) << "\n";
     } else if (!flags->report.empty()) {
-      std::ofstream r(flags->report);
-      r << report.dump(2) << "\n";
+      if (auto s = write_file(flags->report, report.dump(2) + "\n"); !s) return fail(s.error());
     }
     std::cerr << "wrote " << flags->output << " (" << description->render.width << "x" << description->render.height << ", "
               << scene::to_string(description->render.engine) << ")\n";

@@ -46,6 +46,7 @@ constexpr ErrorCodeInfo kCodes[] = {
     {ErrorCode::rate_limited,               "rate_limited",               429, "Too many requests",                                     false, true},
     {ErrorCode::unauthorized,               "unauthorized",               401, "A valid API key is required",                           false, false},
     {ErrorCode::store_unavailable,          "store_unavailable",          503, "The shared store is unavailable",                       false, true},
+    {ErrorCode::worker_lost,                "worker_lost",                503, "A render worker was lost",                              false, true},
 };
 }  // namespace
 

@@ -49,6 +49,8 @@ enum class ErrorCode {
   unauthorized,            // API keys are required and none, or a wrong one, was sent
   // What a replica answers when the shared store (server/store/) holds the only copy it could use.
   store_unavailable,       // an uploaded mesh is on another replica and Redis cannot be reached
+  // What the pool answers when a worker stops answering for a reason that is not the shader's.
+  worker_lost,             // the worker was stopped (SIGSTOP) or dropped its socket without exiting
 };
 
 // Everything known about a code, in one row of the table in error.cpp.

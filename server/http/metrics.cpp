@@ -48,7 +48,9 @@ std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
       << "# TYPE shadelab_queue_depth gauge\nshadelab_queue_depth " << pool.queue_depth << "\n"
       << "# TYPE shadelab_cache_hits_total counter\nshadelab_cache_hits_total " << cache_hits_ << "\n"
       << "# TYPE shadelab_cache_misses_total counter\nshadelab_cache_misses_total " << cache_misses_ << "\n"
-      << "# TYPE shadelab_ready gauge\nshadelab_ready " << (ready ? 1 : 0) << "\n";
+      << "# TYPE shadelab_ready gauge\nshadelab_ready " << (ready ? 1 : 0) << "\n"
+      << "# TYPE shadelab_workers gauge\nshadelab_workers " << pool.workers << "\n"
+      << "# TYPE shadelab_workers_ready gauge\nshadelab_workers_ready " << pool.workers_ready << "\n";
   return out.str();
 }
 

@@ -31,8 +31,10 @@ void add_service_routes(httplib::Server& server, RouteContext& c) {
   server.Get("/livez", [](const httplib::Request&, httplib::Response& res) { send_json(res, 200, {{"status", "ok"}}); });
   server.Get("/readyz", [&c](const httplib::Request&, httplib::Response& res) {
     const bool ready = c.pool.ready();
+    const auto stats = c.pool.stats();
     if (!ready) res.set_header("Retry-After", "1");
-    send_json(res, ready ? 200 : 503, {{"ready", ready}, {"renderer", c.pool.renderer()}});
+    send_json(res, ready ? 200 : 503,
+              {{"ready", ready}, {"renderer", c.pool.renderer()}, {"workers", stats.workers}, {"workersReady", stats.workers_ready}});
   });
   server.Get("/metrics", [&c](const httplib::Request&, httplib::Response& res) {
     res.set_content(c.metrics.render(c.pool.stats(), c.pool.ready()) + render_connection_metrics(c.connections.stats()) +

@@ -4,22 +4,26 @@ namespace shadelab::worker {
 
 namespace {
 
-bool timed_out(const Error& e) { return e.code == ErrorCode::compile_timeout || e.code == ErrorCode::render_timeout; }
+// A timeout might be the machine's doing and a lost worker (stopped, dropped its socket) is never
+// the shader's: both are tried once more before they count.
+bool worth_a_second_try(const Error& e) {
+  return e.code == ErrorCode::compile_timeout || e.code == ErrorCode::render_timeout || e.code == ErrorCode::worker_lost;
+}
 
 }  // namespace
 
 Expected<Answered<GradeResult>> grade(WorkerPool& pool, const Job& job, std::string mesh_bytes) {
   const auto start = std::chrono::steady_clock::now();
   auto graded = run<GradeResult>(pool, to_message(job, mesh_bytes));
-  // A timeout is retried once, ahead of the queue, on a fresh worker (the one that ran out of
-  // time was killed): a grade of 0 needs the same verdict twice.
-  std::string first_timeout;
-  if (!graded && timed_out(graded.error())) {
-    first_timeout = graded.error().message;
+  // Retried once, ahead of the queue, on a fresh worker (the one that failed was killed): a grade
+  // of 0 for a timeout needs the same verdict twice.
+  std::string first_failure;
+  if (!graded && worth_a_second_try(graded.error())) {
+    first_failure = graded.error().message;
     graded = run<GradeResult>(pool, to_message(job, std::move(mesh_bytes)), WorkerPool::Lane::retry);
   }
-  const int attempts = first_timeout.empty() ? 1 : 2;
-  const std::string retried = "the first attempt was stopped (" + first_timeout + ") and the submission was graded again";
+  const int attempts = first_failure.empty() ? 1 : 2;
+  const std::string retried = "the first attempt was stopped (" + first_failure + ") and the submission was graded again";
   if (graded) {
     graded->result.report.attempts = attempts;
     if (attempts == 2) graded->result.report.messages.push_back(retried);

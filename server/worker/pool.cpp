@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 
 namespace shadelab::worker {
@@ -52,6 +53,19 @@ bool cap_with_cgroup(pid_t pid, int slot, size_t limit) {
 }
 
 Error worker_error(ErrorCode code, std::string message) { return make_error(code, std::move(message)); }
+
+// The state letter of /proc/PID/stat: 'T' stopped by a signal, 't' stopped by a tracer.
+bool is_stopped(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(stat)), {});
+  const size_t name_end = text.rfind(')');
+  return name_end != std::string::npos && name_end + 2 < text.size() && (text[name_end + 2] == 'T' || text[name_end + 2] == 't');
+}
+
+Error lost(const std::string& phase, const std::string& how) {
+  return worker_error(ErrorCode::worker_lost, "the render worker " + how + " while " + (phase == "compile" ? "compiling" : "rendering") +
+                                                  " (not the shader's doing); it was replaced: send the request again");
+}
 
 // CPU time a process has used, all its threads (llvmpipe's rasterizer threads included).
 std::chrono::nanoseconds cpu_time(pid_t pid) {
@@ -114,11 +128,33 @@ struct WorkerPool::Slot {
     int status = 0;
     while (::waitpid(pid.load(), &status, 0) < 0 && errno == EINTR) {
     }
+    forget();
+    return status;
+  }
+
+  // A worker whose socket closed: reaped when it exits within `grace` (it crashed or exited);
+  // killed otherwise (it dropped the socket and lives on). nullopt in the second case.
+  std::optional<int> reap_after_close(std::chrono::milliseconds grace) {
+    const auto until = Clock::now() + grace;
+    int status = 0;
+    while (Clock::now() < until) {
+      const pid_t r = ::waitpid(pid.load(), &status, WNOHANG);
+      if (r == pid) {
+        forget();
+        return status;
+      }
+      if (r < 0 && errno != EINTR) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    reap(true);
+    return std::nullopt;
+  }
+
+  void forget() {
     ::close(fd);
     reported_ready = false;
     pid = -1;
     fd = -1;
-    return status;
   }
 
   Status spawn() {
@@ -181,7 +217,7 @@ struct WorkerPool::Slot {
   }
 
   // Why a worker died, as the error the client gets.
-  Error death(int status, const std::string& phase, bool over_memory) {
+  Error death(int status, const std::string& phase, bool over_memory, const std::string& kind) {
     // Under a cgroup cap the kernel's OOM killer ends the worker with SIGKILL (we only send
     // SIGKILL after reaping, so a SIGKILL we did not send is the cap's).
     const bool cgroup_oom = cgroup_capped && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
@@ -194,6 +230,9 @@ struct WorkerPool::Slot {
     std::string how = WIFSIGNALED(status) ? std::string("signal ") + ::strsignal(WTERMSIG(status))
                                           : "exit status " + std::to_string(WEXITSTATUS(status));
     if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) how = "its CPU time limit";
+    if (kind == "mesh_check")  // the mesh library (assimp) crashed on the uploaded file
+      return worker_error(ErrorCode::mesh_parse_failed, "the mesh file crashed the mesh reader (" + how +
+                                                            "); it cannot be read; other requests are not affected");
     return worker_error(phase == "compile" ? ErrorCode::compile_crashed : ErrorCode::render_crashed,
                         "the graphics driver crashed while " + std::string(phase == "compile" ? "compiling" : "rendering") +
                             " this shader (" + how + "); other requests are not affected");
@@ -201,9 +240,20 @@ struct WorkerPool::Slot {
 
   JobResult run_job(const Message& job) {
     JobResult result;
+    const std::string kind = job.header.value("kind", "");
     if (!write_message(fd, job)) {
-      result.error = death(reap(true), "compile", false);
-      return result;
+      // The worker died while idle (killed from outside; nothing of this job's doing): a fresh
+      // one takes the job.
+      reap(true);
+      pool.restarts_++;
+      if (auto started = spawn(); !started) {
+        result.error = started.error();
+        return result;
+      }
+      if (!write_message(fd, job)) {
+        result.error = lost("compile", "could not take the job");
+        return result;
+      }
     }
     const PoolConfig& c = pool.config_;
     PhaseBudget budget("compile", c.compile_deadline, pid, c.wall_clock_factor);
@@ -223,7 +273,12 @@ struct WorkerPool::Slot {
       }
       if (status == ReadStatus::timeout) {
         if (!cgroup_capped && resident_bytes(pid) > c.memory_limit_bytes) {
-          result.error = death(reap(true), budget.phase, true);
+          result.error = death(reap(true), budget.phase, true, kind);
+          return result;
+        }
+        if (is_stopped(pid)) {
+          reap(true);
+          result.error = lost(budget.phase, "was stopped (SIGSTOP)");
           return result;
         }
         const bool by_cpu = budget.cpu_spent(pid), by_wall = !by_cpu && budget.wall_spent();
@@ -238,7 +293,8 @@ struct WorkerPool::Slot {
         result.error = worker_error(ErrorCode::worker_protocol, "a render worker sent a malformed message");
         return result;
       }
-      result.error = death(reap(false), budget.phase, false);
+      const auto status_at_exit = reap_after_close(std::chrono::milliseconds(250));
+      result.error = status_at_exit ? death(*status_at_exit, budget.phase, false, kind) : lost(budget.phase, "closed its connection without exiting");
       return result;
     }
   }
@@ -323,7 +379,9 @@ bool WorkerPool::ready() const {
 
 PoolStats WorkerPool::stats() const {
   std::lock_guard lock(mutex_);
-  return {queue_.size(), crashes_.load(), timeouts_.load(), restarts_.load(), out_of_memory_.load()};
+  size_t ready = 0;
+  for (const auto& slot : slots_) ready += slot->reported_ready ? 1 : 0;
+  return {queue_.size(), crashes_.load(), timeouts_.load(), restarts_.load(), out_of_memory_.load(), ready, slots_.size()};
 }
 
 std::string WorkerPool::renderer() const {

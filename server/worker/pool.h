@@ -51,6 +51,8 @@ struct JobResult {
 struct PoolStats {
   size_t queue_depth = 0;
   std::uint64_t crashes = 0, timeouts = 0, restarts = 0, out_of_memory = 0;
+  size_t workers_ready = 0;  // holding a context and waiting for or running a job
+  size_t workers = 0;        // configured: the pool is whole when every one is ready
 };
 
 class WorkerPool {

@@ -95,18 +95,25 @@ Expected<Message> decode_message(std::string_view bytes) {
 
 ReadStatus read_message(int fd, Message& message, Clock::time_point deadline) {
   char prefix[12];
-  if (auto s = read_all(fd, prefix, sizeof prefix, deadline); s != ReadStatus::ok) return s;
+  // Only the first byte waits for the caller's deadline. Once a message has begun the rest
+  // follows at once, so it may run past that deadline; a message that then stops short is
+  // malformed, never a timeout: a caller that read again would start mid-message.
+  if (auto s = read_all(fd, prefix, 1, deadline); s != ReadStatus::ok) return s;
+  const auto rest = std::max(deadline, Clock::now() + std::chrono::seconds(10));
+  const auto read_rest = [&](char* data, size_t size) {
+    const ReadStatus s = read_all(fd, data, size, rest);
+    return s == ReadStatus::timeout ? ReadStatus::malformed : s;
+  };
+  if (auto s = read_rest(prefix + 1, sizeof prefix - 1); s != ReadStatus::ok) return s;
   std::uint32_t header_size = 0;
   std::uint64_t payload_size = 0;
   std::memcpy(&header_size, prefix, 4);
   std::memcpy(&payload_size, prefix + 4, 8);
   if (header_size > kMaxHeaderBytes || payload_size > kMaxPayloadBytes) return ReadStatus::malformed;
   std::string header(header_size, '\0');
-  // Once a message has begun, the rest follows at once: allow it past the caller's deadline.
-  const auto rest = std::max(deadline, Clock::now() + std::chrono::seconds(10));
-  if (auto s = read_all(fd, header.data(), header.size(), rest); s != ReadStatus::ok) return s;
+  if (auto s = read_rest(header.data(), header.size()); s != ReadStatus::ok) return s;
   message.payload.assign(payload_size, '\0');
-  if (auto s = read_all(fd, message.payload.data(), message.payload.size(), rest); s != ReadStatus::ok) return s;
+  if (auto s = read_rest(message.payload.data(), message.payload.size()); s != ReadStatus::ok) return s;
   message.header = nlohmann::json::parse(header, nullptr, false);
   return message.header.is_discarded() ? ReadStatus::malformed : ReadStatus::ok;
 }

@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "scene/scene_mesh.h"
 #include "scene_render/scene_renderer.h"
+#include "worker/fault_injection.h"
 #include "worker/job.h"
 #include "worker/protocol.h"
 #include "worker/result.h"
@@ -142,9 +143,12 @@ class Worker {
   }
 
   Expected<RenderResult> render(const Job& job, const std::string& payload) {
+    const FaultPlan fault = fault_plan(job.request.fragment.text);  // inactive outside fault-injection runs
+    inject_fault(fault, FaultPhase::compile, fd_);
     auto compiled = compile(job);
     if (!compiled) return compiled.take_error();
     if (auto s = enter_render_phase(); !s) return s.take_error();
+    inject_fault(fault, FaultPhase::render, fd_);
     auto m = job_mesh(job, payload);
     if (!m) return m.take_error();
     const auto& r = job.request;
@@ -153,11 +157,13 @@ class Worker {
     std::vector<image::Image> frames;
     RenderResult out;
     auto report = renderer_.render(r, **m, [&](int k, const image::Image& f, bool opaque) {
+      if (k == 0) inject_fault(fault, FaultPhase::readback, fd_);
       if (grid_png) grid_png->add_frame(k, f, opaque);
       else frames.push_back(f);
       if (auto c = constant_colour(k, f)) out.constant_frames.push_back(*c);
     });
     if (!report) return report.take_error();
+    inject_fault(fault, FaultPhase::encode, fd_);
     const auto encode_start = Clock::now();
     if (auto s = encode_output(job, frames, grid_png, out); !s) return s.take_error();
     out.warnings = report->warnings;

@@ -1,0 +1,47 @@
+#pragma once
+// Faults a worker injects into itself, for the fault-injection tests and bench (tests/fault_test.cpp,
+// bench/fault_bench.cpp, docs/reliability.md): never active unless the server was started with
+// SHADELAB_FAULT_INJECTION=<log file> in its environment (the workers inherit it). A render job
+// then names its fault in its fragment shader, on a line of its own:
+//
+//   // shadelab-fault: <phase> <action> [anything, e.g. a serial number that defeats caches]
+//
+// | phase    | where the worker is                                                    |
+// |----------|------------------------------------------------------------------------|
+// | compile  | the job read, nothing compiled                                         |
+// | render   | compiled, the server told the render phase began                       |
+// | readback | frame 0's pixels read back (in the frame sink)                         |
+// | encode   | every frame rendered, the output not yet encoded                       |
+//
+// | action   | what the worker does                                                   |
+// |----------|------------------------------------------------------------------------|
+// | kill     | SIGKILL to itself                                                      |
+// | crash    | SIGSEGV to itself (a driver's crash)                                   |
+// | stop     | SIGSTOP to itself (stops answering, uses no CPU)                       |
+// | close    | closes its socket and waits forever                                    |
+// | garbage  | sends a well-framed message whose header is not JSON, then goes on     |
+// | noise    | sends 64 bytes that are no message header, then goes on                |
+// | truncate | sends the start of a message and exits                                 |
+// | hog      | allocates and touches memory until it is stopped                       |
+//
+// Before acting the worker appends "<phase> <action> <steady-clock ns>" to the log file, so a
+// test can time the recovery from the moment of the fault.
+#include <string>
+
+namespace shadelab::worker {
+
+enum class FaultPhase { compile, render, readback, encode };
+
+struct FaultPlan {
+  bool active = false;
+  FaultPhase phase = FaultPhase::compile;
+  std::string action;
+};
+
+// The fault a job's fragment source asks for; inactive without SHADELAB_FAULT_INJECTION.
+FaultPlan fault_plan(const std::string& fragment_source);
+
+// Injects the plan's fault if `phase` is its phase; `socket` is the worker's end of its socket.
+void inject_fault(const FaultPlan& plan, FaultPhase phase, int socket);
+
+}  // namespace shadelab::worker

@@ -1,0 +1,165 @@
+// Faults injected into real workers of the real server (server/worker/fault_injection.h): a worker
+// killed, crashed, stopped, dropping its socket, writing garbage, a truncated message or more
+// memory than its cap, at each phase of a render. Each fault is answered with its problem+json,
+// a request beside it is served, and the pool is whole again. docs/reliability.md has the table
+// and bench/fault_bench.cpp the recovery times.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "support/files.h"
+#include "support/http_fixture.h"
+#include "support/raw_socket.h"
+
+using nlohmann::json;
+using namespace shadelab;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Fault {
+  std::string phase, action;
+  int status;
+  std::string code;  // the problem's code; by phase for crashes
+};
+
+std::string crash_code(const std::string& phase) { return phase == "compile" ? "compile_crashed" : "render_crashed"; }
+
+std::vector<Fault> every_fault() {
+  std::vector<Fault> faults;
+  for (const std::string phase : {"compile", "render", "readback", "encode"}) {
+    faults.push_back({phase, "kill", 422, crash_code(phase)});
+    faults.push_back({phase, "crash", 422, crash_code(phase)});
+    faults.push_back({phase, "truncate", 422, crash_code(phase)});
+    faults.push_back({phase, "stop", 503, "worker_lost"});
+    faults.push_back({phase, "close", 503, "worker_lost"});
+    faults.push_back({phase, "garbage", 500, "worker_protocol"});
+    faults.push_back({phase, "noise", 500, "worker_protocol"});
+    faults.push_back({phase, "hog", 422, "out_of_memory"});
+  }
+  return faults;
+}
+
+// Printed by name in test output, not as bytes.
+void PrintTo(const Fault& f, std::ostream* out) { *out << f.phase << " " << f.action; }
+
+std::string shader(const std::string& name) { return testkit::read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + name); }
+
+// The specular checkpoint's shaders at a small size; `directive` rides after the fragment module
+// as a JS comment.
+json render_job(const std::string& directive) {
+  return {{"vertex", shader("specular_vert.js")}, {"fragment", shader("specular_frag.js") + directive}, {"width", 64}, {"height", 48}, {"frames", 3}};
+}
+
+class FaultTest : public ::testing::TestWithParam<Fault> {
+ protected:
+  static void SetUpTestSuite() {
+    log_ = fs::temp_directory_path() / ("shadelab_faults_" + std::to_string(::getpid()) + ".log");
+    ::setenv("SHADELAB_FAULT_INJECTION", log_.c_str(), 1);  // the workers inherit it
+    auto config = testkit::test_config();
+    config.pool.memory_limit_bytes = size_t{512} << 20;  // the hog reaches it in a fraction of a second
+    server_ = new testkit::RunningService(config);
+  }
+  static void TearDownTestSuite() {
+    delete server_;
+    ::unsetenv("SHADELAB_FAULT_INJECTION");
+    fs::remove(log_);
+  }
+  void SetUp() override { ASSERT_TRUE(server_->ok()) << server_->failure; }
+
+  static httplib::Result post(const json& body) { return server_->client().Post("/api/render", body.dump(), "application/json"); }
+
+  static json readyz() {
+    auto r = server_->client().Get("/readyz");
+    return r ? json::parse(r->body, nullptr, false) : json();
+  }
+  // Whole: every configured worker holds a context again.
+  static bool whole_within(std::chrono::milliseconds limit) {
+    const auto until = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < until) {
+      const json r = readyz();
+      if (r.is_object() && r.value("workersReady", 0) == r.value("workers", -1)) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+  }
+
+  static inline testkit::RunningService* server_ = nullptr;
+  static inline fs::path log_;
+  static inline int serial_ = 0;
+};
+
+TEST_P(FaultTest, IsAnsweredAndThePoolIsWholeAgain) {
+  const Fault& f = GetParam();
+  const std::string tag = " " + std::to_string(++serial_);  // no cache answers a repeated fault
+  // A request of another student beside the fault, on the other worker.
+  auto beside = std::async(std::launch::async, [tag] { return post(render_job("\n// an innocent job" + tag + "\n")); });
+  auto faulty = post(render_job("\n// shadelab-fault: " + f.phase + " " + f.action + tag + "\n"));
+  ASSERT_TRUE(faulty) << "no response to the faulty request";
+  EXPECT_EQ(faulty->status, f.status) << faulty->body;
+  EXPECT_EQ(faulty->get_header_value("Content-Type"), "application/problem+json");
+  const json problem = json::parse(faulty->body, nullptr, false);
+  EXPECT_EQ(problem.value("code", ""), f.code) << faulty->body;
+  EXPECT_FALSE(problem.value("detail", "").empty());
+  if (f.status == 503) {
+    EXPECT_EQ(faulty->get_header_value("Retry-After"), "1");
+  }
+
+  auto other = beside.get();
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 200) << "the request beside the fault: " << other->body;
+  EXPECT_TRUE(whole_within(std::chrono::seconds(10))) << "the pool is not whole again: " << readyz().dump();
+  auto after = post(render_job("\n// after the fault" + tag + "\n"));
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->status, 200) << after->body;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryPhaseAndAction, FaultTest, ::testing::ValuesIn(every_fault()),
+                         [](const ::testing::TestParamInfo<Fault>& fault) { return fault.param.phase + "_" + fault.param.action; });
+
+// A client that asks for a large answer and leaves after its first bytes: nothing else notices.
+TEST_F(FaultTest, AClientLeavingMidResponseAffectsNothing) {
+  json job = render_job("\n// a large zip " + std::to_string(++serial_) + "\n");
+  job["output"] = "frames";
+  job["width"] = 640;
+  job["height"] = 480;
+  job["frames"] = 9;
+  const std::string body = job.dump();
+  for (int i = 0; i < 3; ++i) {
+    testkit::RawSocket socket(server_->port);
+    ASSERT_TRUE(socket.connected());
+    ASSERT_TRUE(socket.send("POST /api/render HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: " +
+                            std::to_string(body.size()) + "\r\n\r\n" + body));
+    const std::string start = socket.read(std::chrono::seconds(60), "\r\n");
+    EXPECT_TRUE(start.starts_with("HTTP/1.1 200")) << start.substr(0, 200);
+  }  // each socket closes here, its response mostly unread
+  EXPECT_TRUE(whole_within(std::chrono::seconds(10)));
+  auto after = post(render_job("\n// after the clients left " + std::to_string(++serial_) + "\n"));
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->status, 200) << after->body;
+}
+
+// Inputs that crash a system library in-process (tests/fuzz/contained): uploaded, they crash a
+// worker only, and are answered.
+TEST_F(FaultTest, AMeshThatCrashesTheLoaderIsContainedInAWorker) {
+  const fs::path dir = fs::path(SHADELAB_SOURCE_DIR) / "tests/fuzz/contained/mesh_loader";
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string bytes = testkit::read_text(entry.path().string()).substr(1);  // the selector byte picks the format
+    httplib::MultipartFormDataItems items{{"mesh", bytes, "crafted.ply", "application/octet-stream"}};
+    auto r = server_->client().Post("/api/meshes", items);
+    ASSERT_TRUE(r) << entry.path();
+    EXPECT_EQ(r->status, 422) << entry.path() << ": " << r->body;
+    EXPECT_EQ(r->get_header_value("Content-Type"), "application/problem+json");
+    EXPECT_EQ(json::parse(r->body, nullptr, false).value("code", ""), "mesh_parse_failed") << r->body;
+    EXPECT_TRUE(whole_within(std::chrono::seconds(10)));
+  }
+  auto after = post(render_job("\n// after the crafted meshes " + std::to_string(++serial_) + "\n"));
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->status, 200) << after->body;
+}
+
+}  // namespace
