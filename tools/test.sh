@@ -8,5 +8,7 @@ tools/build.sh -DSHADELAB_WERROR=ON
 # playwright-core for the browser tests, pinned by tests/browser/package-lock.json (no browser
 # download: the tests drive Debian's chromium).
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
-cd build
-ctest --output-on-failure -j "$(nproc)" --timeout 300
+(cd build && ctest --output-on-failure -j "$(nproc)" --timeout 300)
+# Every fuzz target for 20 s (clang, libFuzzer, ASan, UBSan; build-fuzz/): a crash fails the run
+# and leaves its input in tests/fuzz/regressions/. The suite above replayed the corpora already.
+tools/fuzz.sh 20
