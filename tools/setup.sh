@@ -20,7 +20,7 @@ packages=(
   # tests and benchmarks; the browser tests drive Debian's chromium with playwright-core
   libgtest-dev libgmock-dev libbenchmark-dev chromium fonts-dejavu-core
   # the fuzz targets (tools/fuzz.sh): clang with libFuzzer and its sanitizers
-  clang libfuzzer-14-dev
+  clang libfuzzer-14-dev libclang-rt-14-dev
 )
 # Node.js runs the browser tests; use the machine's own if it has one, else Debian's.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
