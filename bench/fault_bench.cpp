@@ -12,12 +12,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
 #include "http/service.h"
+#include "support/files.h"
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -25,18 +25,13 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 double ms_since_fault(long long fault_ns, Clock::time_point t) {
   return (std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count() - fault_ns) / 1e6;
 }
 
 // The steady-clock time of the last fault the log holds.
 long long last_fault_ns(const fs::path& log) {
-  std::istringstream lines(read_text(log));
+  std::istringstream lines(shadelab::testkit::read_text(log));
   std::string line, last;
   while (std::getline(lines, line))
     if (!line.empty()) last = line;
@@ -78,8 +73,8 @@ int main(int argc, char** argv) {
   };
   while (!whole()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
 
-  const std::string vertex = read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/specular_vert.js");
-  const std::string fragment = read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/specular_frag.js");
+  const std::string vertex = shadelab::testkit::read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/specular_vert.js");
+  const std::string fragment = shadelab::testkit::read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/specular_frag.js");
   std::printf("%-9s %-9s %4s  %-24s %-24s %s\n", "phase", "action", "n", "answered ms p50/p99/max", "whole ms p50/p99/max", "answer");
   int serial = 0;
   for (const auto& phase : phases)

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "fuzz_check.h"
+#include "wire_round_trip.h"
 #include "http/api_request.h"
-#include "worker/job.h"
 
 namespace {
 
@@ -18,11 +18,7 @@ void check_job(const worker::Job& job, const http::Limits& limits) {
   FUZZ_CHECK(r.height >= 1 && r.height <= limits.render.max_height);
   FUZZ_CHECK(r.frames >= 1 && r.frames <= limits.render.max_frames);
   FUZZ_CHECK(r.vertex.text.size() <= limits.render.max_source_bytes && r.fragment.text.size() <= limits.render.max_source_bytes);
-  const worker::Message sent = worker::to_message(job);
-  auto received = worker::job_from_message(sent);
-  FUZZ_CHECK(received.ok());
-  const worker::Message again = worker::to_message(*received);
-  FUZZ_CHECK(again.header == sent.header && again.payload == sent.payload);
+  fuzz::check_job_crosses_the_wire(job);
 }
 
 }  // namespace

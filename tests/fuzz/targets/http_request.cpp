@@ -9,23 +9,14 @@
 #include <string>
 
 #include "fuzz_check.h"
+#include "wire_round_trip.h"
 #include "http/memory_stream.h"
 #include "http/request_framing.h"
 #include "http/request_reader.h"
-#include "worker/job.h"
 
 namespace {
 
 using namespace shadelab;
-
-bool same_on_the_wire(const worker::Message& a, const worker::Message& b) { return a.header == b.header && a.payload == b.payload; }
-
-void check_job_crosses_the_wire(const worker::Job& job) {
-  const worker::Message sent = worker::to_message(job);
-  auto received = worker::job_from_message(sent);
-  FUZZ_CHECK(received.ok());
-  FUZZ_CHECK(same_on_the_wire(worker::to_message(*received), sent));
-}
 
 void answer(httplib::Response& res, const Status& status) {
   res.status = status ? 200 : http_status(status.error().code);
@@ -63,12 +54,12 @@ class ParsingServer : public httplib::Server {
     if (kind == worker::JobKind::grade) {
       auto grade = http::parse_grade_job(std::move(*raw), limits_);
       if (!grade) return grade.take_error();
-      check_job_crosses_the_wire(grade->parsed.job);
+      fuzz::check_job_crosses_the_wire(grade->parsed.job);
       return Ok{};
     }
     auto parsed = http::parse_job(*raw, kind, limits_);
     if (!parsed) return parsed.take_error();
-    check_job_crosses_the_wire(parsed->job);
+    fuzz::check_job_crosses_the_wire(parsed->job);
     return Ok{};
   }
 
@@ -77,8 +68,7 @@ class ParsingServer : public httplib::Server {
     if (!upload) return upload.take_error();
     auto scene = scene::parse_scene(upload->scene, limits_.scene);
     if (!scene) return scene.take_error();
-    const auto wire = worker::to_json(*scene);
-    FUZZ_CHECK(worker::to_json(worker::scene_from_json(nlohmann::json::parse(wire.dump()))) == wire);
+    fuzz::check_scene_crosses_the_wire(*scene);
     return Ok{};
   }
 

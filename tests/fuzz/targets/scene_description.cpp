@@ -8,7 +8,7 @@
 
 #include "fuzz_check.h"
 #include "http/limits.h"
-#include "worker/job.h"
+#include "wire_round_trip.h"
 
 namespace {
 
@@ -39,8 +39,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     return 0;
   }
   check_within_limits(*scene, limits.scene);
-  const auto wire = shadelab::worker::to_json(*scene);
-  const auto again = shadelab::worker::to_json(shadelab::worker::scene_from_json(nlohmann::json::parse(wire.dump())));
-  FUZZ_CHECK(again == wire);
+  shadelab::fuzz::check_scene_crosses_the_wire(*scene);
   return 0;
 }

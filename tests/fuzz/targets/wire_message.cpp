@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fuzz_check.h"
+#include "wire_round_trip.h"
 #include "worker/job.h"
 #include "worker/result.h"
 
@@ -14,15 +15,13 @@ namespace {
 
 using shadelab::worker::Message;
 
-bool same(const Message& a, const Message& b) { return a.header == b.header && a.payload == b.payload; }
-
 void check_job(const Message& m) {
   auto job = shadelab::worker::job_from_message(m);
   if (!job) return;
   const Message again = shadelab::worker::to_message(*job, m.payload);
   auto reread = shadelab::worker::job_from_message(again);
   FUZZ_CHECK(reread.ok());
-  FUZZ_CHECK(same(shadelab::worker::to_message(*reread, m.payload), again));
+  FUZZ_CHECK(shadelab::fuzz::same_message(shadelab::worker::to_message(*reread, m.payload), again));
 }
 
 void check_scene_job(const Message& m) {
@@ -31,7 +30,7 @@ void check_scene_job(const Message& m) {
   const Message again = shadelab::worker::to_message(*job);
   auto reread = shadelab::worker::scene_job_from_message(again);
   FUZZ_CHECK(reread.ok());
-  FUZZ_CHECK(same(shadelab::worker::to_message(*reread), again));
+  FUZZ_CHECK(shadelab::fuzz::same_message(shadelab::worker::to_message(*reread), again));
 }
 
 template <class Result>
@@ -44,7 +43,7 @@ void check_answer(const Message& m) {
   const Message again = shadelab::worker::answer(*result);
   auto reread = shadelab::worker::result_from<Result>(again);
   FUZZ_CHECK(reread.ok());
-  FUZZ_CHECK(same(shadelab::worker::answer(*reread), again));
+  FUZZ_CHECK(shadelab::fuzz::same_message(shadelab::worker::answer(*reread), again));
 }
 
 }  // namespace
@@ -54,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   auto decoded = shadelab::worker::decode_message(bytes);
   if (!decoded) return 0;
   auto round_trip = shadelab::worker::decode_message(shadelab::worker::encode_message(*decoded));
-  FUZZ_CHECK(round_trip.ok() && same(*round_trip, *decoded));
+  FUZZ_CHECK(round_trip.ok() && shadelab::fuzz::same_message(*round_trip, *decoded));
   (void)shadelab::worker::job_kind_of(*decoded);
   check_job(*decoded);
   check_scene_job(*decoded);
