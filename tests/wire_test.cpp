@@ -2,6 +2,8 @@
 // back, is what was sent. Pure CPU; no worker process.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "core/embedded_files.h"
 #include "grade/grade_session.h"
 #include "worker/job.h"
@@ -147,6 +149,23 @@ TEST(WireTest, AMessageKeptAsBytesComesBackWholeOrNotAtAll) {
   std::string garbled = bytes;
   garbled[12] = '!';  // the header is no longer JSON
   EXPECT_FALSE(decode_message(garbled));
+}
+
+// Readers convert with get<int>(), which casts a float unchecked: 1e20 read into a frame count
+// would be undefined behaviour, so such a header is malformed before any reader sees it. Deep
+// nesting (dump() and == recurse) is refused too; a message ShadeLab writes nests 6 levels.
+TEST(WireTest, AHeaderWithAnOutOfRangeNumberOrDeepNestingIsMalformed) {
+  const auto header_only = [](const std::string& header) {
+    std::string bytes(12, '\0');
+    const auto size = static_cast<std::uint32_t>(header.size());
+    std::memcpy(bytes.data(), &size, 4);
+    return bytes + header;
+  };
+  EXPECT_TRUE(decode_message(header_only(R"({"ok":true,"result":{"samples":4.5e8,"ms":-2e9}})")));
+  EXPECT_FALSE(decode_message(header_only(R"({"ok":true,"result":{"samples":1e20}})")));
+  EXPECT_FALSE(decode_message(header_only(R"({"result":[-3e9]})")));
+  EXPECT_TRUE(decode_message(header_only(std::string(20, '[') + std::string(20, ']'))));
+  EXPECT_FALSE(decode_message(header_only(std::string(40, '[') + std::string(40, ']'))));
 }
 
 }  // namespace

@@ -44,7 +44,10 @@ run_target() {
   local contained=""
   if ((status != 0)) && grep -qE '^SUMMARY: AddressSanitizer: [A-Za-z-]+ \(/(usr/)?lib/[^)]*\.so|ai_assert failure' "$log"; then
     mkdir -p "$root/tests/fuzz/contained/$target"
-    for f in "$regressions"/crash-*; do [[ -e $f ]] && mv "$f" "$root/tests/fuzz/contained/$target/"; done
+    # Only this run's input moves: the regressions already committed stay where they are.
+    local found
+    found=$(sed -n 's/^Test unit written to //p' "$log" | tail -1)
+    [[ -n $found && -e $found ]] && mv "$found" "$root/tests/fuzz/contained/$target/"
     contained="stopped on a crash inside a system library: kept in tests/fuzz/contained/$target"
     status=0
   fi

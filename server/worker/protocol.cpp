@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
+#include <optional>
+#include <vector>
 #include <cstring>
 
 namespace shadelab::worker {
@@ -50,6 +53,33 @@ std::string header_text(const Message& message) {
   return message.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+// Every reader of a header converts with nlohmann's get<T>(), which casts a float unchecked (1e20
+// read into an int is undefined behaviour), and dump() and == recurse. A header comes from
+// another process (a worker runs student code; a stored message comes from Redis), so it is
+// checked once here for every reader: floats within +-2^31 (no field holds more; scene values
+// stop at 1e9) and nesting no deeper than any message ShadeLab writes (a scene is 6 levels).
+constexpr double kMaxWireFloat = 2147483647.0;
+constexpr size_t kMaxWireDepth = 32;
+
+bool is_bounded(const nlohmann::json& root) {
+  std::vector<std::pair<const nlohmann::json*, size_t>> pending{{&root, 0}};
+  while (!pending.empty()) {
+    const auto [value, depth] = pending.back();
+    pending.pop_back();
+    if (value->is_number_float() && !(std::fabs(value->get<double>()) <= kMaxWireFloat)) return false;
+    if (!value->is_structured()) continue;
+    if (depth >= kMaxWireDepth) return false;
+    for (const auto& child : *value) pending.emplace_back(&child, depth + 1);
+  }
+  return true;
+}
+
+std::optional<nlohmann::json> parse_header(std::string_view text) {
+  auto header = nlohmann::json::parse(text, nullptr, false);
+  if (header.is_discarded() || !is_bounded(header)) return std::nullopt;
+  return header;
+}
+
 struct Prefix {
   char bytes[12];
   Prefix(size_t header_size, size_t payload_size) {
@@ -86,9 +116,10 @@ Expected<Message> decode_message(std::string_view bytes) {
   std::memcpy(&payload_size, bytes.data() + 4, 8);
   if (header_size > kMaxHeaderBytes || payload_size > kMaxPayloadBytes || bytes.size() != 12 + header_size + payload_size)
     return malformed();
+  auto header = parse_header(bytes.substr(12, header_size));
+  if (!header) return malformed();
   Message message;
-  message.header = nlohmann::json::parse(bytes.substr(12, header_size), nullptr, false);
-  if (message.header.is_discarded()) return malformed();
+  message.header = std::move(*header);
   message.payload = bytes.substr(12 + header_size);
   return message;
 }
@@ -114,8 +145,10 @@ ReadStatus read_message(int fd, Message& message, Clock::time_point deadline) {
   if (auto s = read_rest(header.data(), header.size()); s != ReadStatus::ok) return s;
   message.payload.assign(payload_size, '\0');
   if (auto s = read_rest(message.payload.data(), message.payload.size()); s != ReadStatus::ok) return s;
-  message.header = nlohmann::json::parse(header, nullptr, false);
-  return message.header.is_discarded() ? ReadStatus::malformed : ReadStatus::ok;
+  auto parsed = parse_header(header);
+  if (!parsed) return ReadStatus::malformed;
+  message.header = std::move(*parsed);
+  return ReadStatus::ok;
 }
 
 nlohmann::json pack_parts(const std::vector<PayloadPartView>& parts, std::string& payload) {
