@@ -12,7 +12,9 @@
 #include <glm/matrix.hpp>
 
 #include "core/embedded_files.h"
+#include "scene/indexed_mesh.h"
 #include "scene/mesh.h"
+#include "scene/ply_reader.h"
 
 namespace shadelab::scene {
 
@@ -23,114 +25,124 @@ glm::mat4 to_glm(const aiMatrix4x4& m) {
   return glm::mat4(m.a1, m.b1, m.c1, m.d1, m.a2, m.b2, m.c2, m.d2, m.a3, m.b3, m.c3, m.d3, m.a4, m.b4, m.c4, m.d4);
 }
 
-bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+// The formats an upload may be, each read by one reader. assimp reads some 40 formats, many
+// rarely exercised; only the documented ones reach it.
+constexpr std::string_view kFormats[] = {"obj", "ply", "stl", "gltf", "glb"};
+
+bool supported(std::string_view format) { return std::find(std::begin(kFormats), std::end(kFormats), format) != std::end(kFormats); }
+
+// One of assimp's meshes with its node's transform applied, as the file's faces index it.
+IndexedMesh indexed(const aiMesh& m, const glm::mat4& world, const glm::mat3& normal_matrix) {
+  IndexedMesh out;
+  out.name = m.mName.C_Str();
+  out.positions.reserve(m.mNumVertices);
+  for (unsigned v = 0; v < m.mNumVertices; ++v) {
+    const aiVector3D& p = m.mVertices[v];
+    // A non-finite coordinate stays non-finite, for append_triangles to name its vertex.
+    const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    out.positions.push_back(finite ? glm::vec3(world * glm::vec4(p.x, p.y, p.z, 1.f)) : glm::vec3(p.x, p.y, p.z));
+  }
+  if (m.HasNormals())
+    for (unsigned v = 0; v < m.mNumVertices; ++v) {
+      const aiVector3D& n = m.mNormals[v];
+      const bool finite = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+      out.normals.push_back(finite ? normal_matrix * glm::vec3(n.x, n.y, n.z) : glm::vec3(n.x, n.y, n.z));
+    }
+  for (unsigned f = 0; f < m.mNumFaces; ++f) {
+    const aiFace& face = m.mFaces[f];
+    out.corners.insert(out.corners.end(), face.mIndices, face.mIndices + face.mNumIndices);
+    out.face_sizes.push_back(face.mNumIndices);
+  }
+  return out;
+}
 
 struct Collector {
   const aiScene& scene;
   const MeshLimits& limits;
   Mesh& mesh;
   bool all_have_normals = true;
-  std::string problem;  // first invalid datum, if any
 
-  void collect(const aiNode& node, const glm::mat4& parent) {
+  Status collect(const aiNode& node, const glm::mat4& parent) {
     const glm::mat4 world = parent * to_glm(node.mTransformation);
     const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
-    for (unsigned i = 0; i < node.mNumMeshes && problem.empty(); ++i)
-      add(*scene.mMeshes[node.mMeshes[i]], world, normal_matrix);
-    for (unsigned i = 0; i < node.mNumChildren && problem.empty(); ++i) collect(*node.mChildren[i], world);
-  }
-
-  void add(const aiMesh& m, const glm::mat4& world, const glm::mat3& normal_matrix) {
-    if (!m.HasNormals()) all_have_normals = false;
-    for (unsigned v = 0; v < m.mNumVertices; ++v) {
-      if (!finite(m.mVertices[v])) {
-        problem = "vertex " + std::to_string(v + 1) + " of mesh '" + m.mName.C_Str() + "' has a NaN or infinite coordinate";
-        return;
-      }
-      if (m.HasNormals() && !finite(m.mNormals[v])) {
-        problem = "normal " + std::to_string(v + 1) + " of mesh '" + m.mName.C_Str() + "' is NaN or infinite";
-        return;
-      }
+    for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+      const aiMesh& m = *scene.mMeshes[node.mMeshes[i]];
+      all_have_normals = all_have_normals && m.HasNormals();
+      if (auto s = append_triangles(indexed(m, world, normal_matrix), limits, mesh); !s) return s;
     }
-    for (unsigned f = 0; f < m.mNumFaces; ++f) {
-      const aiFace& face = m.mFaces[f];
-      if (face.mNumIndices < 3) {
-        ++mesh.skipped_primitives;
-        continue;
-      }
-      for (unsigned k = 0; k < face.mNumIndices; ++k)
-        if (face.mIndices[k] >= m.mNumVertices) {
-          problem = "face " + std::to_string(f + 1) + " refers to vertex " + std::to_string(face.mIndices[k] + 1) + " of " +
-                    std::to_string(m.mNumVertices);
-          return;
-        }
-      // A polygon is a fan around its first corner, in the file's corner order (as the homework
-      // page's loader draws it).
-      for (unsigned k = 1; k + 1 < face.mNumIndices; ++k) {
-        if (mesh.triangle_count() >= limits.max_triangles) {
-          problem = "too many triangles";
-          return;
-        }
-        for (const unsigned idx : {face.mIndices[0], face.mIndices[k], face.mIndices[k + 1]}) corner(m, idx, world, normal_matrix);
-      }
-    }
-  }
-
-  void corner(const aiMesh& m, unsigned idx, const glm::mat4& world, const glm::mat3& normal_matrix) {
-    const aiVector3D& p = m.mVertices[idx];
-    mesh.positions.push_back(glm::vec3(world * glm::vec4(p.x, p.y, p.z, 1.f)));
-    if (!m.HasNormals()) {
-      mesh.normals.emplace_back(0.f);
-      return;
-    }
-    const aiVector3D& n = m.mNormals[idx];
-    const glm::vec3 transformed = normal_matrix * glm::vec3(n.x, n.y, n.z);
-    const float length = glm::length(transformed);
-    mesh.normals.push_back(length > 0.f && std::isfinite(length) ? transformed / length : glm::vec3(0.f));
+    for (unsigned i = 0; i < node.mNumChildren; ++i)
+      if (auto s = collect(*node.mChildren[i], world); !s) return s;
+    return Ok{};
   }
 };
+
+// Reads every format but PLY; `all_have_normals` says whether the file gave every corner one.
+Status read_with_assimp(std::span<const std::uint8_t> bytes, const std::string& format, const std::string& name,
+                        const MeshLimits& limits, Mesh& mesh, bool& all_have_normals) {
+  // One importer per thread, kept: constructing one registers assimp's ~40 readers and its
+  // post-processing steps, most of the time a small file takes to read.
+  thread_local Assimp::Importer importer;
+  // No step that reorders or welds vertices runs, so faces keep the file's order; polygons are
+  // triangulated by append_triangles, not by aiProcess_Triangulate, whose assertions abort the
+  // process on some malformed files (tests/fuzz/regressions/mesh_loader). ValidateDataStructure
+  // rejects out-of-range indices.
+  const unsigned flags = aiProcess_ValidateDataStructure;
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, format.c_str());
+  if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
+    return make_error(ErrorCode::mesh_parse_failed, "could not read '" + name + "' as " + format + ": " + importer.GetErrorString());
+  Collector collector{*scene, limits, mesh};
+  auto collected = collector.collect(*scene->mRootNode, glm::mat4(1.f));
+  all_have_normals = collector.all_have_normals;
+  importer.FreeScene();  // the mesh is copied out; the kept importer keeps nothing of the file
+  return collected;
+}
+
+Status read_ply_mesh(std::span<const std::uint8_t> bytes, const std::string& name, const MeshLimits& limits, Mesh& mesh,
+                     bool& all_have_normals) {
+  auto ply = read_ply({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, name);
+  if (!ply) return ply.error();
+  all_have_normals = !ply->normals.empty();
+  return append_triangles(*ply, limits, mesh);
+}
+
+// A zero-length normal is not a normal (normalize() in any shader makes it NaN): those corners
+// take the smooth normal computed from the geometry, the others keep the file's.
+void fill_missing_normals(Mesh& mesh) {
+  if (std::none_of(mesh.normals.begin(), mesh.normals.end(), [](const glm::vec3& n) { return n == glm::vec3(0.f); })) return;
+  Mesh computed = mesh;
+  compute_smooth_normals(computed);
+  for (size_t i = 0; i < mesh.normals.size(); ++i)
+    if (mesh.normals[i] == glm::vec3(0.f)) mesh.normals[i] = computed.normals[i];
+}
 
 }  // namespace
 
 Expected<Mesh> load_mesh(std::span<const std::uint8_t> bytes, const std::string& format_hint, const std::string& name,
                          const MeshLimits& limits) {
   if (bytes.empty()) return make_error(ErrorCode::mesh_empty, "the mesh file '" + name + "' is empty");
-  Assimp::Importer importer;
-  // No step that reorders or welds vertices runs, so faces keep the file's order; polygons are
-  // triangulated here, not by aiProcess_Triangulate, whose assertions abort the process on some
-  // malformed files (tests/fuzz/regressions/mesh_loader). ValidateDataStructure rejects
-  // out-of-range indices.
-  const unsigned flags = aiProcess_ValidateDataStructure;
-  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags, format_hint.c_str());
-  if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
-    return make_error(ErrorCode::mesh_parse_failed,
-                      "could not read '" + name + "' as " + format_hint + ": " + importer.GetErrorString());
+  if (!supported(format_hint))
+    return make_error(ErrorCode::mesh_parse_failed, "'" + name + "' is a ." + format_hint +
+                                                        " file; meshes are read from OBJ, PLY, STL, glTF and GLB files");
   Mesh mesh;
   mesh.name = name;
-  Collector collector{*scene, limits, mesh};
-  collector.collect(*scene->mRootNode, glm::mat4(1.f));
-  if (collector.problem == "too many triangles")
-    return make_error(ErrorCode::mesh_too_large,
-                      "'" + name + "' has more than " + std::to_string(limits.max_triangles) + " triangles");
-  if (!collector.problem.empty()) return make_error(ErrorCode::mesh_invalid, "'" + name + "': " + collector.problem);
-  if (mesh.positions.empty())
-    return make_error(ErrorCode::mesh_empty, "'" + name + "' has no triangles to draw");
+  bool all_have_normals = false;
+  auto read = format_hint == "ply" ? read_ply_mesh(bytes, name, limits, mesh, all_have_normals)
+                                   : read_with_assimp(bytes, format_hint, name, limits, mesh, all_have_normals);
+  if (!read) {
+    Error e = read.error();
+    if (e.code != ErrorCode::mesh_parse_failed) e.message = "'" + name + "': " + e.message;
+    return e;
+  }
+  if (mesh.positions.empty()) return make_error(ErrorCode::mesh_empty, "'" + name + "' has no triangles to draw");
   for (const auto& p : mesh.positions)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       return make_error(ErrorCode::mesh_invalid, "'" + name + "': its node transforms move a vertex to infinity");
-  if (!collector.all_have_normals) {
+  if (!all_have_normals) {
     compute_smooth_normals(mesh);
     return mesh;
   }
   mesh.normals_from_file = true;
-  // A zero-length normal is not a normal (normalize() in any shader makes it NaN): those corners
-  // take the smooth normal computed from the geometry, the others keep the file's.
-  if (std::any_of(mesh.normals.begin(), mesh.normals.end(), [](const glm::vec3& n) { return n == glm::vec3(0.f); })) {
-    Mesh computed = mesh;
-    compute_smooth_normals(computed);
-    for (size_t i = 0; i < mesh.normals.size(); ++i)
-      if (mesh.normals[i] == glm::vec3(0.f)) mesh.normals[i] = computed.normals[i];
-  }
+  fill_missing_normals(mesh);
   return mesh;
 }
 

@@ -15,7 +15,8 @@ namespace shadelab::worker {
 
 namespace {
 
-constexpr std::string_view kDirective = "// shadelab-fault: ";
+// After a comment marker: "//" in a shader, "#" in an OBJ file.
+constexpr std::string_view kDirective = "shadelab-fault: ";
 
 const char* log_path() { return std::getenv("SHADELAB_FAULT_INJECTION"); }
 
@@ -25,6 +26,7 @@ std::string_view name_of(FaultPhase phase) {
     case FaultPhase::render: return "render";
     case FaultPhase::readback: return "readback";
     case FaultPhase::encode: return "encode";
+    case FaultPhase::mesh: return "mesh";
   }
   return "?";
 }
@@ -52,19 +54,19 @@ void send_raw(int socket, const void* data, size_t size) { (void)!::send(socket,
 
 }  // namespace
 
-FaultPlan fault_plan(const std::string& fragment_source) {
+FaultPlan fault_plan(std::string_view text) {
   if (!log_path()) return {};
-  const size_t at = fragment_source.find(kDirective);
+  const size_t at = text.find(kDirective);
   if (at == std::string::npos) return {};
   const size_t begin = at + kDirective.size();
-  const std::string words = fragment_source.substr(begin, fragment_source.find('\n', begin) - begin);
+  const std::string words(text.substr(begin, text.find('\n', begin) - begin));
   const size_t space = words.find(' ');
   if (space == std::string::npos) return {};
   const std::string phase = words.substr(0, space);
   // Whatever follows the action (a request's serial number, say) is ignored.
   const std::string action = words.substr(space + 1, words.find_first_of(" \r", space + 1) - space - 1);
   FaultPlan plan{true, FaultPhase::compile, action};
-  for (auto p : {FaultPhase::compile, FaultPhase::render, FaultPhase::readback, FaultPhase::encode})
+  for (auto p : {FaultPhase::compile, FaultPhase::render, FaultPhase::readback, FaultPhase::encode, FaultPhase::mesh})
     if (name_of(p) == phase) return plan.phase = p, plan;
   return {};
 }

@@ -2,9 +2,11 @@
 // Faults a worker injects into itself, for the fault-injection tests and bench (tests/fault_test.cpp,
 // bench/fault_bench.cpp, docs/reliability.md): never active unless the server was started with
 // SHADELAB_FAULT_INJECTION=<log file> in its environment (the workers inherit it). A render job
-// then names its fault in its fragment shader, on a line of its own:
+// then names its fault in its fragment shader, an uploaded mesh in an OBJ comment, on a line of
+// its own:
 //
 //   // shadelab-fault: <phase> <action> [anything, e.g. a serial number that defeats caches]
+//   # shadelab-fault: mesh <action>
 //
 // | phase    | where the worker is                                                    |
 // |----------|------------------------------------------------------------------------|
@@ -12,6 +14,7 @@
 // | render   | compiled, the server told the render phase began                       |
 // | readback | frame 0's pixels read back (in the frame sink)                         |
 // | encode   | every frame rendered, the output not yet encoded                       |
+// | mesh     | an uploaded mesh's bytes received, not yet parsed (its check job)      |
 //
 // | action   | what the worker does                                                   |
 // |----------|------------------------------------------------------------------------|
@@ -27,10 +30,11 @@
 // Before acting the worker appends "<phase> <action> <steady-clock ns>" to the log file, so a
 // test can time the recovery from the moment of the fault.
 #include <string>
+#include <string_view>
 
 namespace shadelab::worker {
 
-enum class FaultPhase { compile, render, readback, encode };
+enum class FaultPhase { compile, render, readback, encode, mesh };
 
 struct FaultPlan {
   bool active = false;
@@ -38,8 +42,9 @@ struct FaultPlan {
   std::string action;
 };
 
-// The fault a job's fragment source asks for; inactive without SHADELAB_FAULT_INJECTION.
-FaultPlan fault_plan(const std::string& fragment_source);
+// The fault a job's fragment source (or a mesh file) asks for; inactive without
+// SHADELAB_FAULT_INJECTION.
+FaultPlan fault_plan(std::string_view text);
 
 // Injects the plan's fault if `phase` is its phase; `socket` is the worker's end of its socket.
 void inject_fault(const FaultPlan& plan, FaultPhase phase, int socket);

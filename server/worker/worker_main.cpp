@@ -130,6 +130,7 @@ class Worker {
   }
 
   Expected<MeshCheckResult> check_mesh(const Job& job, const std::string& payload) {
+    inject_fault(fault_plan(payload), FaultPhase::mesh, fd_);  // inactive outside fault-injection runs
     auto m = mesh(job, payload);
     if (!m) return m.take_error();
     const auto b = scene::bounds(**m);
