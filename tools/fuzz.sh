@@ -6,6 +6,10 @@
 # fails. New coverage goes to build-fuzz/corpus/<target>/ (seeded from tests/fuzz/corpus), so runs
 # build on each other without touching the repository's seeds.
 #
+# SHADELAB_FUZZ_SEED=N fixes libFuzzer's seed, so a run retraces the same inputs (as far as the
+# machine's speed takes it in SECONDS): the README's test command uses it, so CI checks the same
+# ground each time; unset (the default), every run explores anew.
+#
 #   tools/fuzz.sh [SECONDS] [TARGET...]      e.g. tools/fuzz.sh 600 mesh_loader
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,7 +38,7 @@ run_target() {
   # needs 2 GB, the workers' memory cap. Leaks are findings too (ASan's leak check is on).
   LSAN_OPTIONS=suppressions=$root/tools/sanitizers/lsan.supp:print_suppressions=0 \
     "$build/tests/fuzz/fuzz_$target" "$corpus" "$root/tests/fuzz/corpus/$target" "$regressions" \
-    "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    "${dict[@]}" ${SHADELAB_FUZZ_SEED:+-seed="$SHADELAB_FUZZ_SEED"} -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$regressions/" >"$log" 2>&1
   local status=$?
   # A crash wholly inside a system library (its sanitizer summary names only that library, or

@@ -56,6 +56,7 @@ std::optional<Scalar> scalar_named(std::string_view name) {
 
 // What a property's values are for.
 enum class Role { skip, x, y, z, nx, ny, nz, face_corners };
+constexpr size_t kRoles = static_cast<size_t>(Role::face_corners) + 1;
 
 struct Property {
   std::string name;
@@ -200,7 +201,7 @@ struct Roles {
 Roles assign_roles(Header& h) {
   Roles found;
   for (auto& e : h.elements) {
-    std::array<bool, 7> seen{};
+    std::array<bool, kRoles> seen{};
     for (auto& p : e.properties) {
       p.role = role_of(e, p);
       if (seen[static_cast<size_t>(p.role)]) p.role = Role::skip;  // the first x wins, as in assimp

@@ -97,7 +97,7 @@ function job(output) {
     vertexName: editors.vertex.name, fragmentName: editors.fragment.name,
     mesh: state.uploadedId ?? state.mesh,
     width: Number($("width").value), height: Number($("height").value),
-    frames: Number($("frames").value), degreesPerFrame: Number($("degrees").value),
+    frames: Number($("frame-count").value), degreesPerFrame: Number($("degrees").value),
     prefix: $("prefix").value, uniforms: serverUniforms(), output,
   };
 }
