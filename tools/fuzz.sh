@@ -50,7 +50,7 @@ run_target() {
     mkdir -p "$root/tests/fuzz/contained/$target"
     # Only this run's input moves: the regressions already committed stay where they are.
     local found
-    found=$(sed -n 's/^Test unit written to //p' "$log" | tail -1)
+    found=$(sed -n 's/.*Test unit written to //p' "$log" | tail -1)
     [[ -n $found && -e $found ]] && mv "$found" "$root/tests/fuzz/contained/$target/"
     contained="stopped on a crash inside a system library: kept in tests/fuzz/contained/$target"
     status=0

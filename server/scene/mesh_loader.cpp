@@ -1,4 +1,6 @@
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -6,6 +8,8 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <memory>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
@@ -76,12 +80,45 @@ struct Collector {
   }
 };
 
+// An assimp importer that holds only the readers of one format. assimp picks its reader by the
+// file's extension, but when that reader declines the bytes it tries all its others by content:
+// a PLY file named .glb reached assimp's PLY reader, and its crash, that way. So each format has
+// an importer of its own, and the name says which reader a file meets.
+class FormatImporter {
+ public:
+  explicit FormatImporter(std::string_view format) {
+    for (size_t i = importer_.GetImporterCount(); i-- > 0;) {
+      const aiImporterDesc* desc = importer_.GetImporterInfo(i);
+      if (desc && lists(desc->mFileExtensions, format)) continue;
+      // UnregisterLoader hands the reader back to the caller, who deletes it.
+      removed_.emplace_back(importer_.GetImporter(i));
+      importer_.UnregisterLoader(removed_.back().get());
+    }
+  }
+  Assimp::Importer& importer() { return importer_; }
+
+ private:
+  static bool lists(std::string_view extensions, std::string_view format) {
+    for (size_t at = 0; at < extensions.size();) {
+      const size_t end = std::min(extensions.find(' ', at), extensions.size());
+      if (extensions.substr(at, end - at) == format) return true;
+      at = end + 1;
+    }
+    return false;
+  }
+  Assimp::Importer importer_;
+  std::vector<std::unique_ptr<Assimp::BaseImporter>> removed_;
+};
+
 // Reads every format but PLY; `all_have_normals` says whether the file gave every corner one.
 Status read_with_assimp(std::span<const std::uint8_t> bytes, const std::string& format, const std::string& name,
                         const MeshLimits& limits, Mesh& mesh, bool& all_have_normals) {
-  // One importer per thread, kept: constructing one registers assimp's ~40 readers and its
+  // Kept per thread and format: constructing an importer registers assimp's ~40 readers and its
   // post-processing steps, most of the time a small file takes to read.
-  thread_local Assimp::Importer importer;
+  thread_local std::map<std::string, FormatImporter, std::less<>> importers;
+  auto it = importers.find(format);
+  if (it == importers.end()) it = importers.try_emplace(format, format).first;
+  Assimp::Importer& importer = it->second.importer();
   // No step that reorders or welds vertices runs, so faces keep the file's order; polygons are
   // triangulated by append_triangles, not by aiProcess_Triangulate, whose assertions abort the
   // process on some malformed files (tests/fuzz/regressions/mesh_loader). ValidateDataStructure
