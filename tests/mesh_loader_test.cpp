@@ -136,3 +136,20 @@ TEST(MeshLoaderTest, TriangleCapIsEnforced) {
   ASSERT_FALSE(m);
   EXPECT_EQ(m.error().code, ErrorCode::mesh_too_large);
 }
+
+// A mesh file names other files (a glTF buffer's uri, an OBJ's mtllib): an upload must not read
+// the worker's file system through them. It once rendered /etc/passwd's bytes as vertices.
+TEST(MeshLoaderTest, AMeshCannotReadOtherFiles) {
+  const std::string gltf = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"buffers":[{"uri":"/etc/passwd","byteLength":36}],
+    "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[-1e30,-1e30,-1e30],"max":[1e30,1e30,1e30]}]})";
+  auto m = load(gltf, "gltf");
+  ASSERT_FALSE(m) << "read " << m->triangle_count() << " triangles out of /etc/passwd";
+  EXPECT_EQ(m.error().code, ErrorCode::mesh_parse_failed);
+  EXPECT_NE(m.error().message.find("/etc/passwd"), std::string::npos) << m.error().message;
+  // An OBJ's material library is not read either; the geometry still loads.
+  auto obj = load("mtllib /etc/passwd\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "obj");
+  ASSERT_TRUE(obj) << obj.error().format();
+  EXPECT_EQ(obj->triangle_count(), 1u);
+}

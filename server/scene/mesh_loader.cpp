@@ -1,4 +1,5 @@
 #include <assimp/BaseImporter.h>
+#include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
@@ -80,6 +81,17 @@ struct Collector {
   }
 };
 
+// The file system an uploaded mesh sees: none. A glTF buffer's "uri" or an OBJ's "mtllib" is a
+// path assimp opens; "uri": "/etc/passwd" rendered that file's bytes as vertices and reported
+// their bounds. An upload is one file: its buffers are embedded (GLB, data: URIs).
+class NoFileSystem final : public Assimp::IOSystem {
+ public:
+  bool Exists(const char*) const override { return false; }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char*, const char*) override { return nullptr; }
+  void Close(Assimp::IOStream*) override {}
+};
+
 // An assimp importer that holds only the readers of one format. assimp picks its reader by the
 // file's extension, but when that reader declines the bytes it tries all its others by content:
 // a PLY file named .glb reached assimp's PLY reader, and its crash, that way. So each format has
@@ -87,6 +99,7 @@ struct Collector {
 class FormatImporter {
  public:
   explicit FormatImporter(std::string_view format) {
+    importer_.SetIOHandler(new NoFileSystem);  // the importer owns it
     for (size_t i = importer_.GetImporterCount(); i-- > 0;) {
       const aiImporterDesc* desc = importer_.GetImporterInfo(i);
       if (desc && lists(desc->mFileExtensions, format)) continue;
