@@ -135,44 +135,43 @@ struct HeaderReader {
     return p;
   }
 
+  // One header line's declaration (format, element or property) added to `h`.
+  Status declare(const std::vector<std::string_view>& w, Header& h, bool& have_format) const {
+    if (w[0] == "format") {
+      auto encoding = format(w);
+      if (!encoding) return encoding.error();
+      h.encoding = *encoding;
+      have_format = true;
+    } else if (w[0] == "element") {
+      auto e = element(w, h.elements);
+      if (!e) return e.error();
+      h.elements.push_back(std::move(*e));
+    } else if (w[0] == "property") {
+      if (h.elements.empty()) return fail("a property before any element");
+      auto p = property(w);
+      if (!p) return p.error();
+      h.elements.back().properties.push_back(std::move(*p));
+    } else {
+      return fail("unknown keyword '" + std::string(w[0]) + "'");
+    }
+    return Ok{};
+  }
+
   Expected<Header> read() {
     Header h;
     bool have_format = false;
-    size_t at = 0;
-    while (at < bytes.size()) {
-      const size_t end = bytes.find('\n', at);
-      if (end == std::string_view::npos) break;
+    for (size_t at = 0, end; (end = bytes.find('\n', at)) != std::string_view::npos; at = end + 1) {
       std::string_view line = bytes.substr(at, end - at);
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-      at = end + 1;
-      ++line_number;
       const auto w = words(line);
-      if (line_number == 1) {
+      if (++line_number == 1) {
         if (w.size() != 1 || w[0] != "ply") return fail("a PLY file starts with a line 'ply'");
-        continue;
-      }
-      if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
-      if (w[0] == "end_header") {
+      } else if (!w.empty() && w[0] == "end_header") {
         if (!have_format) return fail("the header has no 'format' line");
-        h.body_offset = at;
+        h.body_offset = end + 1;
         return h;
-      }
-      if (w[0] == "format") {
-        auto encoding = format(w);
-        if (!encoding) return encoding.error();
-        h.encoding = *encoding;
-        have_format = true;
-      } else if (w[0] == "element") {
-        auto e = element(w, h.elements);
-        if (!e) return e.error();
-        h.elements.push_back(std::move(*e));
-      } else if (w[0] == "property") {
-        if (h.elements.empty()) return fail("a property before any element");
-        auto p = property(w);
-        if (!p) return p.error();
-        h.elements.back().properties.push_back(std::move(*p));
-      } else {
-        return fail("unknown keyword '" + std::string(w[0]) + "'");
+      } else if (!w.empty() && w[0] != "comment" && w[0] != "obj_info") {
+        if (auto declared = declare(w, h, have_format); !declared) return declared.error();
       }
     }
     ++line_number;
