@@ -36,3 +36,19 @@ TEST(DriverLogTest, UnlocatedLinkMessagesAreKept) {
   EXPECT_EQ(d[0].line, 0);
   EXPECT_NE(d[0].message.find("vColor"), std::string::npos);
 }
+
+// A driver quotes the student's identifier in its message; a shader may be 64 KiB, so may the
+// identifier. std::regex, which read these lines once, recursed per character and overflowed the
+// worker's stack on such a line; each format is read left to right now.
+TEST(DriverLogTest, AMessageQuotingAHugeIdentifierIsOneDiagnostic) {
+  const std::string name(200000, 'a');
+  for (const std::string& line : {"0:12(5): error: `" + name + "' undeclared", "0(12) : error C1008: undefined variable \"" + name + "\"",
+                                   "ERROR: 0:12: '" + name + "' : undeclared identifier", "error: " + name}) {
+    const auto d = shader::parse_driver_log(line + "\r\n", "fragment", "phong_frag.js", nullptr);
+    ASSERT_EQ(d.size(), 1u) << line.substr(0, 20);
+    EXPECT_EQ(d[0].severity, "error");
+    EXPECT_NE(d[0].message.find(name), std::string::npos);
+    EXPECT_LT(d[0].message.size(), line.size()) << "read as a located message, its prefix taken off";
+    EXPECT_NE(d[0].message.back(), '\r') << "the CR of a CRLF log is not message text";
+  }
+}
