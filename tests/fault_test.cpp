@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 constexpr bool kSanitized = true;
 #else
 constexpr bool kSanitized = false;
@@ -68,9 +68,9 @@ class FaultTest : public ::testing::TestWithParam<Fault> {
     log_ = fs::temp_directory_path() / ("shadelab_faults_" + std::to_string(::getpid()) + ".log");
     ::setenv("SHADELAB_FAULT_INJECTION", log_.c_str(), 1);  // the workers inherit it
     auto config = testkit::test_config();
-    // The hog reaches it in a fraction of a second. AddressSanitizer's shadow memory and
-    // quarantine roughly triple a worker's footprint (tools/sanitize.sh), so the cap scales.
-    config.pool.memory_limit_bytes = (kSanitized ? size_t{1536} : size_t{512}) << 20;
+    // The hog reaches it in a fraction of a second. A sanitizer's shadow memory (and ASan's
+    // quarantine) multiplies a worker's footprint (tools/sanitize.sh), so the cap scales.
+    config.pool.memory_limit_bytes = (kSanitized ? size_t{2048} : size_t{512}) << 20;
     server_ = new testkit::RunningService(config);
   }
   static void TearDownTestSuite() {

@@ -26,7 +26,7 @@ case $kind in
     build=build-tsan
     flags=(-DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread)
     labels=(-L "connection|http|tenant|store|metrics|wire|fault")
-    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$root/tools/sanitizers/tsan.supp"
+    export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:history_size=7:suppressions=$root/tools/sanitizers/tsan.supp"
     ;;
   *) echo "usage: tools/sanitize.sh address|thread [ctest args]" >&2; exit 2 ;;
 esac
