@@ -36,6 +36,8 @@ constexpr std::string_view kFormats[] = {"obj", "ply", "stl", "gltf", "glb"};
 
 bool supported(std::string_view format) { return std::find(std::begin(kFormats), std::end(kFormats), format) != std::end(kFormats); }
 
+bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
 // One of assimp's meshes with its node's transform applied, as the file's faces index it.
 IndexedMesh indexed(const aiMesh& m, const glm::mat4& world, const glm::mat3& normal_matrix) {
   IndexedMesh out;
@@ -44,14 +46,12 @@ IndexedMesh indexed(const aiMesh& m, const glm::mat4& world, const glm::mat3& no
   for (unsigned v = 0; v < m.mNumVertices; ++v) {
     const aiVector3D& p = m.mVertices[v];
     // A non-finite coordinate stays non-finite, for append_triangles to name its vertex.
-    const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-    out.positions.push_back(finite ? glm::vec3(world * glm::vec4(p.x, p.y, p.z, 1.f)) : glm::vec3(p.x, p.y, p.z));
+    out.positions.push_back(finite(p) ? glm::vec3(world * glm::vec4(p.x, p.y, p.z, 1.f)) : glm::vec3(p.x, p.y, p.z));
   }
   if (m.HasNormals())
     for (unsigned v = 0; v < m.mNumVertices; ++v) {
       const aiVector3D& n = m.mNormals[v];
-      const bool finite = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
-      out.normals.push_back(finite ? normal_matrix * glm::vec3(n.x, n.y, n.z) : glm::vec3(n.x, n.y, n.z));
+      out.normals.push_back(finite(n) ? normal_matrix * glm::vec3(n.x, n.y, n.z) : glm::vec3(n.x, n.y, n.z));
     }
   for (unsigned f = 0; f < m.mNumFaces; ++f) {
     const aiFace& face = m.mFaces[f];

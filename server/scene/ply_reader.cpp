@@ -285,6 +285,7 @@ struct BodyReader {
   Values values;
   const std::string& name;
   IndexedMesh& mesh;
+  bool has_normals;  // the vertex element has nx, ny and nz
 
   Error fail(const Element& e, std::uint64_t record, const std::string& why) const {
     return make_error(ErrorCode::mesh_parse_failed, "'" + name + "': PLY element '" + e.name + "', record " +
@@ -343,16 +344,13 @@ struct BodyReader {
       if (auto s = record(e, r); !s) return s;
     return Ok{};
   }
-
-  bool has_normals = false;
 };
 
 template <class Values>
 Expected<IndexedMesh> read_body(const Header& h, Values values, const Roles& roles, const std::string& name) {
   IndexedMesh mesh;
   mesh.name = name;
-  BodyReader<Values> reader{std::move(values), name, mesh};
-  reader.has_normals = roles.normals;
+  BodyReader<Values> reader{std::move(values), name, mesh, roles.normals};
   for (const auto& e : h.elements)
     if (auto s = reader.element(e); !s) return s.error();
   return mesh;
