@@ -35,6 +35,7 @@ Status append_triangles(const IndexedMesh& source, const MeshLimits& limits, Mes
   if (corner_count != source.corners.size() || (!source.normals.empty() && source.normals.size() != source.positions.size()))
     return make_error(ErrorCode::mesh_invalid, "mesh '" + source.name + "' is inconsistent: its faces and vertices do not add up");
   const bool has_normals = !source.normals.empty();
+  mesh.skipped_primitives += source.other_primitives;
   size_t first = 0;
   for (size_t f = 0; f < source.face_sizes.size(); first += source.face_sizes[f], ++f) {
     const std::uint32_t size = source.face_sizes[f];

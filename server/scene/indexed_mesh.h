@@ -19,6 +19,7 @@ struct IndexedMesh {
   std::vector<glm::vec3> normals;          // one per position, or empty (computed later)
   std::vector<std::uint32_t> corners;      // every face's vertex indices, face after face
   std::vector<std::uint32_t> face_sizes;   // corners per face; points and lines have fewer than 3
+  int other_primitives = 0;                // points and lines a reader counted without storing them
 };
 
 // Appends `source`'s faces to `mesh`, each polygon a fan around its first corner in the file's

@@ -44,7 +44,7 @@ struct MeshLimits {
   size_t max_triangles = 2'000'000;
 };
 
-// Loads OBJ, PLY, STL, glTF/GLB and the other formats assimp reads, from memory. `format_hint` is
+// Loads OBJ and PLY (ShadeLab's own readers), STL, glTF and GLB (assimp's), from memory. `format_hint` is
 // the file extension ("obj", "glb", ...). Positions are used as the file has them (node transforms
 // applied); normals from the file when it has them, else computed.
 Expected<Mesh> load_mesh(std::span<const std::uint8_t> bytes, const std::string& format_hint,

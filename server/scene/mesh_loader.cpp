@@ -19,6 +19,7 @@
 #include "core/embedded_files.h"
 #include "scene/indexed_mesh.h"
 #include "scene/mesh.h"
+#include "scene/obj_reader.h"
 #include "scene/ply_reader.h"
 
 namespace shadelab::scene {
@@ -123,7 +124,7 @@ class FormatImporter {
   std::vector<std::unique_ptr<Assimp::BaseImporter>> removed_;
 };
 
-// Reads every format but PLY; `all_have_normals` says whether the file gave every corner one.
+// Reads STL, glTF and GLB; `all_have_normals` says whether the file gave every corner one.
 Status read_with_assimp(std::span<const std::uint8_t> bytes, const std::string& format, const std::string& name,
                         const MeshLimits& limits, Mesh& mesh, bool& all_have_normals) {
   // Kept per thread and format: constructing an importer registers assimp's ~40 readers and its
@@ -147,12 +148,19 @@ Status read_with_assimp(std::span<const std::uint8_t> bytes, const std::string& 
   return collected;
 }
 
-Status read_ply_mesh(std::span<const std::uint8_t> bytes, const std::string& name, const MeshLimits& limits, Mesh& mesh,
-                     bool& all_have_normals) {
-  auto ply = read_ply({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, name);
-  if (!ply) return ply.error();
-  all_have_normals = !ply->normals.empty();
-  return append_triangles(*ply, limits, mesh);
+// A file read by one of ShadeLab's own readers (OBJ, PLY), whose formats index like assimp's.
+Status append_file(Expected<IndexedMesh> file, const MeshLimits& limits, Mesh& mesh, bool& all_have_normals) {
+  if (!file) return file.error();
+  all_have_normals = !file->normals.empty();
+  return append_triangles(*file, limits, mesh);
+}
+
+Status read_any(std::span<const std::uint8_t> bytes, const std::string& format, const std::string& name,
+                const MeshLimits& limits, Mesh& mesh, bool& all_have_normals) {
+  const std::string_view text{reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+  if (format == "obj") return append_file(read_obj(text, name, limits), limits, mesh, all_have_normals);
+  if (format == "ply") return append_file(read_ply(text, name), limits, mesh, all_have_normals);
+  return read_with_assimp(bytes, format, name, limits, mesh, all_have_normals);
 }
 
 // A zero-length normal is not a normal (normalize() in any shader makes it NaN): those corners
@@ -176,8 +184,7 @@ Expected<Mesh> load_mesh(std::span<const std::uint8_t> bytes, const std::string&
   Mesh mesh;
   mesh.name = name;
   bool all_have_normals = false;
-  auto read = format_hint == "ply" ? read_ply_mesh(bytes, name, limits, mesh, all_have_normals)
-                                   : read_with_assimp(bytes, format_hint, name, limits, mesh, all_have_normals);
+  auto read = read_any(bytes, format_hint, name, limits, mesh, all_have_normals);
   if (!read) {
     Error e = read.error();
     if (e.code != ErrorCode::mesh_parse_failed) e.message = "'" + name + "': " + e.message;

@@ -1,6 +1,7 @@
 // OBJ -> a non-indexed triangle list in the file's face order (as ShadeLab draws it): positions
-// and normals, 3 floats per corner. Polygons become fans; missing normals are computed
-// area-weighted per position, as the server does.
+// and normals, 3 floats per corner. Polygons become fans; a corner with no normal (or a zero one)
+// takes the area-weighted normal of its position, as the server's reader does
+// (server/scene/obj_reader.h); the others keep the file's.
 export function parseObj(text) {
   const v = [], vn = [];
   const pos = [], nrm = [];
@@ -49,6 +50,7 @@ function smoothNormals(pos, nrm) {
   for (let i = 0; i < pos.length; i += 3) {
     const s = sums.get(key(i));
     const len = Math.hypot(s[0], s[1], s[2]);
-    if (len > 0) [nrm[i], nrm[i + 1], nrm[i + 2]] = [s[0] / len, s[1] / len, s[2] / len];
+    const missing = nrm[i] === 0 && nrm[i + 1] === 0 && nrm[i + 2] === 0;
+    if (missing && len > 0) [nrm[i], nrm[i + 1], nrm[i + 2]] = [s[0] / len, s[1] / len, s[2] / len];
   }
 }

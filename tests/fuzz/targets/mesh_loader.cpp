@@ -1,5 +1,5 @@
-// scene::load_mesh as a worker calls it on an uploaded file (assimp reading OBJ, PLY, STL, glTF
-// or GLB from memory, with the service's triangle limit). The selector byte picks the format the
+// scene::load_mesh as a worker calls it on an uploaded file (ShadeLab reading OBJ and PLY, assimp STL, glTF
+// and GLB, from memory, with the service's triangle limit). The selector byte picks the format the
 // upload's name would give. Invariants on every mesh it accepts: whole triangles, finite
 // positions within the limit, and normals of unit length (from the file, or computed), or zero
 // only where a corner touches nothing but zero-area faces.
