@@ -17,6 +17,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/embedded_files.h"
+#include "scene/gltf_preflight.h"
 #include "scene/indexed_mesh.h"
 #include "scene/mesh.h"
 #include "scene/obj_reader.h"
@@ -160,6 +161,8 @@ Status read_any(std::span<const std::uint8_t> bytes, const std::string& format, 
   const std::string_view text{reinterpret_cast<const char*>(bytes.data()), bytes.size()};
   if (format == "obj") return append_file(read_obj(text, name, limits), limits, mesh, all_have_normals);
   if (format == "ply") return append_file(read_ply(text, name), limits, mesh, all_have_normals);
+  if (format == "gltf" || format == "glb")
+    if (auto checked = check_gltf(text, format == "glb", name, limits); !checked) return checked;
   return read_with_assimp(bytes, format, name, limits, mesh, all_have_normals);
 }
 
