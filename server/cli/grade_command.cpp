@@ -2,22 +2,16 @@
 // checkpoint through render workers, so a submission that hangs or crashes is scored 0 with the
 // reason while the batch goes on. With --server, the batch is graded by a ShadeLab server (or a
 // cluster behind nginx) instead; --shard splits it over a job array. Both resume (class_batch.h).
-#include <algorithm>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <iterator>
-#include <thread>
 
 #include "cli/class_batch.h"
 #include "cli/commands.h"
 #include "cli/file_output.h"
+#include "cli/grade_runner.h"
 #include "cli/server_grader.h"
-#include "cli/environment.h"
 #include "grade/report.h"
-#include "grade/grade_session.h"
-#include "render/render_request.h"
-#include "worker/client.h"
 
 namespace shadelab::cli {
 
@@ -25,93 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-struct GradeFlags {
-  std::string vert, frag, submissions, reference = "specular", mesh = "bunny", out = "grades", output, heatmap;
-  std::string format = "json", size = "640x480";
-  int frames = 9, workers = 0, concurrency = 0;
-  std::string server, api_key, shard = "0/1";
-  long retry_for_s = 300;
-  double threshold = 0.016, max_failing = 0.01, max_score = 1.0;
-  bool spatial = false;
-  long timeout_ms = 10000;
-  bool software = software_from_environment();
-};
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-// The submission's shader pair: the homework's file names for the checkpoint first, else the only
-// *_vert.js / *_frag.js pair in the folder.
-std::optional<std::pair<fs::path, fs::path>> find_pair(const fs::path& dir, const std::string& checkpoint) {
-  std::vector<fs::path> verts, frags;
-  for (const auto& e : fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied)) {
-    const std::string name = e.path().filename().string();
-    if (name.ends_with("_vert.js")) verts.push_back(e.path());
-    if (name.ends_with("_frag.js")) frags.push_back(e.path());
-  }
-  const std::string stem = checkpoint == "smooth" || checkpoint == "gouraud" ? "starter" : "phong";
-  for (const auto& v : verts)
-    for (const auto& f : frags)
-      if (v.filename() == stem + "_vert.js" && f.filename() == stem + "_frag.js") return std::pair{v, f};
-  if (verts.size() == 1 && frags.size() == 1) return std::pair{verts[0], frags[0]};
-  return std::nullopt;
-}
-
-// The grade job for one submission, built and checked as POST /api/grade builds it.
-Expected<worker::Job> grade_job(const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
-  grade::GradeOptions options;
-  options.compare.threshold = f.threshold;
-  options.compare.spatial_tolerance = f.spatial;
-  options.max_failing_fraction = f.max_failing;
-  options.max_score = f.max_score;
-  auto spec = grade::checkpoint_spec(f.reference, options);
-  if (!spec) return spec.take_error();
-  worker::Job job;
-  job.kind = worker::JobKind::grade;
-  job.mesh = f.mesh;
-  job.grade = std::move(*spec);
-  auto& r = job.request;
-  if (std::sscanf(f.size.c_str(), "%dx%d", &r.width, &r.height) != 2)
-    return make_error(ErrorCode::invalid_argument, "--size takes WIDTHxHEIGHT, e.g. 640x480; got '" + f.size + "'");
-  r.frames = f.frames;
-  r.vertex = {vert.filename().string(), read_text(vert)};
-  r.fragment = {frag.filename().string(), read_text(frag)};
-  const render::RenderLimits limits;
-  if (auto valid = render::validate(r, limits); !valid) return valid.take_error();
-  if (auto sources = render::check_sources(r, limits); !sources) return sources.take_error();
-  return job;
-}
-
-// One submission to a grade, whatever goes wrong with it.
-struct Graded {
-  worker::GradeResult result;
-  double seconds = 0;
-};
-
-Graded grade_one(worker::WorkerPool& pool, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
-  const auto ungradable = [&](const Error& e) { return Graded{{grade::failed_submission(e, f.reference, f.max_score), {}}, 0}; };
-  auto job = grade_job(f, vert, frag);
-  if (!job) return ungradable(job.error());
-  auto answered = worker::grade(pool, *job, "");
-  if (!answered) return ungradable(answered.error());
-  return {std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
-}
-
-
-
-worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
-  worker::PoolConfig c;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  c.workers = f.workers > 0 ? f.workers : std::min(cores, std::max(1, jobs));
-  c.llvmpipe_threads = std::max(1, cores / c.workers);
-  c.compile_deadline = c.render_deadline = std::chrono::milliseconds(f.timeout_ms);
-  c.max_queue = static_cast<size_t>(std::max(jobs, 1));
-  c.force_software = f.software;
-  return c;
-}
 
 int run_single(const GradeFlags& f) {
   worker::WorkerPool pool(pool_config(f, 1));

@@ -1,0 +1,46 @@
+#pragma once
+// What `shadelab grade` and `shadelab autograde` share: the grading flags, finding a submission's
+// shader pair, and grading one pair through render workers, so that a submission that hangs or
+// crashes is scored 0 with the reason.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "cli/environment.h"
+#include "worker/client.h"
+
+namespace shadelab::cli {
+
+struct GradeFlags {
+  std::string vert, frag, submissions, reference = "specular", mesh = "bunny", out = "grades", output, heatmap;
+  std::string format = "json", size = "640x480";
+  int frames = 9, workers = 0, concurrency = 0;
+  std::string server, api_key, shard = "0/1";
+  long retry_for_s = 300;
+  double threshold = 0.016, max_failing = 0.01, max_score = 1.0;
+  bool spatial = false;
+  long timeout_ms = 10000;
+  bool software = software_from_environment();
+};
+
+std::string read_text(const std::filesystem::path& p);
+
+// The submission's shader pair: the homework's file names for the checkpoint first (starter_* for
+// smooth and gouraud, phong_* for diffuse and specular), else the only *_vert.js / *_frag.js pair
+// in the folder.
+std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair(const std::filesystem::path& dir,
+                                                                                   const std::string& checkpoint);
+
+// One submission's grade, whatever goes wrong with it.
+struct Graded {
+  worker::GradeResult result;
+  double seconds = 0;
+};
+Graded grade_one(worker::WorkerPool& pool, const GradeFlags& f, const std::filesystem::path& vert,
+                 const std::filesystem::path& frag);
+
+// Workers for `jobs` submissions: one per core at most, the cores shared among them.
+worker::PoolConfig pool_config(const GradeFlags& f, int jobs);
+
+}  // namespace shadelab::cli

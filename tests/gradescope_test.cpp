@@ -1,0 +1,171 @@
+// gradescope/: run_autograder as Gradescope runs it, against folders laid out like Gradescope's
+// (AUTOGRADER_ROOT with submission/ and results/), with the real shadelab binary and its render
+// workers; and the zip a TA uploads.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+#include <zip.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "support/files.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const fs::path kSource = SHADELAB_SOURCE_DIR;
+
+int run(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class GradescopeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("shadelab_gradescope_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "submission");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  void submit(const std::string& name, const std::string& text) const {
+    fs::create_directories((root_ / "submission" / name).parent_path());
+    std::ofstream(root_ / "submission" / name) << text;
+  }
+  void submit_preset(const std::string& name, const std::string& preset, const std::string& stage) const {
+    submit(name, shadelab::testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js")));
+  }
+
+  // Gradescope's run: the environment names the folders; the results file is what it reads.
+  json autograde() const {
+    const std::string command = "AUTOGRADER_ROOT='" + root_.string() + "' SHADELAB_BIN='" + SHADELAB_CLI + "' bash '" +
+                                (kSource / "gradescope/run_autograder").string() + "' >/dev/null 2>&1";
+    EXPECT_EQ(run(command), 0);
+    const std::string text = shadelab::testkit::read_text(root_ / "results/results.json");
+    json results = json::parse(text, nullptr, false);
+    EXPECT_FALSE(results.is_discarded()) << text;
+    return results;
+  }
+
+  static const json* test_named(const json& results, const std::string& prefix) {
+    for (const auto& t : results["tests"])
+      if (t["name"].get<std::string>().starts_with(prefix)) return &t;
+    return nullptr;
+  }
+
+  fs::path root_;
+};
+
+}  // namespace
+
+// The student's HW2 folder as they zip it, macOS litter included: each checkpoint found by the
+// homework's file names (and a stage the student kept under its own name), each graded.
+TEST_F(GradescopeTest, TheHomeworkFolderIsGradedCheckpointByCheckpoint) {
+  submit_preset("HW2/shaders/starter_vert.js", "gouraud", "vert");
+  submit_preset("HW2/shaders/starter_frag.js", "gouraud", "frag");
+  submit_preset("HW2/shaders/phong_vert.js", "specular", "vert");
+  submit_preset("HW2/shaders/phong_frag.js", "specular", "frag");
+  submit_preset("HW2/shaders/smooth_vert.js", "smooth", "vert");
+  submit_preset("HW2/shaders/smooth_frag.js", "smooth", "frag");
+  submit("HW2/hw2.js", "// the page's script\n");
+  submit("__MACOSX/HW2/shaders/._phong_vert.js", "\x00\x05\x16\x07 resource fork");
+  const json results = autograde();
+  ASSERT_EQ(results["tests"].size(), 3u) << results.dump(2);
+  EXPECT_EQ(results["score"], 3.0) << results.dump(2);
+  const json* gouraud = test_named(results, "checkpoint: gouraud");
+  ASSERT_TRUE(gouraud);
+  EXPECT_EQ((*gouraud)["name"], "checkpoint: gouraud (HW2/shaders/starter_vert.js, starter_frag.js)");
+  EXPECT_EQ((*gouraud)["status"], "passed");
+  EXPECT_EQ((*gouraud)["visibility"], "visible");
+  ASSERT_TRUE(test_named(results, "checkpoint: smooth (HW2/shaders/smooth_vert.js"));
+  ASSERT_TRUE(test_named(results, "checkpoint: specular (HW2/shaders/phong_vert.js"));
+  EXPECT_FALSE(fs::exists(root_ / "results/heatmaps")) << "no checkpoint failed";
+}
+
+// The modules alone, the specular stage not done: the missing checkpoint says what was looked
+// for, the failed one says what is wrong and shows where.
+TEST_F(GradescopeTest, AMissingAndAWrongCheckpointSayWhy) {
+  submit_preset("phong_vert.js", "diffuse", "vert");
+  submit_preset("phong_frag.js", "diffuse", "frag");
+  const json results = autograde();
+  EXPECT_EQ(results["score"], 0.0) << results.dump(2);
+  const json* gouraud = test_named(results, "checkpoint: gouraud");
+  ASSERT_TRUE(gouraud) << results.dump(2);
+  EXPECT_EQ((*gouraud)["score"], 0.0);
+  EXPECT_NE((*gouraud)["output"].get<std::string>().find("expected starter_vert.js and starter_frag.js"), std::string::npos);
+  EXPECT_NE((*gouraud)["output"].get<std::string>().find("the submission has phong_frag.js, phong_vert.js"), std::string::npos)
+      << (*gouraud)["output"];
+  const json* specular = test_named(results, "checkpoint: specular (phong_vert.js, phong_frag.js)");
+  ASSERT_TRUE(specular) << results.dump(2);
+  EXPECT_EQ((*specular)["status"], "failed");
+  const std::string output = (*specular)["output"];
+  EXPECT_NE(output.find("specular highlight missing"), std::string::npos) << output.substr(0, 300);
+  EXPECT_EQ((*specular)["output_format"], "html");
+  EXPECT_NE(output.find("<img alt=\"difference heat map\""), std::string::npos);
+  EXPECT_NE(output.find("src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos) << "a PNG, embedded";
+  const std::string png = shadelab::testkit::read_text(root_ / "results/heatmaps/specular.png");
+  EXPECT_TRUE(png.starts_with("\x89PNG")) << "the heat map is kept beside results.json";
+}
+
+TEST_F(GradescopeTest, ASubmissionThatDoesNotCompileScoresZeroWithItsError) {
+  std::string broken = shadelab::testkit::read_text(kSource / "shaders/gouraud_vert.js");
+  const size_t at = broken.find("void main");
+  broken.replace(at, 9, "void main(");  // a syntax error inside main's signature
+  const long main_line = 1 + std::count(broken.begin(), broken.begin() + static_cast<long>(at), '\n');
+  submit("starter_vert.js", broken);
+  submit_preset("starter_frag.js", "gouraud", "frag");
+  const json results = autograde();
+  const json* gouraud = test_named(results, "checkpoint: gouraud");
+  ASSERT_TRUE(gouraud) << results.dump(2);
+  EXPECT_EQ((*gouraud)["score"], 0.0);
+  EXPECT_EQ((*gouraud)["status"], "failed");
+  EXPECT_NE((*gouraud)["output"].get<std::string>().find("compile error at starter_vert.js line " + std::to_string(main_line)), std::string::npos)
+      << "the error at the student's file and line: " << (*gouraud)["output"];
+}
+
+TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
+  const json results = autograde();
+  EXPECT_EQ(results["score"], 0.0);
+  ASSERT_EQ(results["tests"].size(), 2u) << results.dump(2);
+  for (const auto& t : results["tests"]) {
+    EXPECT_EQ(t["score"], 0.0);
+    EXPECT_NE(t["output"].get<std::string>().find("the submission has nothing"), std::string::npos) << t["output"];
+  }
+}
+
+// Without the grader installed the student still gets a results.json that says so.
+TEST_F(GradescopeTest, AMissingGraderStillWritesResults) {
+  const std::string command = "AUTOGRADER_ROOT='" + root_.string() + "' SHADELAB_BIN=/nonexistent/shadelab bash '" +
+                              (kSource / "gradescope/run_autograder").string() + "' >/dev/null 2>&1";
+  ASSERT_EQ(run(command), 0);
+  const json results = json::parse(shadelab::testkit::read_text(root_ / "results/results.json"), nullptr, false);
+  ASSERT_FALSE(results.is_discarded());
+  EXPECT_EQ(results["score"], 0);
+  EXPECT_NE(results["output"].get<std::string>().find("not installed at /nonexistent/shadelab"), std::string::npos);
+}
+
+// The zip a TA uploads: the committed sources, with setup.sh and run_autograder at its root.
+TEST_F(GradescopeTest, TheAutograderZipHasGradescopesLayout) {
+  if (!fs::exists(kSource / ".git")) GTEST_SKIP() << "not a git checkout (the zip is made with git archive)";
+  const fs::path zip_path = root_ / "autograder.zip";
+  ASSERT_EQ(run("bash '" + (kSource / "gradescope/make_autograder_zip.sh").string() + "' '" + zip_path.string() + "' >/dev/null"), 0);
+  int error = 0;
+  zip_t* zip = zip_open(zip_path.c_str(), ZIP_RDONLY, &error);
+  ASSERT_TRUE(zip) << "libzip error " << error;
+  std::set<std::string> names;
+  for (zip_int64_t i = 0; i < zip_get_num_entries(zip, 0); ++i) names.insert(zip_get_name(zip, i, 0));
+  zip_close(zip);
+  for (const char* expected : {"setup.sh", "run_autograder", "CMakeLists.txt", "tools/setup.sh", "server/cli/main.cpp", "assets/bunny.obj"})
+    EXPECT_TRUE(names.count(expected)) << expected;
+}
