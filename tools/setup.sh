@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages ShadeLab needs, only those that are missing.
 # Used by the README's two commands and by the Dockerfile, so all three agree.
+#
+#   tools/setup.sh          everything: building, running, every test, the cluster, fuzzing
+#   tools/setup.sh build    only what building and running the shadelab binary needs (the
+#                           Gradescope autograder's image: gradescope/setup.sh)
 set -euo pipefail
+profile=${1:-all}
+[[ $profile == all || $profile == build ]] || { echo "usage: tools/setup.sh [build]" >&2; exit 2; }
 
-packages=(
+build_packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config git ca-certificates
   # headless GL: EGL + GLES headers, Mesa's EGL and llvmpipe (the CPU device)
@@ -11,19 +17,25 @@ packages=(
   # libraries
   libglm-dev libopenimageio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
   libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
-  # the optional shared store (Redis client), and the Kubernetes manifests' test (YAML)
-  libhiredis-dev libyaml-cpp-dev
-  # the local cluster and its tests: nginx in front of the replicas, Redis behind them
-  nginx redis-server
+  # the optional shared store (Redis client)
+  libhiredis-dev
   # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them
   blender-data
+)
+test_packages=(
+  # the Kubernetes manifests' test (YAML)
+  libyaml-cpp-dev
+  # the local cluster and its tests: nginx in front of the replicas, Redis behind them
+  nginx redis-server
   # tests and benchmarks; the browser tests drive Debian's chromium with playwright-core
   libgtest-dev libgmock-dev libbenchmark-dev chromium fonts-dejavu-core
   # the fuzz targets (tools/fuzz.sh): clang with libFuzzer and its sanitizers
   clang libfuzzer-14-dev libclang-rt-14-dev
 )
+packages=("${build_packages[@]}")
+[[ $profile == all ]] && packages+=("${test_packages[@]}")
 # Node.js runs the browser tests; use the machine's own if it has one, else Debian's.
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+if [[ $profile == all ]] && { ! command -v node >/dev/null || ! command -v npm >/dev/null; }; then
   packages+=(nodejs npm)
 fi
 
