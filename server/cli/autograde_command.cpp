@@ -130,14 +130,21 @@ json graded_test(const AutogradeFlags& f, const std::string& checkpoint, const s
   return test;
 }
 
-int run_autograde(const AutogradeFlags& f) {
-  const std::vector<fs::path> files = submitted_files(f.submission);
-  std::vector<std::pair<const Checkpoint*, std::optional<std::pair<fs::path, fs::path>>>> plan;
+// What to grade: each checkpoint the files hold, and each required one (its pair empty if absent).
+using Plan = std::vector<std::pair<const Checkpoint*, std::optional<std::pair<fs::path, fs::path>>>>;
+Plan plan_checkpoints(const std::vector<fs::path>& files) {
+  Plan plan;
   for (const auto& c : kCheckpoints) {
     auto pair = pair_named(files, c.name);
     if (!pair && c.homework_stem) pair = pair_named(files, *c.homework_stem);
     if (pair || c.required) plan.emplace_back(&c, pair);
   }
+  return plan;
+}
+
+int run_autograde(const AutogradeFlags& f) {
+  const std::vector<fs::path> files = submitted_files(f.submission);
+  const Plan plan = plan_checkpoints(files);
   const int jobs = static_cast<int>(std::count_if(plan.begin(), plan.end(), [](const auto& p) { return p.second.has_value(); }));
   worker::WorkerPool pool(pool_config(f.grade, std::max(jobs, 1)));
   json tests = json::array();
