@@ -106,6 +106,18 @@ TEST_F(GradeTest, NanIsFoundEvenWhereTheCanvasShowsBlack) {
   EXPECT_NE(r["messages"][0].get<std::string>().find("NaN in"), std::string::npos);
 }
 
+// Mesa folds n - n to 0 (and 0 * x to 0), so normalize(n - n) is 0 on llvmpipe where IEEE
+// arithmetic, and the GPU behind the student's browser, give NaN. The float check renders the
+// program with IEEE semantics (invariant outputs) and finds it; the frames compared with the
+// reference are still the program as compiled.
+TEST_F(GradeTest, ANanTheOptimiserFoldsAwayIsStillFound) {
+  json job = submission("specular", "    fragColor = color;", "    fragColor = vec4(normalize(vNormal.xyz - vNormal.xyz), 1.0) + 0.0 * color;");
+  const json r = grade(job, "specular");
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_EQ(r["diagnosis"], "nan") << r.dump();
+  EXPECT_GT(r["frames"][0]["nanPixels"].get<int>(), 100);
+}
+
 TEST_F(GradeTest, CompileErrorsScoreZeroWithTheLine) {
   const json r = grade(submission("specular", "fragColor = color;", "fragColor = colour;"), "specular");
   EXPECT_FALSE(r["pass"]);

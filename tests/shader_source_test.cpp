@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "shader/invariant_outputs.h"
 #include "shader/shader_source.h"
 
 using namespace shadelab;
@@ -123,4 +124,21 @@ TEST(ShaderSourceTest, EmptyNulInvalidUtf8AndOversizedSourcesAreErrors) {
 TEST(ShaderSourceTest, Utf8InCommentsIsFine) {
   auto s = unwrap("#version 300 es\n// café — ünïcode\nvoid main() {}\n");
   EXPECT_TRUE(s) << s.error().format();
+}
+
+// The float check's outputs (shader/invariant_outputs.h): each global output redeclared invariant
+// on its own line, nothing else touched.
+TEST(InvariantOutputsTest, EveryGlobalOutputAndNothingElse) {
+  using shader::Stage;
+  using shader::with_invariant_outputs;
+  EXPECT_EQ(with_invariant_outputs("#version 300 es\nout vec4 fragColor;\nvoid main() {}\n", Stage::fragment),
+            "#version 300 es\nout vec4 fragColor; invariant fragColor;\nvoid main() {}\n");
+  EXPECT_EQ(with_invariant_outputs("layout(location = 0) out highp vec4 c;", Stage::fragment),
+            "layout(location = 0) out highp vec4 c; invariant c;");
+  EXPECT_EQ(with_invariant_outputs("in vec4 p;\nout vec4 a[2], b;\nout vec3 n;", Stage::vertex),
+            "in vec4 p;\nout vec4 a[2], b; invariant a, b, gl_Position;\nout vec3 n; invariant n;");
+  for (const std::string untouched :
+       {"void f(out vec3 x);\nvoid f(out vec3 x) { x = vec3(0); }", "void main() { vec4 out_ = vec4(0); }",
+        "// out vec4 c;\n/* out vec4 d; */\n#define X out\n", "invariant out vec4 c;", "uniform vec4 outside;"})
+    EXPECT_EQ(with_invariant_outputs(untouched, Stage::fragment), untouched);
 }

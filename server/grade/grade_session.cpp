@@ -37,9 +37,10 @@ std::string render_key(const render::RenderRequest& r, const std::string& mesh_k
 
 }  // namespace
 
-Expected<GradeSession::Frames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
+Expected<GradeSession::Frames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m,
+                                                       render::FloatSemantics semantics) {
   Frames out;
-  auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(f); });
+  auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(f); }, semantics);
   if (!rendered) return rendered.take_error();
   return out;
 }
@@ -71,7 +72,8 @@ Expected<render::RenderRequest> GradeSession::with_light(const render::RenderReq
 
 // Every set of frames is rendered under the homework's light, then under each probe light.
 Expected<GradeSession::Frames> GradeSession::render_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
-                                                                 const scene::Mesh& mesh, const std::string* cache_key) {
+                                                                 const scene::Mesh& mesh, const std::string* cache_key,
+                                                                 render::FloatSemantics semantics) {
   Frames all;
   for (int p = -1; p < static_cast<int>(spec.probes.size()); ++p) {
     render::RenderRequest lit = base;
@@ -80,11 +82,25 @@ Expected<GradeSession::Frames> GradeSession::render_under_lights(const GradeSpec
       if (!with) return with.take_error();
       lit = std::move(*with);
     }
-    auto frames = cache_key ? cached_frames(lit, mesh, *cache_key) : frames_of(lit, mesh);
+    auto frames = cache_key ? cached_frames(lit, mesh, *cache_key) : frames_of(lit, mesh, semantics);
     if (!frames) return frames.take_error();
     all.insert(all.end(), std::make_move_iterator(frames->begin()), std::make_move_iterator(frames->end()));
   }
   return all;
+}
+
+// The canvas stores NaN as 0: the submission is rendered to floats as well to find it, with IEEE
+// arithmetic, since the browser's GPU shows a NaN that Mesa's optimiser may fold away. No
+// multisampling needed. If the invariant outputs do not build (a driver's limit), the program as
+// compiled is checked instead.
+Expected<GradeSession::Frames> GradeSession::float_check(const GradeSpec& spec, const render::RenderRequest& submission,
+                                                         const scene::Mesh& mesh) {
+  render::RenderRequest as_float = submission;
+  as_float.pixel_type = image::PixelType::f32;
+  as_float.msaa = 0;
+  auto ieee = render_under_lights(spec, as_float, mesh, nullptr, render::FloatSemantics::ieee);
+  if (ieee) return ieee;
+  return render_under_lights(spec, as_float, mesh, nullptr);
 }
 
 Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
@@ -100,11 +116,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   r.pixel_type = image::PixelType::u8;
   auto student = render_under_lights(spec, r, **mesh, nullptr);
   if (!student) return ungradable(student.error());
-  // The canvas stores NaN as 0: render to floats as well to find it. No multisampling needed.
-  render::RenderRequest as_float = r;
-  as_float.pixel_type = image::PixelType::f32;
-  as_float.msaa = 0;
-  auto student_float = render_under_lights(spec, as_float, **mesh, nullptr);
+  auto student_float = float_check(spec, r, **mesh);
   if (!student_float) return ungradable(student_float.error());
 
   // The reference gets the same uniform values as the submission: a grader that changes the

@@ -38,10 +38,13 @@ class GradeSession {
 
  private:
   using Frames = std::vector<image::Image>;
-  Expected<Frames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh);
+  Expected<Frames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh,
+                             render::FloatSemantics semantics = render::FloatSemantics::as_compiled);
   Expected<Frames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
   Expected<Frames> render_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
-                                       const std::string* cache_key);
+                                       const std::string* cache_key,
+                                       render::FloatSemantics semantics = render::FloatSemantics::as_compiled);
+  Expected<Frames> float_check(const GradeSpec& spec, const render::RenderRequest& submission, const scene::Mesh& mesh);
   Expected<render::RenderRequest> with_light(const render::RenderRequest& base, const std::array<float, 3>& position);
 
   render::Renderer& renderer_;

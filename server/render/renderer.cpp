@@ -15,6 +15,7 @@
 #include "image/canvas_readback.h"
 #include "render/homework_contract.h"
 #include "shader/driver_log.h"
+#include "shader/invariant_outputs.h"
 
 namespace shadelab::render {
 
@@ -67,12 +68,17 @@ struct Renderer::State {
     shader::UnwrappedSource vertex, fragment;
     bool cached;
   };
-  Expected<Built> build(const shader::ShaderFile& vf, const shader::ShaderFile& ff) {
+  Expected<Built> build(const shader::ShaderFile& vf, const shader::ShaderFile& ff,
+                        FloatSemantics semantics = FloatSemantics::as_compiled) {
     const shader::SourceLimits limits{kRendererHardLimits.max_source_bytes};
     auto vertex = shader::unwrap(vf, shader::Stage::vertex, limits);
     if (!vertex) return vertex.take_error();
     auto fragment = shader::unwrap(ff, shader::Stage::fragment, limits);
     if (!fragment) return fragment.take_error();
+    if (semantics == FloatSemantics::ieee) {  // same lines, so the line maps still hold
+      vertex->glsl = shader::with_invariant_outputs(vertex->glsl, shader::Stage::vertex);
+      fragment->glsl = shader::with_invariant_outputs(fragment->glsl, shader::Stage::fragment);
+    }
     std::string key = vertex->glsl + '\0' + fragment->glsl;
     for (auto it = programs.begin(); it != programs.end(); ++it)
       if (it->key == key) return Built{&touch(programs, it).program, std::move(*vertex), std::move(*fragment), true};
@@ -185,12 +191,13 @@ Expected<CompileReport> Renderer::compile(const shader::ShaderFile& vertex, cons
   return report;
 }
 
-Expected<RenderReport> Renderer::render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink) {
+Expected<RenderReport> Renderer::render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink,
+                                        FloatSemantics semantics) {
   const auto start = Clock::now();
   RenderReport report;
   if (auto valid = validate(request, kRendererHardLimits); !valid) return valid.take_error();
 
-  auto built = state_->build(request.vertex, request.fragment);
+  auto built = state_->build(request.vertex, request.fragment, semantics);
   if (!built) return built.take_error();
   report.program_cached = built->cached;
   report.times.compile_ms = built->cached ? 0.0 : ms_since(start);

@@ -18,6 +18,12 @@ struct CompileReport {
   bool cached = false;
 };
 
+// What the driver may do to the shaders' float arithmetic. as_compiled: what the student's program
+// gets everywhere (Mesa's optimiser rewrites algebra as GPU compilers do: x - x -> 0). ieee: the
+// outputs are declared invariant (shader/invariant_outputs.h), so no rewrite changes a value and a
+// NaN or Inf that IEEE arithmetic gives appears: the grader's float check.
+enum class FloatSemantics { as_compiled, ieee };
+
 class Renderer {
  public:
   static Expected<Renderer> create(const egl::ContextOptions& options);
@@ -30,7 +36,8 @@ class Renderer {
   // Unwraps, compiles, links and reflects; renders nothing.
   Expected<CompileReport> compile(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment);
   // Renders request.frames frames of `mesh`, handing each to `sink` as soon as it is read back.
-  Expected<RenderReport> render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink);
+  Expected<RenderReport> render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink,
+                                FloatSemantics semantics = FloatSemantics::as_compiled);
 
  private:
   struct State;
