@@ -134,6 +134,21 @@ TEST_F(GradescopeTest, ASubmissionThatDoesNotCompileScoresZeroWithItsError) {
       << "the error at the student's file and line: " << (*gouraud)["output"];
 }
 
+// A link in the submission is not followed: the grader would read (and quote in its diagnostics)
+// a file of the autograder's image.
+TEST_F(GradescopeTest, ALinkInTheSubmissionIsNotFollowed) {
+  const fs::path outside = root_ / "outside_vert.js";
+  std::ofstream(outside) << shadelab::testkit::read_text(kSource / "shaders/gouraud_vert.js");
+  fs::create_symlink(outside, root_ / "submission/starter_vert.js");
+  submit_preset("starter_frag.js", "gouraud", "frag");
+  const json results = autograde();
+  const json* gouraud = test_named(results, "checkpoint: gouraud");
+  ASSERT_TRUE(gouraud) << results.dump(2);
+  EXPECT_EQ((*gouraud)["score"], 0.0) << "graded through the link";
+  EXPECT_NE((*gouraud)["output"].get<std::string>().find("the submission has starter_frag.js\n"), std::string::npos)
+      << (*gouraud)["output"];
+}
+
 TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
   const json results = autograde();
   EXPECT_EQ(results["score"], 0.0);

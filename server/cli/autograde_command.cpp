@@ -50,7 +50,7 @@ const Checkpoint kCheckpoints[] = {
     {"smooth", std::nullopt, false}, {"gouraud", "starter", true}, {"diffuse", std::nullopt, false}, {"specular", "phong", true}};
 
 // Every file under the submission, relative, in path order (so the choice between two copies is
-// the same each run); macOS archive litter (__MACOSX/, ._name) is not the student's.
+// the same each run); macOS archive litter (__MACOSX/, ._name) and links are not the student's.
 std::vector<fs::path> submitted_files(const fs::path& root) {
   std::vector<fs::path> files;
   std::error_code ec;
@@ -61,7 +61,9 @@ std::vector<fs::path> submitted_files(const fs::path& root) {
       if (it->is_directory()) it.disable_recursion_pending();
       continue;
     }
-    if (it->is_regular_file()) files.push_back(fs::relative(it->path(), root));
+    // A symbolic link is not the student's file: starter_vert.js -> /autograder/... would have
+    // the grader read, and quote in its diagnostics, a file of the image.
+    if (it->is_regular_file() && !it->is_symlink()) files.push_back(fs::relative(it->path(), root));
   }
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
     const auto depth = [](const fs::path& p) { return std::distance(p.begin(), p.end()); };
