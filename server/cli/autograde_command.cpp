@@ -3,21 +3,11 @@
 // folder, or the shader modules alone), grades each through render workers, and writes
 // Gradescope's results.json: one test per checkpoint, the heat map of a failed one beside it.
 //
-// | files in the submission               | checkpoint | graded                      |
-// |---------------------------------------|------------|-----------------------------|
-// | smooth_vert.js + smooth_frag.js       | smooth     | when present                |
-// | gouraud_vert.js + gouraud_frag.js, else starter_vert.js + starter_frag.js | gouraud | always (missing: 0, and why) |
-// | diffuse_vert.js + diffuse_frag.js     | diffuse    | when present                |
-// | specular_vert.js + specular_frag.js, else phong_vert.js + phong_frag.js   | specular | always (missing: 0, and why) |
-//
-// The homework edits starter_* into Gouraud shading and phong_* into ambient + diffuse + specular,
-// and its checklist hands in that code; a student who kept each stage's files names them.
+// Which files are which checkpoint: cli/submission_files.h.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <optional>
-#include <sstream>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -25,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
+#include "cli/submission_files.h"
 #include "core/base64.h"
 #include "grade/report.h"
 
@@ -41,54 +32,6 @@ struct AutogradeFlags {
   size_t embed_limit = 400 * 1024;  // heat maps up to this size go into results.json as an image
 };
 
-struct Checkpoint {
-  std::string name;
-  std::optional<std::string> homework_stem;  // the homework's file names for it, if any
-  bool required;
-};
-const Checkpoint kCheckpoints[] = {
-    {"smooth", std::nullopt, false}, {"gouraud", "starter", true}, {"diffuse", std::nullopt, false}, {"specular", "phong", true}};
-
-// Every file under the submission, relative, in path order (so the choice between two copies is
-// the same each run); macOS archive litter (__MACOSX/, ._name) and links are not the student's.
-std::vector<fs::path> submitted_files(const fs::path& root) {
-  std::vector<fs::path> files;
-  std::error_code ec;
-  for (fs::recursive_directory_iterator it(root, fs::directory_options::skip_permission_denied, ec), end; !ec && it != end;
-       it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name == "__MACOSX" || name == "node_modules" || name.starts_with(".")) {
-      if (it->is_directory()) it.disable_recursion_pending();
-      continue;
-    }
-    // A symbolic link is not the student's file: starter_vert.js -> /autograder/... would have
-    // the grader read, and quote in its diagnostics, a file of the image.
-    if (it->is_regular_file() && !it->is_symlink()) files.push_back(fs::relative(it->path(), root));
-  }
-  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
-    const auto depth = [](const fs::path& p) { return std::distance(p.begin(), p.end()); };
-    return std::pair(depth(a), a.string()) < std::pair(depth(b), b.string());
-  });
-  return files;
-}
-
-// The shallowest folder holding STEM_vert.js and STEM_frag.js.
-std::optional<std::pair<fs::path, fs::path>> pair_named(const std::vector<fs::path>& files, const std::string& stem) {
-  for (const auto& vert : files) {
-    if (vert.filename() != stem + "_vert.js") continue;
-    const fs::path frag = vert.parent_path() / (stem + "_frag.js");
-    if (std::find(files.begin(), files.end(), frag) != files.end()) return std::pair{vert, frag};
-  }
-  return std::nullopt;
-}
-
-std::string listing(const std::vector<fs::path>& files) {
-  if (files.empty()) return "nothing";
-  std::string out;
-  for (size_t i = 0; i < files.size() && i < 20; ++i) out += (i ? ", " : "") + files[i].string();
-  return files.size() > 20 ? out + " and " + std::to_string(files.size() - 20) + " more" : out;
-}
-
 std::string html_escape(const std::string& text) {
   std::string out;
   for (const char c : text) {
@@ -103,10 +46,10 @@ std::string html_escape(const std::string& text) {
 }
 
 // A checkpoint the submission has no files for: 0 points, and what was looked for.
-json missing_test(const Checkpoint& c, double max_score, const std::vector<fs::path>& files) {
-  const std::string wanted = *c.homework_stem + "_vert.js and " + *c.homework_stem + "_frag.js (or " + c.name + "_vert.js and " +
-                             c.name + "_frag.js)";
-  return {{"name", "checkpoint: " + c.name}, {"score", 0.0}, {"max_score", max_score}, {"status", "failed"},
+json missing_test(const CheckpointFiles& c, double max_score, const std::vector<fs::path>& files) {
+  const std::string wanted = *c.homework_stem + "_vert.js and " + *c.homework_stem + "_frag.js (or " + c.checkpoint +
+                             "_vert.js and " + c.checkpoint + "_frag.js)";
+  return {{"name", "checkpoint: " + c.checkpoint}, {"score", 0.0}, {"max_score", max_score}, {"status", "failed"},
           {"visibility", "visible"},
           {"output", "no shaders for this checkpoint: expected " + wanted + " in one folder; the submission has " + listing(files) + "\n"}};
 }
@@ -132,35 +75,24 @@ json graded_test(const AutogradeFlags& f, const std::string& checkpoint, const s
   return test;
 }
 
-// What to grade: each checkpoint the files hold, and each required one (its pair empty if absent).
-using Plan = std::vector<std::pair<const Checkpoint*, std::optional<std::pair<fs::path, fs::path>>>>;
-Plan plan_checkpoints(const std::vector<fs::path>& files) {
-  Plan plan;
-  for (const auto& c : kCheckpoints) {
-    auto pair = pair_named(files, c.name);
-    if (!pair && c.homework_stem) pair = pair_named(files, *c.homework_stem);
-    if (pair || c.required) plan.emplace_back(&c, pair);
-  }
-  return plan;
-}
-
 int run_autograde(const AutogradeFlags& f) {
   const std::vector<fs::path> files = submitted_files(f.submission);
-  const Plan plan = plan_checkpoints(files);
-  const int jobs = static_cast<int>(std::count_if(plan.begin(), plan.end(), [](const auto& p) { return p.second.has_value(); }));
+  const std::vector<CheckpointFiles> plan = plan_checkpoints(files);
+  const int jobs = static_cast<int>(std::count_if(plan.begin(), plan.end(), [](const auto& p) { return p.pair.has_value(); }));
   worker::WorkerPool pool(pool_config(f.grade, std::max(jobs, 1)));
   json tests = json::array();
   double score = 0, seconds = 0;
   int passed = 0;
-  for (const auto& [checkpoint, pair] : plan) {
-    if (!pair) {
-      tests.push_back(missing_test(*checkpoint, f.grade.max_score, files));
+  for (const auto& c : plan) {
+    if (!c.pair) {
+      tests.push_back(missing_test(c, f.grade.max_score, files));
       continue;
     }
+    const auto& pair = c.pair;
     GradeFlags flags = f.grade;
-    flags.reference = checkpoint->name;
+    flags.reference = c.checkpoint;
     const Graded graded = grade_one(pool, flags, fs::path(f.submission) / pair->first, fs::path(f.submission) / pair->second);
-    tests.push_back(graded_test(f, checkpoint->name, *pair, graded));
+    tests.push_back(graded_test(f, c.checkpoint, *pair, graded));
     score += graded.result.report.score;
     seconds += graded.seconds;
     passed += graded.result.report.pass ? 1 : 0;

@@ -1,0 +1,73 @@
+#include "sheet/sheet_html.h"
+
+#include <sstream>
+
+#include "core/base64.h"
+
+namespace shadelab::sheet {
+
+namespace {
+
+std::string escape(const std::string& text) {
+  std::string out;
+  for (const char c : printable(text)) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+constexpr char kStyle[] = R"(body{font-family:"DejaVu Sans",sans-serif;max-width:60em;margin:2em auto;color:#1a1a1a}
+section{margin-bottom:3em}img{width:100%}.pass{color:#0d7326}.fail{color:#b31a1a}.note{color:#737373}
+pre{font:0.8em "DejaVu Sans Mono",monospace;white-space:pre-wrap;border-left:3px solid #ddd;padding-left:.5em}
+.n{color:#737373;user-select:none;display:inline-block;width:3em}.marked{background:#ffed99}.marked .n{color:#b31a1a})";
+
+void code(std::ostringstream& out, const CodeListing& listing) {
+  out << "<h3>" << escape(listing.file_name) << "</h3>\n<pre>";
+  std::istringstream lines(listing.text);
+  int number = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++number;
+    const bool marked = listing.marked_lines.count(number) > 0;
+    out << "<span" << (marked ? " class=\"marked\"" : "") << "><span class=\"n\">" << number << "</span>" << escape(line)
+        << "</span>\n";
+  }
+  out << "</pre>\n";
+}
+
+void checkpoint(std::ostringstream& out, const CheckpointSection& s, size_t index) {
+  out << "<section id=\"" << escape(s.checkpoint) << "\">\n<h2>" << index << ". " << escape(section_title(s.checkpoint))
+      << "</h2>\n<p class=\"" << (s.report.pass ? "pass" : "fail") << "\">" << escape(verdict(s.report)) << "</p>\n";
+  for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) out << "<p class=\"note\">" << escape(s.report.messages[k]) << "</p>\n";
+  if (s.grid_png.empty())
+    out << "<p class=\"note\">(no grid: the shaders did not render)</p>\n";
+  else
+    out << "<img alt=\"3x3 grid of " << escape(s.checkpoint) << "\" src=\"data:image/png;base64," << base64_encode(s.grid_png) << "\">\n";
+  for (const auto& listing : s.code) code(out, listing);
+  out << "</section>\n";
+}
+
+}  // namespace
+
+std::string render_html(const Sheet& sheet) {
+  std::ostringstream out;
+  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escape(sheet.title)
+      << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n<h1>" << escape(sheet.title) << "</h1>\n";
+  for (size_t i = 0; i < sheet.checkpoints.size(); ++i) checkpoint(out, sheet.checkpoints[i], i + 1);
+  if (!sheet.answers.empty()) {
+    out << "<section id=\"answers\">\n<h2>Short answers</h2>\n";
+    std::istringstream paragraphs(sheet.answers);
+    for (std::string p; std::getline(paragraphs, p);)
+      if (!p.empty()) out << "<p>" << escape(p) << "</p>\n";
+    out << "</section>\n";
+  }
+  out << "</body>\n</html>\n";
+  return out.str();
+}
+
+}  // namespace shadelab::sheet

@@ -1,0 +1,219 @@
+#include "sheet/sheet_pdf.h"
+
+#include <cairo-pdf.h>
+#include <cairo.h>
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+
+namespace shadelab::sheet {
+
+namespace {
+
+constexpr double kPageWidth = 595.276, kPageHeight = 841.89;  // A4 in points
+constexpr double kMargin = 42;
+constexpr double kWidth = kPageWidth - 2 * kMargin;
+constexpr char kSans[] = "DejaVu Sans", kMono[] = "DejaVu Sans Mono";
+
+struct Colour {
+  double r, g, b;
+};
+constexpr Colour kInk{0.1, 0.1, 0.1}, kGrey{0.45, 0.45, 0.45}, kPass{0.05, 0.45, 0.15}, kFail{0.7, 0.1, 0.1},
+    kMarked{1.0, 0.93, 0.6};
+
+cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+struct PngReader {
+  const std::string& bytes;
+  size_t at = 0;
+};
+cairo_status_t read_png(void* closure, unsigned char* data, unsigned int length) {
+  auto& r = *static_cast<PngReader*>(closure);
+  if (r.bytes.size() - r.at < length) return CAIRO_STATUS_READ_ERROR;
+  std::copy_n(r.bytes.data() + r.at, length, data);
+  r.at += length;
+  return CAIRO_STATUS_SUCCESS;
+}
+
+// Writes down the page, starting a new one when the next item does not fit.
+class PageWriter {
+ public:
+  explicit PageWriter(cairo_t* cr) : cr_(cr) {}
+
+  void room_for(double height) {
+    if (y_ + height <= kPageHeight - kMargin) return;
+    new_page();
+  }
+  void new_page() {
+    footer();
+    cairo_show_page(cr_);
+    ++page_;
+    y_ = kMargin;
+  }
+  void gap(double points) { y_ += points; }
+
+  void text(const std::string& s, const char* face, double size, Colour c, bool bold = false) {
+    font(face, size, bold);
+    room_for(size * 1.35);
+    draw(s, kMargin, y_ + size, c);
+    y_ += size * 1.35;
+  }
+
+  // Proportional text wrapped at word boundaries; paragraphs at newlines.
+  void paragraph(const std::string& s, double size, Colour c) {
+    font(kSans, size, false);
+    std::istringstream lines(s);
+    for (std::string line; std::getline(lines, line);) {
+      std::string current;
+      std::istringstream words(line);
+      for (std::string word; words >> word;) {
+        const std::string candidate = current.empty() ? word : current + " " + word;
+        if (!current.empty() && advance(candidate) > kWidth) {
+          text(current, kSans, size, c);
+          current = word;
+        } else {
+          current = candidate;
+        }
+      }
+      text(current, kSans, size, c);
+    }
+  }
+
+  void image(const std::string& png) {
+    PngReader reader{png};
+    cairo_surface_t* img = cairo_image_surface_create_from_png_stream(read_png, &reader);
+    if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
+      cairo_surface_destroy(img);
+      text("(no grid: the shaders did not render)", kSans, 9, kGrey);
+      return;
+    }
+    const double scale = kWidth / cairo_image_surface_get_width(img);
+    const double height = cairo_image_surface_get_height(img) * scale;
+    room_for(height);
+    cairo_save(cr_);
+    cairo_translate(cr_, kMargin, y_);
+    cairo_scale(cr_, scale, scale);
+    cairo_set_source_surface(cr_, img, 0, 0);
+    cairo_paint(cr_);
+    cairo_restore(cr_);
+    cairo_surface_destroy(img);
+    y_ += height;
+  }
+
+  // Monospaced code with line numbers, wrapped to the width; marked lines on a yellow band.
+  void code(const CodeListing& listing) {
+    constexpr double kSize = 7, kLine = 8.6;
+    text(listing.file_name, kMono, 8.5, kInk, true);
+    font(kMono, kSize, false);
+    const double gutter = advance("0000 ");
+    const size_t columns = static_cast<size_t>(std::max(20.0, (kWidth - gutter) / advance("M")));
+    std::istringstream lines(printable(listing.text));
+    int number = 0;
+    for (std::string line; std::getline(lines, line);) {
+      const bool marked = listing.marked_lines.count(++number) > 0;
+      size_t at = 0;
+      do {
+        room_for(kLine);
+        font(kMono, kSize, false);
+        if (marked) {
+          cairo_set_source_rgb(cr_, kMarked.r, kMarked.g, kMarked.b);
+          cairo_rectangle(cr_, kMargin, y_, kWidth, kLine);
+          cairo_fill(cr_);
+        }
+        if (at == 0) {
+          const std::string n = std::to_string(number);
+          draw(n, kMargin + gutter - advance(n + " "), y_ + kSize, marked ? kFail : kGrey);
+        }
+        draw(utf8_prefix(line, at, columns), kMargin + gutter, y_ + kSize, kInk);
+        y_ += kLine;
+      } while (at < line.size());
+    }
+  }
+
+  void finish() { footer(); }
+
+ private:
+  void font(const char* face, double size, bool bold) {
+    cairo_select_font_face(cr_, face, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr_, size);
+  }
+  double advance(const std::string& s) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr_, s.c_str(), &e);
+    return e.x_advance;
+  }
+  void draw(const std::string& s, double x, double baseline, Colour c) {
+    cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+    cairo_move_to(cr_, x, baseline);
+    cairo_show_text(cr_, s.c_str());
+  }
+  // Up to `columns` characters of `line` from byte `at` (advanced past them), whole UTF-8 sequences.
+  static std::string utf8_prefix(const std::string& line, size_t& at, size_t columns) {
+    const size_t start = at;
+    for (size_t n = 0; at < line.size() && n < columns; ++n) {
+      ++at;
+      while (at < line.size() && (static_cast<unsigned char>(line[at]) & 0xc0) == 0x80) ++at;
+    }
+    return line.substr(start, at - start);
+  }
+  void footer() {
+    font(kSans, 7.5, false);
+    draw(std::to_string(page_), kPageWidth / 2, kPageHeight - kMargin / 2, kGrey);
+  }
+
+  cairo_t* cr_;
+  double y_ = kMargin;
+  int page_ = 1;
+};
+
+void checkpoint(PageWriter& w, const CheckpointSection& s, size_t index) {
+  w.text(std::to_string(index) + ". " + section_title(s.checkpoint), kSans, 13, kInk, true);
+  w.text(verdict(s.report), kSans, 9.5, s.report.pass ? kPass : kFail);
+  for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) w.text(s.report.messages[k], kSans, 8.5, kGrey);
+  w.gap(4);
+  w.image(s.grid_png);
+  w.gap(10);
+  for (const auto& listing : s.code) {
+    w.code(listing);
+    w.gap(8);
+  }
+}
+
+}  // namespace
+
+Expected<std::string> render_pdf(const Sheet& sheet) {
+  std::string out;
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_pdf_surface_create_for_stream(append, &out, kPageWidth, kPageHeight), cairo_surface_destroy);
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, printable(sheet.title).c_str());
+  // A fixed date: the same sheet is the same bytes (cairo would write the current time).
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
+  PageWriter w(cr.get());
+  w.text(printable(sheet.title), kSans, 18, kInk, true);
+  w.gap(6);
+  for (size_t i = 0; i < sheet.checkpoints.size(); ++i) {
+    if (i > 0) w.new_page();
+    checkpoint(w, sheet.checkpoints[i], i + 1);
+  }
+  if (!sheet.answers.empty()) {
+    w.new_page();
+    w.text("Short answers", kSans, 13, kInk, true);
+    w.gap(4);
+    w.paragraph(printable(sheet.answers), 10, kInk);
+  }
+  w.finish();
+  cairo_show_page(cr.get());
+  cr.reset();
+  cairo_surface_finish(surface.get());
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+    return make_error(ErrorCode::io_error, std::string("cairo could not write the PDF: ") +
+                                               cairo_status_to_string(cairo_surface_status(surface.get())));
+  return out;
+}
+
+}  // namespace shadelab::sheet

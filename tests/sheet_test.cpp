@@ -1,0 +1,139 @@
+// The submission sheet (`shadelab sheet`, server/sheet/) read back as a reader would: the PDF's
+// text (pdftotext) and its first page as pixels (pdftoppm), the HTML page, identical bytes for
+// the same folder; and the text helpers the layouts share.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "sheet/sheet.h"
+#include "support/files.h"
+
+namespace fs = std::filesystem;
+using namespace shadelab;
+
+namespace {
+
+const fs::path kSource = SHADELAB_SOURCE_DIR;
+
+struct Ran {
+  int status;
+  std::string output;
+};
+Ran run(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// One student's folder, made once: Gouraud right, the specular stage with a compile error on
+// line 20, short answers; the sheet made twice.
+class SheetTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() / ("shadelab_sheet_" + std::to_string(::getpid())));
+    fs::create_directories(*dir_ / "HW2/shaders");
+    const auto copy = [](const std::string& preset, const std::string& stage, const std::string& as) {
+      std::ofstream(*dir_ / "HW2/shaders" / as) << testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js"));
+    };
+    copy("gouraud", "vert", "starter_vert.js");
+    copy("gouraud", "frag", "starter_frag.js");
+    copy("specular", "vert", "phong_vert.js");
+    std::string frag = testkit::read_text(kSource / "shaders/specular_frag.js");
+    frag.replace(frag.find("fragColor = color;"), 18, "fragColor = color * undefinedThing;");
+    std::ofstream(*dir_ / "HW2/shaders/phong_frag.js") << frag;
+    std::ofstream(*dir_ / "answers.txt") << "Gouraud shading lights each vertex & interpolates <colours>.\n\nA longer lens flattens.\n";
+    for (const char* name : {"a", "b"})
+      made_.push_back(run(std::string(SHADELAB_CLI) + " sheet " + (*dir_ / "HW2").string() + " -o " + (*dir_ / name).string() +
+                          ".pdf --html " + (*dir_ / name).string() + ".html --answers " + (*dir_ / "answers.txt").string() +
+                          " --title 'HW2: Ada Lovelace'"));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  void SetUp() override {
+    for (const auto& r : made_) ASSERT_EQ(r.status, 0) << r.output;
+  }
+  static std::string pdf_text(int first_page = 0, int last_page = 0) {
+    std::string range = first_page ? " -f " + std::to_string(first_page) + " -l " + std::to_string(last_page) : "";
+    return run("pdftotext -layout" + range + " " + (*dir_ / "a.pdf").string() + " -").output;
+  }
+  static fs::path* dir_;
+  static std::vector<Ran> made_;
+};
+fs::path* SheetTest::dir_ = nullptr;
+std::vector<Ran> SheetTest::made_;
+
+}  // namespace
+
+TEST_F(SheetTest, ThePdfHasEveryCheckpointItsVerdictCodeAndTheAnswers) {
+  const std::string text = pdf_text();
+  for (const char* expected :
+       {"HW2: Ada Lovelace", "1. Gouraud shading (lighting in the vertex shader), with its code", "1 / 1: matches the reference exactly",
+        "shaders/starter_vert.js", "vColor = vec4(normalize(abs(normal.xyz)), 1.0);",
+        "2. Phong reflection: ambient + diffuse + specular, with its code", "0 / 1: compile error at phong_frag.js line",
+        "fragColor = color * undefinedThing;", "Short answers", "interpolates <colours>.", "A longer lens flattens."})
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text.substr(0, 2000);
+  EXPECT_NE(run("pdfinfo " + (*dir_ / "a.pdf").string()).output.find("Title:           HW2: Ada Lovelace"), std::string::npos);
+}
+
+// The grid and the start of the code that made it are on the same page, and the grid is drawn:
+// the first page, rasterised, has the bunnies' colours where the grid is.
+TEST_F(SheetTest, TheGridIsDrawnOnThePageOfItsCode) {
+  const std::string page1 = pdf_text(1, 1);
+  EXPECT_NE(page1.find("1. Gouraud shading"), std::string::npos);
+  EXPECT_NE(page1.find("shaders/starter_vert.js"), std::string::npos) << page1;
+  ASSERT_EQ(run("pdftoppm -r 36 -f 1 -l 1 " + (*dir_ / "a.pdf").string() + " " + (*dir_ / "page").string()).status, 0);
+  std::string ppm;
+  for (const auto& e : fs::directory_iterator(*dir_))
+    if (e.path().filename().string().starts_with("page")) ppm = testkit::read_text(e.path());
+  ASSERT_TRUE(ppm.starts_with("P6")) << "pdftoppm writes binary PPM";
+  int width = 0, height = 0, max = 0, header = 0;
+  ASSERT_EQ(std::sscanf(ppm.c_str(), "P6 %d %d %d%n", &width, &height, &max, &header), 3);
+  const std::string pixels = ppm.substr(static_cast<size_t>(header) + 1);
+  ASSERT_EQ(pixels.size(), static_cast<size_t>(width * height * 3));
+  int black = 0, coloured = 0;
+  for (size_t i = 0; i < pixels.size(); i += 3) {
+    const int r = static_cast<unsigned char>(pixels[i]), g = static_cast<unsigned char>(pixels[i + 1]),
+              b = static_cast<unsigned char>(pixels[i + 2]);
+    black += r + g + b < 30;
+    coloured += std::max({r, g, b}) - std::min({r, g, b}) > 80;  // the normal-coloured bunnies
+  }
+  EXPECT_GT(black, width * height / 10) << "the grid's black background";
+  EXPECT_GT(coloured, 500) << "the bunnies";
+}
+
+TEST_F(SheetTest, TheSameFolderGivesTheSameBytes) {
+  EXPECT_EQ(testkit::read_text(*dir_ / "a.pdf"), testkit::read_text(*dir_ / "b.pdf"));
+  EXPECT_EQ(testkit::read_text(*dir_ / "a.html"), testkit::read_text(*dir_ / "b.html"));
+}
+
+TEST_F(SheetTest, TheHtmlPageHasTheSameSectionsWithTheErrorLineMarked) {
+  const std::string html = testkit::read_text(*dir_ / "a.html");
+  EXPECT_NE(html.find("<title>HW2: Ada Lovelace</title>"), std::string::npos);
+  EXPECT_NE(html.find("<img alt=\"3x3 grid of gouraud\" src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);
+  EXPECT_NE(html.find("(no grid: the shaders did not render)"), std::string::npos);
+  EXPECT_NE(html.find("<span class=\"marked\"><span class=\"n\">32</span>    fragColor = color * undefinedThing;</span>"), std::string::npos)
+      << "the line the compile error names, marked";
+  EXPECT_NE(html.find("interpolates &lt;colours&gt;."), std::string::npos) << "the answers, escaped";
+}
+
+TEST(SheetTextTest, PrintableTextAndThePointedLines) {
+  EXPECT_EQ(sheet::printable("a\tb\r\nc\x01\xff é"), "a    b\nc?? é");
+  grade::Report r;
+  r.diagnostics = {{"fragment", "phong_frag.js", 12, 3, "error", "x"}, {"fragment", "phong_frag.js", 0, 0, "error", "y"},
+                   {"vertex", "phong_vert.js", 4, 1, "warning", "z"}};
+  EXPECT_EQ(sheet::lines_pointed_at(r, "shaders/phong_frag.js"), std::set<int>{12});
+  EXPECT_EQ(sheet::lines_pointed_at(r, "phong_vert.js"), std::set<int>{4});
+  r.score = 0;
+  r.messages = {"specular highlight missing"};
+  EXPECT_EQ(sheet::verdict(r), "0 / 1: specular highlight missing");
+}
