@@ -21,6 +21,8 @@ build_packages=(
   libhiredis-dev
   # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them
   blender-data
+  # the submission sheet: cairo writes the PDF, in DejaVu's fonts
+  libcairo2-dev fonts-dejavu-core
 )
 test_packages=(
   # the Kubernetes manifests' test (YAML)
@@ -28,7 +30,9 @@ test_packages=(
   # the local cluster and its tests: nginx in front of the replicas, Redis behind them
   nginx redis-server
   # tests and benchmarks; the browser tests drive Debian's chromium with playwright-core
-  libgtest-dev libgmock-dev libbenchmark-dev chromium fonts-dejavu-core
+  libgtest-dev libgmock-dev libbenchmark-dev chromium
+  # the sheet's PDF read back as a reader would: its text (pdftotext) and its pages (pdftoppm)
+  poppler-utils
   # the fuzz targets (tools/fuzz.sh): clang with libFuzzer and its sanitizers
   clang libfuzzer-14-dev libclang-rt-14-dev
 )
