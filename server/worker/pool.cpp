@@ -55,11 +55,31 @@ bool cap_with_cgroup(pid_t pid, int slot, size_t limit) {
 Error worker_error(ErrorCode code, std::string message) { return make_error(code, std::move(message)); }
 
 // The state letter of /proc/PID/stat: 'T' stopped by a signal, 't' stopped by a tracer.
-bool is_stopped(pid_t pid) {
+// /proc/PID/stat after the command name: "S 1 2 ..." (field 3 on), or "" when it is gone.
+std::string stat_fields(pid_t pid) {
   std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
   std::string text((std::istreambuf_iterator<char>(stat)), {});
   const size_t name_end = text.rfind(')');
-  return name_end != std::string::npos && name_end + 2 < text.size() && (text[name_end + 2] == 'T' || text[name_end + 2] == 't');
+  return name_end != std::string::npos && name_end + 2 < text.size() ? text.substr(name_end + 2) : std::string();
+}
+
+bool is_stopped(pid_t pid) {
+  const std::string fields = stat_fields(pid);
+  return !fields.empty() && (fields[0] == 'T' || fields[0] == 't');
+}
+
+// On its way out: a zombie, or PF_EXITING (0x4) in its task flags (field 9), which the kernel
+// sets as it starts tearing a process down. A SIGKILLed worker with llvmpipe's threads and
+// mappings can take a while between closing its socket and becoming reapable on a loaded machine.
+bool is_exiting(pid_t pid) {
+  std::istringstream fields(stat_fields(pid));
+  std::string state;
+  long long skipped = 0;
+  unsigned long long flags = 0;
+  if (!(fields >> state)) return false;
+  if (state == "Z" || state == "X") return true;
+  for (int field = 4; field <= 8; ++field) fields >> skipped;
+  return (fields >> flags) && (flags & 0x4) != 0;
 }
 
 Error lost(const std::string& phase, const std::string& how) {
@@ -132,8 +152,9 @@ struct WorkerPool::Slot {
     return status;
   }
 
-  // A worker whose socket closed: reaped when it exits within `grace` (it crashed or exited);
-  // killed otherwise (it dropped the socket and lives on). nullopt in the second case.
+  // A worker whose socket closed: reaped when it exits within `grace`, or is still exiting then
+  // (it crashed or exited); killed otherwise (it dropped the socket and lives on). nullopt in the
+  // second case.
   std::optional<int> reap_after_close(std::chrono::milliseconds grace) {
     const auto until = Clock::now() + grace;
     int status = 0;
@@ -146,6 +167,7 @@ struct WorkerPool::Slot {
       if (r < 0 && errno != EINTR) break;
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
+    if (is_exiting(pid)) return reap(false);
     reap(true);
     return std::nullopt;
   }
