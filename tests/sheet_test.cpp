@@ -10,8 +10,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "sheet/sheet.h"
 #include "support/files.h"
+#include "support/http_fixture.h"
+#include "support/openapi_check.h"
 
 namespace fs = std::filesystem;
 using namespace shadelab;
@@ -136,4 +140,81 @@ TEST(SheetTextTest, PrintableTextAndThePointedLines) {
   r.score = 0;
   r.messages = {"specular highlight missing"};
   EXPECT_EQ(sheet::verdict(r), "0 / 1: specular highlight missing");
+}
+
+// POST /api/sheet: the same sheet from files sent with their paths, through the real server.
+class SheetApiTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { server_ = new testkit::RunningService(testkit::test_config()); }
+  static void TearDownTestSuite() { delete server_; }
+  void SetUp() override { ASSERT_TRUE(server_->ok()) << server_->failure; }
+
+  static nlohmann::json files() {
+    nlohmann::json f = nlohmann::json::object();
+    for (const auto& [preset, as] : {std::pair{"gouraud", "starter"}, std::pair{"specular", "phong"}})
+      for (const char* stage : {"vert", "frag"})
+        f[std::string("HW2/shaders/") + as + "_" + stage + ".js"] =
+            testkit::read_text(kSource / "shaders" / (std::string(preset) + "_" + stage + ".js"));
+    return f;
+  }
+  static httplib::Result post(const nlohmann::json& body) {
+    return server_->client().Post("/api/sheet", body.dump(), "application/json");
+  }
+  static testkit::RunningService* server_;
+};
+testkit::RunningService* SheetApiTest::server_ = nullptr;
+
+TEST_F(SheetApiTest, AJsonBodyGivesThePdfAndTheHtmlPage) {
+  auto pdf = post({{"files", files()}, {"answers", "Phong lights each fragment."}, {"title", "HW2: Grace Hopper"}});
+  ASSERT_TRUE(pdf);
+  ASSERT_EQ(pdf->status, 200) << pdf->body.substr(0, 400);
+  EXPECT_EQ(pdf->get_header_value("Content-Type"), "application/pdf");
+  EXPECT_TRUE(pdf->body.starts_with("%PDF-"));
+  testkit::expect_conforms(*pdf, "/api/sheet", "post");
+  const fs::path file = fs::temp_directory_path() / ("shadelab_sheet_api_" + std::to_string(::getpid()) + ".pdf");
+  std::ofstream(file, std::ios::binary) << pdf->body;
+  const std::string text = run("pdftotext -layout " + file.string() + " -").output;
+  fs::remove(file);
+  for (const char* expected : {"HW2: Grace Hopper", "HW2/shaders/starter_vert.js", "HW2/shaders/phong_frag.js", "Phong lights each fragment."})
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text.substr(0, 1500);
+  size_t verdicts = 0;
+  for (size_t at = 0; (at = text.find("1 / 1: matches the reference exactly", at)) != std::string::npos; ++at) ++verdicts;
+  EXPECT_EQ(verdicts, 2u) << "both checkpoints pass";
+
+  auto html = post({{"files", files()}, {"format", "html"}});
+  ASSERT_TRUE(html);
+  ASSERT_EQ(html->status, 200) << html->body.substr(0, 400);
+  EXPECT_EQ(html->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  EXPECT_NE(html->body.find("<h2>2. Phong reflection: ambient + diffuse + specular, with its code</h2>"), std::string::npos);
+  auto again = post({{"files", files()}, {"format", "html"}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->body, html->body) << "the same files give the same bytes";
+}
+
+TEST_F(SheetApiTest, MultipartPartsNamedByTheirPaths) {
+  httplib::MultipartFormDataItems items{{"format", "html", "", ""}};
+  const nlohmann::json all = files();
+  for (const auto& [path, text] : all.items())
+    items.push_back({path, text.get<std::string>(), path.substr(path.rfind('/') + 1), "text/javascript"});
+  auto r = server_->client().Post("/api/sheet", items);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body.substr(0, 400);
+  EXPECT_NE(r->body.find("<h3>HW2/shaders/starter_frag.js</h3>"), std::string::npos);
+}
+
+TEST_F(SheetApiTest, BadRequestsAreProblems) {
+  nlohmann::json outside = files();
+  outside["../../etc/passwd"] = "x";
+  for (const auto& [body, fragment] : std::vector<std::pair<nlohmann::json, std::string>>{
+           {nlohmann::json::object(), "files: send the student's shader files"},
+           {{{"files", outside}}, "'../../etc/passwd' is not a path inside the submission"},
+           {{{"files", files()}, {"format", "docx"}}, "format: pdf or html"},
+           {{{"files", {{"a.js", 3}}}}, "files.a.js: expected the file's text"}}) {
+    auto r = post(body);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << r->body;
+    EXPECT_EQ(r->get_header_value("Content-Type"), "application/problem+json");
+    EXPECT_NE(r->body.find(fragment), std::string::npos) << r->body;
+    testkit::expect_conforms(*r, "/api/sheet", "post");
+  }
 }

@@ -46,12 +46,12 @@ std::string html_escape(const std::string& text) {
 }
 
 // A checkpoint the submission has no files for: 0 points, and what was looked for.
-json missing_test(const CheckpointFiles& c, double max_score, const std::vector<fs::path>& files) {
+json missing_test(const grade::CheckpointFiles& c, double max_score, const std::vector<fs::path>& files) {
   const std::string wanted = *c.homework_stem + "_vert.js and " + *c.homework_stem + "_frag.js (or " + c.checkpoint +
                              "_vert.js and " + c.checkpoint + "_frag.js)";
   return {{"name", "checkpoint: " + c.checkpoint}, {"score", 0.0}, {"max_score", max_score}, {"status", "failed"},
           {"visibility", "visible"},
-          {"output", "no shaders for this checkpoint: expected " + wanted + " in one folder; the submission has " + listing(files) + "\n"}};
+          {"output", "no shaders for this checkpoint: expected " + wanted + " in one folder; the submission has " + grade::listing(files) + "\n"}};
 }
 
 // A graded checkpoint as Gradescope's test, with its heat map (written beside results.json, and
@@ -77,7 +77,7 @@ json graded_test(const AutogradeFlags& f, const std::string& checkpoint, const s
 
 int run_autograde(const AutogradeFlags& f) {
   const std::vector<fs::path> files = submitted_files(f.submission);
-  const std::vector<CheckpointFiles> plan = plan_checkpoints(files);
+  const std::vector<grade::CheckpointFiles> plan = grade::plan_checkpoints(files);
   const int jobs = static_cast<int>(std::count_if(plan.begin(), plan.end(), [](const auto& p) { return p.pair.has_value(); }));
   worker::WorkerPool pool(pool_config(f.grade, std::max(jobs, 1)));
   json tests = json::array();

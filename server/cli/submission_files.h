@@ -1,40 +1,16 @@
 #pragma once
-// Which files of a student's submission (their HW2 folder, or the shader modules alone) are which
-// checkpoint's shaders: what `shadelab autograde` grades and `shadelab sheet` lays out.
-//
-// | files in the submission               | checkpoint | required                    |
-// |---------------------------------------|------------|-----------------------------|
-// | smooth_vert.js + smooth_frag.js       | smooth     | no: when present            |
-// | gouraud_vert.js + gouraud_frag.js, else starter_vert.js + starter_frag.js | gouraud | yes                         |
-// | diffuse_vert.js + diffuse_frag.js     | diffuse    | no: when present            |
-// | specular_vert.js + specular_frag.js, else phong_vert.js + phong_frag.js   | specular | yes                         |
-//
-// The homework edits starter_* into Gouraud shading and phong_* into ambient + diffuse + specular,
-// and its checklist hands in that code; a student who kept each stage's files names them.
+// The files of a student's submission on disk, for the CLI: grade/submission_files.h says which
+// are which checkpoint's.
 #include <filesystem>
-#include <optional>
-#include <string>
-#include <utility>
 #include <vector>
+
+#include "grade/submission_files.h"
 
 namespace shadelab::cli {
 
-struct CheckpointFiles {
-  std::string checkpoint;
-  std::optional<std::string> homework_stem;  // the homework's file names for it ("starter"), if any
-  bool required = false;
-  std::optional<std::pair<std::filesystem::path, std::filesystem::path>> pair;  // vertex, fragment; relative
-};
-
-// Every file under `root`, relative to it, shallowest first then by path (so the choice between
-// two copies is the same each run); macOS archive litter (__MACOSX/, ._name), hidden files and
-// symbolic links are not the student's (a link could make the grader read a file of the image).
+// Every file under `root`, relative to it, in grade::sort_submission's order; macOS archive litter
+// (__MACOSX/, ._name), hidden files and symbolic links are not the student's (a link could make
+// the grader read a file of the image).
 std::vector<std::filesystem::path> submitted_files(const std::filesystem::path& root);
-
-// Each checkpoint the files hold, in the homework's order, and each required one (pair empty).
-std::vector<CheckpointFiles> plan_checkpoints(const std::vector<std::filesystem::path>& files);
-
-// "a.js, b.js and 3 more", or "nothing": what a student is told their submission held.
-std::string listing(const std::vector<std::filesystem::path>& files);
 
 }  // namespace shadelab::cli

@@ -62,6 +62,7 @@ std::string json_text(const nlohmann::json& body, int indent = 2);
 
 void add_render_routes(httplib::Server& server, RouteContext& context);   // /api/render, /api/compile
 void add_grade_routes(httplib::Server& server, RouteContext& context);    // /api/grade
+void add_sheet_routes(httplib::Server& server, RouteContext& context);    // /api/sheet
 void add_scene_routes(httplib::Server& server, RouteContext& context);    // /api/scene, /api/scenes, /api/dolly
 void add_mesh_routes(httplib::Server& server, RouteContext& context);     // /api/meshes
 void add_service_routes(httplib::Server& server, RouteContext& context);  // presets, OpenAPI, health, metrics

@@ -121,6 +121,7 @@ struct Service::Impl {
     context.emplace(RouteContext{config, *pool, meshes, cache, metrics, connections, *tenants, shared.get()});
     add_render_routes(server, *context);
     add_grade_routes(server, *context);
+    add_sheet_routes(server, *context);
     add_scene_routes(server, *context);
     add_mesh_routes(server, *context);
     add_service_routes(server, *context);

@@ -1,0 +1,103 @@
+// POST /api/sheet: the submission sheet (server/sheet/) from a student's files, as a PDF or one
+// HTML page. The body names each file by its path in the student's folder:
+//
+// | form      | files                                              | other fields               |
+// |-----------|----------------------------------------------------|----------------------------|
+// | JSON      | "files": {"shaders/starter_vert.js": "<source>"}   | answers, title, format     |
+// | multipart | a file part per file, the part's name its path     | answers, title, format     |
+//
+// format: pdf (default) or html. Each checkpoint found is graded and rendered by the workers.
+#include <algorithm>
+
+#include "http/route_context.h"
+#include "sheet/assemble.h"
+#include "sheet/sheet_html.h"
+#include "sheet/sheet_pdf.h"
+
+namespace shadelab::http {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr size_t kMaxFiles = 16, kMaxPath = 200, kMaxTitle = 200, kMaxAnswers = 64 * 1024;
+
+// A path inside the student's folder: relative, no "..", no empty part.
+bool safe_path(const std::string& path) {
+  if (path.empty() || path.size() > kMaxPath || path.front() == '/') return false;
+  for (size_t at = 0; at <= path.size();) {
+    const size_t slash = std::min(path.find('/', at), path.size());
+    const std::string part = path.substr(at, slash - at);
+    if (part.empty() || part == "." || part == "..") return false;
+    at = slash + 1;
+  }
+  return true;
+}
+
+Expected<std::string> text_field(const RawRequest& raw, const char* name, size_t max, std::string fallback) {
+  if (!raw.fields.contains(name)) return fallback;
+  const json& v = raw.fields[name];
+  if (!v.is_string()) return make_error(ErrorCode::invalid_argument, std::string(name) + ": expected a string");
+  if (v.get_ref<const std::string&>().size() > max)
+    return make_error(ErrorCode::payload_too_large, std::string(name) + ": more than " + std::to_string(max) + " bytes");
+  return v.get<std::string>();
+}
+
+Status add_file(sheet::SheetInput& input, const std::string& path, const std::string& text, const Limits& limits) {
+  if (!safe_path(path))
+    return make_error(ErrorCode::invalid_argument, "files: '" + path.substr(0, kMaxPath) + "' is not a path inside the submission");
+  if (text.size() > limits.render.max_source_bytes)
+    return make_error(ErrorCode::payload_too_large, "files: '" + path + "' is over " + std::to_string(limits.render.max_source_bytes) + " bytes");
+  if (input.files.size() == kMaxFiles) return make_error(ErrorCode::invalid_argument, "files: more than " + std::to_string(kMaxFiles));
+  input.files.push_back({path, text});
+  return Ok{};
+}
+
+Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& limits) {
+  sheet::SheetInput input;
+  auto title = text_field(raw, "title", kMaxTitle, input.title);
+  auto answers = text_field(raw, "answers", kMaxAnswers, "");
+  for (auto* f : {&title, &answers})
+    if (!*f) return f->error();
+  input.title = *title;
+  input.answers = *answers;
+  if (raw.fields.contains("files")) {
+    const json& files = raw.fields["files"];
+    if (!files.is_object()) return make_error(ErrorCode::invalid_argument, "files: expected an object of path -> source");
+    for (const auto& [path, text] : files.items()) {
+      if (!text.is_string()) return make_error(ErrorCode::invalid_argument, "files." + path + ": expected the file's text");
+      if (auto s = add_file(input, path, text.get<std::string>(), limits); !s) return s.error();
+    }
+  }
+  for (const auto& [name, file] : raw.files)
+    if (auto s = add_file(input, name, file.content, limits); !s) return s.error();
+  if (input.files.empty())
+    return make_error(ErrorCode::invalid_argument, "files: send the student's shader files (e.g. shaders/starter_vert.js), each under its path");
+  return input;
+}
+
+void sheet(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+  auto raw = read_request(req);
+  if (!raw) return send_problem(res, raw.error(), req.path);
+  auto format = text_field(*raw, "format", 8, "pdf");
+  if (!format) return send_problem(res, format.error(), req.path);
+  if (*format != "pdf" && *format != "html")
+    return send_problem(res, make_error(ErrorCode::invalid_argument, "format: pdf or html, not '" + *format + "'"), req.path);
+  auto input = parse_sheet(*raw, c.config.limits);
+  if (!input) return send_problem(res, input.error(), req.path);
+  auto assembled = sheet::assemble(c.pool, std::move(*input));
+  if (!assembled) return send_problem(res, assembled.error(), req.path);
+  if (*format == "html") return res.set_content(sheet::render_html(*assembled), "text/html; charset=utf-8");
+  auto pdf = sheet::render_pdf(*assembled);
+  if (!pdf) return send_problem(res, pdf.error(), req.path);
+  res.set_header("Content-Disposition", "attachment; filename=\"sheet.pdf\"");
+  res.set_content(std::move(*pdf), "application/pdf");
+}
+
+}  // namespace
+
+void add_sheet_routes(httplib::Server& server, RouteContext& c) {
+  server.Post("/api/sheet", [&c](const httplib::Request& req, httplib::Response& res) { sheet(c, req, res); });
+}
+
+}  // namespace shadelab::http

@@ -1,0 +1,93 @@
+#include "sheet/assemble.h"
+
+#include <algorithm>
+
+#include "grade/checkpoints.h"
+#include "grade/submission_files.h"
+#include "render/render_request.h"
+#include "worker/client.h"
+
+namespace shadelab::sheet {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string& text_of(const SheetInput& input, const fs::path& path) {
+  static const std::string none;
+  for (const auto& f : input.files)
+    if (f.path == path) return f.text;
+  return none;
+}
+
+render::RenderRequest request_for(const SheetInput& input, const fs::path& vert, const fs::path& frag) {
+  render::RenderRequest r;
+  r.vertex = {vert.filename().string(), text_of(input, vert)};
+  r.fragment = {frag.filename().string(), text_of(input, frag)};
+  return r;
+}
+
+// The grid the student's shaders render, as the page would save it; empty when they do not.
+Expected<std::string> grid(worker::WorkerPool& pool, const render::RenderRequest& request) {
+  if (!render::check_sources(request, render::RenderLimits{})) return std::string();
+  worker::Job job;
+  job.kind = worker::JobKind::render;
+  job.request = request;
+  auto rendered = worker::run<worker::RenderResult>(pool, worker::to_message(job));
+  if (rendered) return std::move(rendered->result.body);
+  if (info(rendered.error().code).submission_caused) return std::string();
+  return rendered.take_error();
+}
+
+Expected<grade::Report> graded(worker::WorkerPool& pool, const std::string& checkpoint, const render::RenderRequest& request) {
+  auto spec = grade::checkpoint_spec(checkpoint, grade::GradeOptions{});
+  if (!spec) return spec.take_error();
+  if (auto sources = render::check_sources(request, render::RenderLimits{}); !sources)
+    return grade::failed_submission(sources.error(), checkpoint, spec->options.max_score);
+  worker::Job job;
+  job.kind = worker::JobKind::grade;
+  job.request = request;
+  job.grade = std::move(*spec);
+  auto answered = worker::grade(pool, job, "");
+  if (!answered) return answered.take_error();
+  return std::move(answered->result.report);
+}
+
+Expected<CheckpointSection> section(worker::WorkerPool& pool, const SheetInput& input, const grade::CheckpointFiles& c) {
+  CheckpointSection s;
+  s.checkpoint = c.checkpoint;
+  if (!c.pair) {
+    s.report.checkpoint = c.checkpoint;
+    s.report.messages = {"not in the submission: no " + *c.homework_stem + "_vert.js and " + *c.homework_stem + "_frag.js in one folder"};
+    return s;
+  }
+  const auto request = request_for(input, c.pair->first, c.pair->second);
+  auto report = graded(pool, c.checkpoint, request);
+  if (!report) return report.take_error();
+  s.report = std::move(*report);
+  auto png = grid(pool, request);
+  if (!png) return png.take_error();
+  s.grid_png = std::move(*png);
+  for (const auto& path : {c.pair->first, c.pair->second})
+    s.code.push_back({path.string(), text_of(input, path), lines_pointed_at(s.report, path.string())});
+  return s;
+}
+
+}  // namespace
+
+Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input) {
+  Sheet sheet;
+  sheet.title = input.title;
+  sheet.answers = input.answers;
+  std::vector<fs::path> paths;
+  for (const auto& f : input.files) paths.push_back(f.path);
+  grade::sort_submission(paths);
+  for (const auto& c : grade::plan_checkpoints(paths)) {
+    auto s = section(pool, input, c);
+    if (!s) return s.take_error();
+    sheet.checkpoints.push_back(std::move(*s));
+  }
+  return sheet;
+}
+
+}  // namespace shadelab::sheet

@@ -1,0 +1,31 @@
+#pragma once
+// A student's files to a Sheet: each checkpoint the files hold (grade/submission_files.h) graded
+// and rendered through render workers, so a hostile shader only ever runs in a killable worker.
+// What `shadelab sheet` and POST /api/sheet share; the layouts (sheet_pdf.h, sheet_html.h) take
+// the result.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/expected.h"
+#include "sheet/sheet.h"
+#include "worker/pool.h"
+
+namespace shadelab::sheet {
+
+struct SubmittedFile {
+  std::filesystem::path path;  // relative to the submission: "shaders/phong_frag.js"
+  std::string text;
+};
+
+struct SheetInput {
+  std::string title = "HW2 submission";
+  std::string answers;
+  std::vector<SubmittedFile> files;
+};
+
+// Errors: only what the service could not do (the pool full, no worker): whatever the shaders
+// cause is their section's grade.
+Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input);
+
+}  // namespace shadelab::sheet
