@@ -57,7 +57,7 @@ class SheetTest : public ::testing::Test {
     for (const char* name : {"a", "b"})
       made_.push_back(run(std::string(SHADELAB_CLI) + " sheet " + (*dir_ / "HW2").string() + " -o " + (*dir_ / name).string() +
                           ".pdf --html " + (*dir_ / name).string() + ".html --answers " + (*dir_ / "answers.txt").string() +
-                          " --title 'HW2: Ada Lovelace'"));
+                          " --scene " + (kSource / "assets/scenes/two_objects.json").string() + " --title 'HW2: Ada Lovelace'"));
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -84,7 +84,9 @@ TEST_F(SheetTest, ThePdfHasEveryCheckpointItsVerdictCodeAndTheAnswers) {
        {"HW2: Ada Lovelace", "1. Gouraud shading (lighting in the vertex shader), with its code", "1 / 1: matches the reference exactly",
         "shaders/starter_vert.js", "vColor = vec4(normalize(abs(normal.xyz)), 1.0);",
         "2. Phong reflection: ambient + diffuse + specular, with its code", "0 / 1: compile error at phong_frag.js line",
-        "fragColor = color * undefinedThing;", "Short answers", "interpolates <colours>.", "A longer lens flattens."})
+        "fragColor = color * undefinedThing;", "Short answers", "interpolates <colours>.", "A longer lens flattens.",
+        "Blender: two_objects.json (lens 50 mm, 640 x 480)", "both objects fully in the image",
+        "Suzanne: fully in the image, 100% of it in frame, covers", "Suzanne: base colour (0.80, 0.10, 0.10), metallic 1.00, roughness 0.20"})
     EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text.substr(0, 2000);
   EXPECT_NE(run("pdfinfo " + (*dir_ / "a.pdf").string()).output.find("Title:           HW2: Ada Lovelace"), std::string::npos);
 }
@@ -128,6 +130,8 @@ TEST_F(SheetTest, TheHtmlPageHasTheSameSectionsWithTheErrorLineMarked) {
   EXPECT_NE(html.find("<span class=\"marked\"><span class=\"n\">32</span>    fragColor = color * undefinedThing;</span>"), std::string::npos)
       << "the line the compile error names, marked";
   EXPECT_NE(html.find("interpolates &lt;colours&gt;."), std::string::npos) << "the answers, escaped";
+  EXPECT_NE(html.find("\">Suzanne</div>"), std::string::npos) << "Suzanne's framing box";
+  EXPECT_NE(html.find("<div class=\"box in\""), std::string::npos);
 }
 
 TEST(SheetTextTest, PrintableTextAndThePointedLines) {
@@ -191,6 +195,23 @@ TEST_F(SheetApiTest, AJsonBodyGivesThePdfAndTheHtmlPage) {
   EXPECT_EQ(again->body, html->body) << "the same files give the same bytes";
 }
 
+// The framing report on the sheet follows the scene: Suzanne moved out of the frame is named.
+TEST_F(SheetApiTest, AnObjectMovedOutOfFrameChangesTheVerdict) {
+  nlohmann::json scene = nlohmann::json::parse(testkit::read_text(kSource / "assets/scenes/two_objects.json"));
+  nlohmann::json moved = scene;
+  for (auto& o : moved["objects"])
+    if (o["name"] == "Suzanne") o["location"][0] = o["location"][0].get<double>() - 3.0;
+  auto r = post({{"files", files()}, {"format", "html"}, {"scenes", {{{"name", "as set"}, {"scene", scene}}, {{"name", "moved"}, {"scene", moved}}}}});
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body.substr(0, 400);
+  const size_t first = r->body.find("<h2>Blender: as set"), second = r->body.find("<h2>Blender: moved");
+  ASSERT_NE(first, std::string::npos);
+  ASSERT_NE(second, std::string::npos);
+  EXPECT_NE(r->body.substr(first, second - first).find("both objects fully in the image"), std::string::npos);
+  EXPECT_NE(r->body.substr(second).find("not fully in the image: Suzanne"), std::string::npos) << r->body.substr(second, 600);
+  EXPECT_NE(r->body.substr(second).find("<div class=\"box out\""), std::string::npos);
+}
+
 TEST_F(SheetApiTest, MultipartPartsNamedByTheirPaths) {
   httplib::MultipartFormDataItems items{{"format", "html", "", ""}};
   const nlohmann::json all = files();
@@ -209,7 +230,8 @@ TEST_F(SheetApiTest, BadRequestsAreProblems) {
            {nlohmann::json::object(), "files: send the student's shader files"},
            {{{"files", outside}}, "'../../etc/passwd' is not a path inside the submission"},
            {{{"files", files()}, {"format", "docx"}}, "format: pdf or html"},
-           {{{"files", {{"a.js", 3}}}}, "files.a.js: expected the file's text"}}) {
+           {{{"files", {{"a.js", 3}}}}, "files.a.js: expected the file's text"},
+           {{{"files", files()}, {"scenes", {{{"name", "x"}}}}}, "scenes[0]: expected {"}}) {
     auto r = post(body);
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 400) << r->body;

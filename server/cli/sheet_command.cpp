@@ -5,11 +5,16 @@
 // same bytes.
 #include <filesystem>
 #include <iostream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
 #include "cli/submission_files.h"
+#include "scene/mesh.h"
+#include "scene/scene_mesh.h"
 #include "sheet/assemble.h"
 #include "sheet/sheet_html.h"
 #include "sheet/sheet_pdf.h"
@@ -23,7 +28,23 @@ namespace fs = std::filesystem;
 struct SheetFlags {
   GradeFlags grade;
   std::string folder, pdf, html, answers, title = "HW2 submission";
+  std::vector<std::string> scenes;
 };
+
+// A scene file with the mesh files its objects name (relative to it), as a worker reads them.
+Expected<sheet::SceneInput> scene_input(const fs::path& file) {
+  auto json = nlohmann::json::parse(read_text(file), nullptr, false);
+  if (json.is_discarded()) return make_error(ErrorCode::invalid_argument, "'" + file.string() + "' is not JSON");
+  sheet::SceneInput input{file.filename().string(), json, {}};
+  if (!json.contains("objects") || !json["objects"].is_array()) return input;  // parse_scene says what is wrong
+  for (const auto& o : json["objects"]) {
+    const std::string mesh = o.is_object() ? o.value("mesh", "") : "";
+    if (mesh.empty() || scene::is_builtin_scene_mesh(mesh)) continue;
+    const fs::path path = file.parent_path() / mesh;
+    if (fs::is_regular_file(path)) input.meshes.push_back({mesh, scene::mesh_format_of(mesh), read_text(path)});
+  }
+  return input;
+}
 
 int run_sheet(const SheetFlags& f) {
   sheet::SheetInput input{f.title, "", {}};
@@ -36,6 +57,11 @@ int run_sheet(const SheetFlags& f) {
   }
   for (const auto& path : submitted_files(f.folder))
     if (path.extension() == ".js") input.files.push_back({path, read_text(fs::path(f.folder) / path)});
+  for (const auto& file : f.scenes) {
+    auto scene = scene_input(file);
+    if (!scene) return fail(scene.error());
+    input.scenes.push_back(std::move(*scene));
+  }
   worker::WorkerPool pool(pool_config(f.grade, 4));
   auto assembled = sheet::assemble(pool, std::move(input));
   if (!assembled) return fail(assembled.error());
@@ -60,6 +86,8 @@ Command add_sheet_command(CLI::App& app) {
   cmd->add_option("-o,--output", f->pdf, "Where the PDF goes")->required();
   cmd->add_option("--html", f->html, "Also write the sheet as one HTML page here");
   cmd->add_option("--answers", f->answers, "A text file with the short answers");
+  cmd->add_option("--scene", f->scenes, "A Blender-half scene (JSON, docs/scenes.md) to render with its framing report; repeat for more")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--title", f->title, "The sheet's title (e.g. the student's name)")->capture_default_str();
   cmd->add_flag("--software", f->grade.software, "Force Mesa's software renderer");
   return [f] { return run_sheet(*f); };

@@ -3,10 +3,13 @@
 //
 // | form      | files                                              | other fields               |
 // |-----------|----------------------------------------------------|----------------------------|
-// | JSON      | "files": {"shaders/starter_vert.js": "<source>"}   | answers, title, format     |
+// | JSON      | "files": {"shaders/starter_vert.js": "<source>"}   | answers, title, format,    |
+// |           |                                                    | scenes                     |
 // | multipart | a file part per file, the part's name its path     | answers, title, format     |
 //
-// format: pdf (default) or html. Each checkpoint found is graded and rendered by the workers.
+// format: pdf (default) or html. scenes: [{"name": "two_objects", "scene": {...}}], Blender-half
+// scenes on built-in meshes, each rendered with its framing report. Each checkpoint found is
+// graded and rendered by the workers.
 #include <algorithm>
 
 #include "http/route_context.h"
@@ -20,7 +23,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr size_t kMaxFiles = 16, kMaxPath = 200, kMaxTitle = 200, kMaxAnswers = 64 * 1024;
+constexpr size_t kMaxFiles = 16, kMaxPath = 200, kMaxTitle = 200, kMaxAnswers = 64 * 1024, kMaxScenes = 4;
 
 // A path inside the student's folder: relative, no "..", no empty part.
 bool safe_path(const std::string& path) {
@@ -53,6 +56,26 @@ Status add_file(sheet::SheetInput& input, const std::string& path, const std::st
   return Ok{};
 }
 
+// Scenes on built-in meshes; parse_scene (in assemble) checks each, and its error is its section.
+Status add_scenes(sheet::SheetInput& input, const RawRequest& raw) {
+  if (!raw.fields.contains("scenes")) return Ok{};
+  const json& scenes = raw.fields["scenes"];
+  if (!scenes.is_array() || scenes.size() > kMaxScenes)
+    return make_error(ErrorCode::invalid_argument, "scenes: expected an array of at most " + std::to_string(kMaxScenes) +
+                                                       " {\"name\": ..., \"scene\": {...}}");
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    const json& s = scenes[i];
+    const std::string where = "scenes[" + std::to_string(i) + "]";
+    if (!s.is_object() || !s.contains("scene") || !s["scene"].is_object())
+      return make_error(ErrorCode::invalid_argument, where + ": expected {\"name\": ..., \"scene\": {...}}");
+    const json name = s.value("name", json(where));
+    if (!name.is_string() || name.get_ref<const std::string&>().size() > kMaxTitle)
+      return make_error(ErrorCode::invalid_argument, where + ".name: expected a short string");
+    input.scenes.push_back({name.get<std::string>(), s["scene"], {}});
+  }
+  return Ok{};
+}
+
 Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& limits) {
   sheet::SheetInput input;
   auto title = text_field(raw, "title", kMaxTitle, input.title);
@@ -71,6 +94,7 @@ Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& lim
   }
   for (const auto& [name, file] : raw.files)
     if (auto s = add_file(input, name, file.content, limits); !s) return s.error();
+  if (auto s = add_scenes(input, raw); !s) return s.error();
   if (input.files.empty())
     return make_error(ErrorCode::invalid_argument, "files: send the student's shader files (e.g. shaders/starter_vert.js), each under its path");
   return input;

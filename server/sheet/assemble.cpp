@@ -5,6 +5,7 @@
 #include "grade/checkpoints.h"
 #include "grade/submission_files.h"
 #include "render/render_request.h"
+#include "scene/scene_description.h"
 #include "worker/client.h"
 
 namespace shadelab::sheet {
@@ -73,6 +74,31 @@ Expected<CheckpointSection> section(worker::WorkerPool& pool, const SheetInput& 
   return s;
 }
 
+// A scene rendered by a worker; what the scene itself gets wrong is its section's error.
+Expected<SceneSection> scene_section(worker::WorkerPool& pool, SceneInput input) {
+  SceneSection s;
+  s.name = input.name;
+  auto description = scene::parse_scene(input.scene);
+  if (!description) {
+    s.error = description.error().message;
+    return s;
+  }
+  s.width = description->render.width;
+  s.height = description->render.height;
+  s.lens_mm = description->camera.lens_mm;
+  for (const auto& o : description->objects) s.materials.emplace_back(o.name, o.material);
+  auto rendered = worker::run<worker::SceneResult>(pool, worker::to_message(worker::SceneJob{*description, std::move(input.meshes)}));
+  if (!rendered) {
+    const auto& e = rendered.error();
+    if (info(e.code).status >= 500) return e;  // the service's failure, not the scene's
+    s.error = e.message;
+    return s;
+  }
+  s.png = std::move(rendered->result.png);
+  s.framing = std::move(rendered->result.report.framing);
+  return s;
+}
+
 }  // namespace
 
 Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input) {
@@ -86,6 +112,11 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input) {
     auto s = section(pool, input, c);
     if (!s) return s.take_error();
     sheet.checkpoints.push_back(std::move(*s));
+  }
+  for (auto& scene : input.scenes) {
+    auto s = scene_section(pool, std::move(scene));
+    if (!s) return s.take_error();
+    sheet.scenes.push_back(std::move(*s));
   }
   return sheet;
 }

@@ -7,8 +7,11 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/expected.h"
 #include "sheet/sheet.h"
+#include "worker/job.h"
 #include "worker/pool.h"
 
 namespace shadelab::sheet {
@@ -18,14 +21,22 @@ struct SubmittedFile {
   std::string text;
 };
 
+// A Blender-half scene (docs/scenes.md) with the mesh files its objects name, if any.
+struct SceneInput {
+  std::string name;  // shown as the section's title: "two_objects.json"
+  nlohmann::json scene;
+  std::vector<worker::SceneMeshBytes> meshes;
+};
+
 struct SheetInput {
   std::string title = "HW2 submission";
   std::string answers;
   std::vector<SubmittedFile> files;
+  std::vector<SceneInput> scenes;
 };
 
 // Errors: only what the service could not do (the pool full, no worker): whatever the shaders
-// cause is their section's grade.
+// cause is their section's grade, and a scene that does not render has its error in its section.
 Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input);
 
 }  // namespace shadelab::sheet

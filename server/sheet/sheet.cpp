@@ -28,6 +28,42 @@ std::set<int> lines_pointed_at(const grade::Report& report, const std::string& f
   return lines;
 }
 
+std::string framing_verdict(const SceneSection& scene) {
+  std::string out_of_frame;
+  for (const auto& f : scene.framing)
+    if (f.drawn && !f.fully_visible) out_of_frame += (out_of_frame.empty() ? "" : ", ") + f.name;
+  if (scene.framing.empty()) return "no framing report";
+  if (out_of_frame.empty())
+    return scene.framing.size() == 2 ? "both objects fully in the image" : "every object fully in the image";
+  return "not fully in the image: " + out_of_frame;
+}
+
+std::string framing_line(const scene_render::ObjectFraming& f) {
+  char text[160];
+  if (!f.drawn) return f.name + ": not drawn (zero scale)";
+  if (f.behind_camera) return f.name + ": behind the camera";
+  std::snprintf(text, sizeof text, "%s, %.0f%% of it in frame, covers %.1f%% of the image",
+                f.fully_visible ? "fully in the image" : "cut by the frame", 100 * f.fraction_in_frame, 100 * f.image_coverage);
+  return f.name + ": " + text;
+}
+
+std::string material_line(const scene::Material& m) {
+  char text[200];
+  std::snprintf(text, sizeof text, "base colour (%.2f, %.2f, %.2f), metallic %.2f, roughness %.2f, specular %.2f", m.base_color.x,
+                m.base_color.y, m.base_color.z, m.metallic, m.roughness, m.specular);
+  std::string out = text;
+  if (m.subsurface > 0) {
+    std::snprintf(text, sizeof text, ", subsurface %.2f (colour %.2f, %.2f, %.2f)", m.subsurface, m.subsurface_color.x,
+                  m.subsurface_color.y, m.subsurface_color.z);
+    out += text;
+  }
+  if (m.emission != glm::dvec3(0.0)) {
+    std::snprintf(text, sizeof text, ", emission (%.2f, %.2f, %.2f) x %.2f", m.emission.x, m.emission.y, m.emission.z, m.emission_strength);
+    out += text;
+  }
+  return out;
+}
+
 namespace {
 // The length of the UTF-8 sequence at `s[i]`, or 0 when it is not a valid one.
 size_t utf8_length(const std::string& s, size_t i) {

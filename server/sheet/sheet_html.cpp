@@ -1,5 +1,7 @@
 #include "sheet/sheet_html.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 #include "core/base64.h"
@@ -25,7 +27,9 @@ std::string escape(const std::string& text) {
 constexpr char kStyle[] = R"(body{font-family:"DejaVu Sans",sans-serif;max-width:60em;margin:2em auto;color:#1a1a1a}
 section{margin-bottom:3em}img{width:100%}.pass{color:#0d7326}.fail{color:#b31a1a}.note{color:#737373}
 pre{font:0.8em "DejaVu Sans Mono",monospace;white-space:pre-wrap;border-left:3px solid #ddd;padding-left:.5em}
-.n{color:#737373;user-select:none;display:inline-block;width:3em}.marked{background:#ffed99}.marked .n{color:#b31a1a})";
+.n{color:#737373;user-select:none;display:inline-block;width:3em}.marked{background:#ffed99}.marked .n{color:#b31a1a}
+.render{position:relative}.box{position:absolute;border:2px solid;font-size:.75em;font-weight:bold;padding:0 .2em}
+.box.in{border-color:#0d7326;color:#0d7326}.box.out{border-color:#b31a1a;color:#b31a1a})";
 
 void code(std::ostringstream& out, const CodeListing& listing) {
   out << "<h3>" << escape(listing.file_name) << "</h3>\n<pre>";
@@ -52,6 +56,30 @@ void checkpoint(std::ostringstream& out, const CheckpointSection& s, size_t inde
   out << "</section>\n";
 }
 
+// The render with each object's framing box placed in percentages of the image (clipped by it).
+void scene(std::ostringstream& out, const SceneSection& s) {
+  out << "<section class=\"scene\">\n<h2>Blender: " << escape(s.name);
+  if (!s.error.empty()) {
+    out << "</h2>\n<p class=\"fail\">does not render: " << escape(s.error) << "</p>\n</section>\n";
+    return;
+  }
+  const bool all_in = !s.framing.empty() && std::all_of(s.framing.begin(), s.framing.end(), [](const auto& f) { return f.fully_visible || !f.drawn; });
+  out << " (lens " << s.lens_mm << " mm, " << s.width << " x " << s.height << ")</h2>\n<p class=\"" << (all_in ? "pass" : "fail") << "\">"
+      << escape(framing_verdict(s)) << "</p>\n<div class=\"render\" style=\"overflow:hidden\"><img alt=\"" << escape(s.name)
+      << "\" src=\"data:image/png;base64," << base64_encode(s.png) << "\">";
+  char style[200];
+  for (const auto& f : s.framing) {
+    if (!f.box || s.width <= 0 || s.height <= 0) continue;
+    std::snprintf(style, sizeof style, "left:%.3f%%;top:%.3f%%;width:%.3f%%;height:%.3f%%", 100 * f.box->min.x / s.width,
+                  100 * f.box->min.y / s.height, 100 * (f.box->max.x - f.box->min.x) / s.width, 100 * (f.box->max.y - f.box->min.y) / s.height);
+    out << "<div class=\"box " << (f.fully_visible ? "in" : "out") << "\" style=\"" << style << "\">" << escape(f.name) << "</div>";
+  }
+  out << "</div>\n<ul>\n";
+  for (const auto& f : s.framing) out << "<li>" << escape(framing_line(f)) << "</li>\n";
+  for (const auto& [name, material] : s.materials) out << "<li class=\"note\">" << escape(name + ": " + material_line(material)) << "</li>\n";
+  out << "</ul>\n</section>\n";
+}
+
 }  // namespace
 
 std::string render_html(const Sheet& sheet) {
@@ -59,6 +87,7 @@ std::string render_html(const Sheet& sheet) {
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escape(sheet.title)
       << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n<h1>" << escape(sheet.title) << "</h1>\n";
   for (size_t i = 0; i < sheet.checkpoints.size(); ++i) checkpoint(out, sheet.checkpoints[i], i + 1);
+  for (const auto& s : sheet.scenes) scene(out, s);
   if (!sheet.answers.empty()) {
     out << "<section id=\"answers\">\n<h2>Short answers</h2>\n";
     std::istringstream paragraphs(sheet.answers);

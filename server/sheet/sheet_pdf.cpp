@@ -4,6 +4,7 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <sstream>
 
@@ -83,12 +84,13 @@ class PageWriter {
     }
   }
 
-  void image(const std::string& png) {
+  // The PNG at the page's width; `boxes` (in the image's pixels) stroked over it, each labelled.
+  void image(const std::string& png, const std::vector<scene_render::ObjectFraming>& boxes = {}) {
     PngReader reader{png};
     cairo_surface_t* img = cairo_image_surface_create_from_png_stream(read_png, &reader);
     if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
       cairo_surface_destroy(img);
-      text("(no grid: the shaders did not render)", kSans, 9, kGrey);
+      text("(no image: it did not render)", kSans, 9, kGrey);
       return;
     }
     const double scale = kWidth / cairo_image_surface_get_width(img);
@@ -101,6 +103,7 @@ class PageWriter {
     cairo_paint(cr_);
     cairo_restore(cr_);
     cairo_surface_destroy(img);
+    framing_boxes(boxes, scale, height);
     y_ += height;
   }
 
@@ -136,6 +139,27 @@ class PageWriter {
 
   void finish() { footer(); }
 
+ private:
+  // Each object's box over the image (clipped to it): green when fully in frame, red when not.
+  void framing_boxes(const std::vector<scene_render::ObjectFraming>& boxes, double scale, double height) {
+    cairo_save(cr_);
+    cairo_rectangle(cr_, kMargin, y_, kWidth, height);
+    cairo_clip(cr_);
+    font(kSans, 7.5, true);
+    for (const auto& f : boxes) {
+      if (!f.box) continue;
+      const Colour c = f.fully_visible ? kPass : kFail;
+      const double x0 = kMargin + f.box->min.x * scale, y0 = y_ + f.box->min.y * scale;
+      cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+      cairo_set_line_width(cr_, 1.2);
+      cairo_rectangle(cr_, x0, y0, (f.box->max.x - f.box->min.x) * scale, (f.box->max.y - f.box->min.y) * scale);
+      cairo_stroke(cr_);
+      draw(f.name, std::max(x0, kMargin) + 2, std::max(y0, y_) + 9, c);
+    }
+    cairo_restore(cr_);
+  }
+
+ public:
  private:
   void font(const char* face, double size, bool bold) {
     cairo_select_font_face(cr_, face, CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
@@ -183,6 +207,24 @@ void checkpoint(PageWriter& w, const CheckpointSection& s, size_t index) {
   }
 }
 
+void scene(PageWriter& w, const SceneSection& s) {
+  char lens[64];
+  std::snprintf(lens, sizeof lens, " (lens %g mm, %d x %d)", s.lens_mm, s.width, s.height);
+  w.text("Blender: " + printable(s.name) + (s.error.empty() ? lens : ""), kSans, 13, kInk, true);
+  if (!s.error.empty()) {
+    w.paragraph("does not render: " + printable(s.error), 9.5, kFail);
+    return;
+  }
+  const std::string verdict = framing_verdict(s);
+  const bool all_in = std::all_of(s.framing.begin(), s.framing.end(), [](const auto& f) { return f.fully_visible || !f.drawn; });
+  w.text(verdict, kSans, 9.5, all_in && !s.framing.empty() ? kPass : kFail);
+  w.gap(4);
+  w.image(s.png, s.framing);
+  w.gap(6);
+  for (const auto& f : s.framing) w.text(framing_line(f), kSans, 8.5, kInk);
+  for (const auto& [name, material] : s.materials) w.paragraph(printable(name) + ": " + material_line(material), 8.5, kGrey);
+}
+
 }  // namespace
 
 Expected<std::string> render_pdf(const Sheet& sheet) {
@@ -199,6 +241,10 @@ Expected<std::string> render_pdf(const Sheet& sheet) {
   for (size_t i = 0; i < sheet.checkpoints.size(); ++i) {
     if (i > 0) w.new_page();
     checkpoint(w, sheet.checkpoints[i], i + 1);
+  }
+  for (const auto& s : sheet.scenes) {
+    w.new_page();
+    scene(w, s);
   }
   if (!sheet.answers.empty()) {
     w.new_page();
