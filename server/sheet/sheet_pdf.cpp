@@ -225,17 +225,8 @@ void scene(PageWriter& w, const SceneSection& s) {
   for (const auto& [name, material] : s.materials) w.paragraph(printable(name) + ": " + material_line(material), 8.5, kGrey);
 }
 
-}  // namespace
-
-Expected<std::string> render_pdf(const Sheet& sheet) {
-  std::string out;
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-      cairo_pdf_surface_create_for_stream(append, &out, kPageWidth, kPageHeight), cairo_surface_destroy);
-  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, printable(sheet.title).c_str());
-  // A fixed date: the same sheet is the same bytes (cairo would write the current time).
-  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
-  PageWriter w(cr.get());
+// Title, a page per checkpoint, a page per scene, the answers.
+void draw_sheet(PageWriter& w, const Sheet& sheet) {
   w.text(printable(sheet.title), kSans, 18, kInk, true);
   w.gap(6);
   for (size_t i = 0; i < sheet.checkpoints.size(); ++i) {
@@ -252,6 +243,20 @@ Expected<std::string> render_pdf(const Sheet& sheet) {
     w.gap(4);
     w.paragraph(printable(sheet.answers), 10, kInk);
   }
+}
+
+}  // namespace
+
+Expected<std::string> render_pdf(const Sheet& sheet) {
+  std::string out;
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_pdf_surface_create_for_stream(append, &out, kPageWidth, kPageHeight), cairo_surface_destroy);
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, printable(sheet.title).c_str());
+  // A fixed date: the same sheet is the same bytes (cairo would write the current time).
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
+  PageWriter w(cr.get());
+  draw_sheet(w, sheet);
   w.finish();
   cairo_show_page(cr.get());
   cr.reset();
