@@ -46,15 +46,15 @@ export async function startBrowser() {
   });
 }
 
-// A page with console errors collected; waits for the page's own start-up.
-export async function openPage(browser, base, { onDialog } = {}) {
+// A page with console errors collected; waits for the page's own start-up (the global it sets).
+export async function openPage(browser, base, { onDialog, path: pagePath = "/", ready = "shadelab" } = {}) {
   const context = await browser.newContext({ viewport: { width: 1400, height: 1000 }, acceptDownloads: true });
   const page = await context.newPage();
   if (onDialog) page.on("dialog", onDialog);
   const consoleErrors = [];
   page.on("console", (m) => m.type() === "error" && consoleErrors.push(m.text()));
   page.on("pageerror", (e) => consoleErrors.push(String(e)));
-  await page.goto(base + "/");
-  await page.waitForFunction(() => window.shadelab !== undefined, null, { timeout: 30000 });
+  await page.goto(base + pagePath);
+  await page.waitForFunction((name) => window[name] !== undefined, ready, { timeout: 30000 });
   return { page, context, consoleErrors };
 }

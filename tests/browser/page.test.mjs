@@ -131,6 +131,51 @@ describe("the page", () => {
   });
 });
 
+describe("the Blender half (scene.html)", () => {
+  test("two objects render fully in frame; one moved out of frame changes the verdict", async () => {
+    const { page, context, consoleErrors } = await openPage(browser, server.base, { path: "/scene.html", ready: "shadelabScene" });
+    await page.evaluate(() => window.shadelabScene.ready);
+    assert.equal(await page.locator("#objects fieldset.object").count(), 2, "the example's two objects");
+    // From the keyboard: focus the button and press Enter.
+    await page.focus("#render-scene");
+    await page.keyboard.press("Enter");
+    await page.waitForFunction(() => document.querySelector("#verdict").textContent !== "", null, { timeout: 60000 });
+    assert.equal(await page.textContent("#verdict"), "both objects fully in the image");
+    assert.equal(await page.locator("#render .box.in").count(), 2);
+    assert.ok(await page.locator("#render img").evaluate((img) => img.complete && img.naturalWidth === 640), "the render is shown");
+    assert.ok(await page.locator("#passes dt").count() >= 3, "the passes that ran, with their times");
+    assert.ok(await page.isVisible("#download-render"));
+    await page.screenshot({ path: path.join(artifacts, "scene_rendered.png"), fullPage: true });
+
+    await page.fill("#objects fieldset.object:nth-of-type(1) input[name=lx]", "-3.4");  // Suzanne, cut by the left edge
+    await page.click("#render-scene");
+    await page.waitForFunction(() => document.querySelector("#verdict").textContent.startsWith("not fully"), null, { timeout: 60000 });
+    assert.equal(await page.textContent("#verdict"), "not fully in the image: Suzanne");
+    assert.equal(await page.locator("#render .box.out").count(), 1);
+    const scene = await page.evaluate(() => window.shadelabScene.readScene());
+    assert.deepEqual(scene.objects[0].location, [-3.4, 0, 1]);
+    assert.deepEqual(scene.objects[0].material.baseColor.map((c) => Number(c.toFixed(2))), [0.8, 0.1, 0.1], "the colour survives sRGB hex");
+    await page.screenshot({ path: path.join(artifacts, "scene_out_of_frame.png"), fullPage: true });
+    assert.deepEqual(consoleErrors, []);
+    await context.close();
+  });
+
+  test("the dolly zoom renders three lenses side by side, the subject the same size", async () => {
+    const { page, context, consoleErrors } = await openPage(browser, server.base, { path: "/scene.html", ready: "shadelabScene" });
+    await page.evaluate(() => window.shadelabScene.ready);
+    await page.evaluate(() => window.shadelabScene.dollyTrio());
+    assert.equal(await page.locator("#dolly figure").count(), 3);
+    const captions = await page.locator("#dolly figcaption").allTextContents();
+    assert.match(captions[0], /^25 mm at/);
+    assert.match(captions[2], /^100 mm at/);
+    const suzanne = captions.map((c) => Number(c.match(/Suzanne covers ([0-9.]+)%/)[1]));
+    assert.ok(Math.max(...suzanne) / Math.min(...suzanne) < 1.25, `the subject keeps its size: ${suzanne.join(", ")}%`);
+    await page.screenshot({ path: path.join(artifacts, "scene_dolly.png"), fullPage: true });
+    assert.deepEqual(consoleErrors, []);
+    await context.close();
+  });
+});
+
 // The browser's own frames (toBlob from the page's WebGL2 canvas, default context attributes)
 // against the server's, with the page's own measure. Chromium (SwiftShader) and llvmpipe place
 // multisamples differently, so pixels on triangle edges differ; nothing else may.

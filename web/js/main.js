@@ -2,6 +2,7 @@
 import { compareImages, imageDataOf } from "./compare.js";
 import { Editor } from "./editor.js";
 import { DEFAULT_UNIFORMS, GlView } from "./gl_view.js";
+import { api } from "./api.js";
 import { parseObj } from "./obj.js";
 import { glslFromFile } from "./shader_module.js";
 
@@ -56,20 +57,6 @@ async function applyLocally() {
   editors.fragment.show(errors.filter((e) => e.stage !== "vertex"));
   status("local-status", errors.length ? "Your shaders do not compile in this browser: see the messages under the editors." : "Compiled in your browser (WebGL2).", errors.length > 0);
   return errors.length === 0;
-}
-
-// Every API call: where the server requires keys (serve --api-keys) it answers 401, and the page
-// asks for the student's key once and keeps it in this browser.
-async function api(path, init = {}) {
-  for (let attempt = 0; ; attempt++) {
-    const key = localStorage.getItem("shadelab.apiKey");
-    const headers = { ...(init.headers ?? {}), ...(key ? { Authorization: `Bearer ${key}` } : {}) };
-    const response = await fetch(path, { ...init, headers });
-    if (response.status !== 401 || attempt > 0) return response;
-    const entered = window.prompt("This ShadeLab server needs your course API key:");
-    if (!entered) return response;
-    localStorage.setItem("shadelab.apiKey", entered.trim());
-  }
 }
 
 async function loadMesh(name) {
