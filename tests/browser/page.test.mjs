@@ -163,6 +163,12 @@ describe("the Blender half (scene.html)", () => {
   test("the dolly zoom renders three lenses side by side, the subject the same size", async () => {
     const { page, context, consoleErrors } = await openPage(browser, server.base, { path: "/scene.html", ready: "shadelabScene" });
     await page.evaluate(() => window.shadelabScene.ready);
+    // A camera turned by Blender's rotation instead of aimed at a target also renders.
+    await page.check("input[name=use-rotation]");
+    const turned = await page.evaluate(() => window.shadelabScene.readScene().camera);
+    assert.deepEqual([turned.rotation, turned.target], [[70, 0, 0], undefined]);
+    assert.ok(await page.evaluate(() => window.shadelabScene.renderOnServer()), "a rotated camera renders");
+    await page.uncheck("input[name=use-rotation]");
     await page.evaluate(() => window.shadelabScene.dollyTrio());
     assert.equal(await page.locator("#dolly figure").count(), 3);
     const captions = await page.locator("#dolly figcaption").allTextContents();

@@ -77,6 +77,8 @@ function fill(scene) {
   const f = form.elements, cam = scene.camera, sun = scene.lights?.find((l) => l.type === "sun") ?? { strength: 3, rotation: [50, 0, 45] };
   [f.cx.value, f.cy.value, f.cz.value] = cam.location;
   [f.tx.value, f.ty.value, f.tz.value] = cam.target ?? [0, 0, 0];
+  f["use-rotation"].checked = Array.isArray(cam.rotation);
+  [f.crx.value, f.cry.value, f.crz.value] = cam.rotation ?? [70, 0, 0];
   f.lens.value = cam.lens ?? 50;
   f.sun.value = sun.strength;
   [f.srx.value, f.sry.value, f.srz.value] = sun.rotation ?? [0, 0, 0];
@@ -98,6 +100,14 @@ function readObject(fs) {
            scale: n("scale"), shading: v("shading"), material };
 }
 
+// Aimed at a target (as the dolly-zoom helper needs), or turned by Blender's Euler rotation.
+function camera(base) {
+  const f = form.elements, num = (name) => Number(f[name].value);
+  const { rotation, target, ...rest } = base;
+  const aim = f["use-rotation"].checked ? { rotation: [num("crx"), num("cry"), num("crz")] } : { target: [num("tx"), num("ty"), num("tz")] };
+  return { ...rest, location: [num("cx"), num("cy"), num("cz")], lens: num("lens"), ...aim };
+}
+
 // The scene the form describes; what the form does not show is kept from the loaded scene.
 function readScene() {
   const f = form.elements, base = state.base;
@@ -105,7 +115,7 @@ function readScene() {
   const sun = { ...(base.lights?.find((l) => l.type === "sun") ?? { type: "sun", angle: 5 }), strength: num("sun"), rotation: [num("srx"), num("sry"), num("srz")] };
   const scene = {
     objects: [...document.querySelectorAll("#objects fieldset.object")].map(readObject),
-    camera: { ...base.camera, location: [num("cx"), num("cy"), num("cz")], target: [num("tx"), num("ty"), num("tz")], lens: num("lens") },
+    camera: camera(base.camera),
     lights: [sun, ...(base.lights ?? []).filter((l) => l.type !== "sun")],
     render: { ...base.render, width: num("width"), height: num("height"), engine: f.engine.value, viewTransform: f.view.value },
   };
