@@ -62,7 +62,7 @@ int run_sheet(const SheetFlags& f) {
     if (!scene) return fail(scene.error());
     input.scenes.push_back(std::move(*scene));
   }
-  worker::WorkerPool pool(pool_config(f.grade, 4));
+  worker::WorkerPool pool(pool_config(f.grade, 16));  // every section's jobs queued at once (sheet/assemble.h)
   auto assembled = sheet::assemble(pool, std::move(input));
   if (!assembled) return fail(assembled.error());
   const sheet::Sheet& sheet = *assembled;

@@ -1,6 +1,8 @@
 #include "sheet/assemble.h"
 
 #include <algorithm>
+#include <future>
+#include <optional>
 
 #include "grade/checkpoints.h"
 #include "grade/submission_files.h"
@@ -101,6 +103,8 @@ Expected<SceneSection> scene_section(worker::WorkerPool& pool, SceneInput input)
 
 }  // namespace
 
+// Every section's jobs are in the pool at once (its workers take them in parallel); the sections
+// are collected in the sheet's order, so the result does not depend on which finishes first.
 Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input) {
   Sheet sheet;
   sheet.title = input.title;
@@ -108,16 +112,24 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input) {
   std::vector<fs::path> paths;
   for (const auto& f : input.files) paths.push_back(f.path);
   grade::sort_submission(paths);
-  for (const auto& c : grade::plan_checkpoints(paths)) {
-    auto s = section(pool, input, c);
-    if (!s) return s.take_error();
-    sheet.checkpoints.push_back(std::move(*s));
+  std::vector<std::future<Expected<CheckpointSection>>> checkpoints;
+  for (const auto& c : grade::plan_checkpoints(paths))
+    checkpoints.push_back(std::async(std::launch::async, [&pool, &input, c] { return section(pool, input, c); }));
+  std::vector<std::future<Expected<SceneSection>>> scenes;
+  for (auto& scene : input.scenes)
+    scenes.push_back(std::async(std::launch::async, [&pool, s = std::move(scene)]() mutable { return scene_section(pool, std::move(s)); }));
+  std::optional<Error> failed;
+  for (auto& f : checkpoints) {
+    auto s = f.get();
+    if (s) sheet.checkpoints.push_back(std::move(*s));
+    else if (!failed) failed = s.error();
   }
-  for (auto& scene : input.scenes) {
-    auto s = scene_section(pool, std::move(scene));
-    if (!s) return s.take_error();
-    sheet.scenes.push_back(std::move(*s));
+  for (auto& f : scenes) {
+    auto s = f.get();
+    if (s) sheet.scenes.push_back(std::move(*s));
+    else if (!failed) failed = s.error();
   }
+  if (failed) return *failed;
   return sheet;
 }
 
