@@ -6,6 +6,7 @@
 // Which files are which checkpoint: cli/submission_files.h.
 #include <algorithm>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <optional>
 #include <vector>
@@ -75,24 +76,38 @@ json graded_test(const AutogradeFlags& f, const std::string& checkpoint, const s
   return test;
 }
 
+// Every checkpoint's grade, all queued at once (the pool's workers take them in parallel); empty
+// for a checkpoint with no files.
+std::vector<std::optional<Graded>> grade_all(worker::WorkerPool& pool, const AutogradeFlags& f,
+                                             const std::vector<grade::CheckpointFiles>& plan) {
+  std::vector<std::future<std::optional<Graded>>> pending;
+  for (const auto& c : plan)
+    pending.push_back(std::async(std::launch::async, [&pool, &f, &c]() -> std::optional<Graded> {
+      if (!c.pair) return std::nullopt;
+      GradeFlags flags = f.grade;
+      flags.reference = c.checkpoint;
+      return grade_one(pool, flags, fs::path(f.submission) / c.pair->first, fs::path(f.submission) / c.pair->second);
+    }));
+  std::vector<std::optional<Graded>> out;
+  for (auto& p : pending) out.push_back(p.get());
+  return out;
+}
+
 int run_autograde(const AutogradeFlags& f) {
   const std::vector<fs::path> files = submitted_files(f.submission);
   const std::vector<grade::CheckpointFiles> plan = grade::plan_checkpoints(files);
-  const int jobs = static_cast<int>(std::count_if(plan.begin(), plan.end(), [](const auto& p) { return p.pair.has_value(); }));
-  worker::WorkerPool pool(pool_config(f.grade, std::max(jobs, 1)));
+  worker::WorkerPool pool(pool_config(f.grade, static_cast<int>(std::max<size_t>(plan.size(), 1))));
+  const auto grades = grade_all(pool, f, plan);
   json tests = json::array();
   double score = 0, seconds = 0;
   int passed = 0;
-  for (const auto& c : plan) {
-    if (!c.pair) {
-      tests.push_back(missing_test(c, f.grade.max_score, files));
+  for (size_t i = 0; i < plan.size(); ++i) {
+    if (!grades[i]) {
+      tests.push_back(missing_test(plan[i], f.grade.max_score, files));
       continue;
     }
-    const auto& pair = c.pair;
-    GradeFlags flags = f.grade;
-    flags.reference = c.checkpoint;
-    const Graded graded = grade_one(pool, flags, fs::path(f.submission) / pair->first, fs::path(f.submission) / pair->second);
-    tests.push_back(graded_test(f, c.checkpoint, *pair, graded));
+    const Graded& graded = *grades[i];
+    tests.push_back(graded_test(f, plan[i].checkpoint, *plan[i].pair, graded));
     score += graded.result.report.score;
     seconds += graded.seconds;
     passed += graded.result.report.pass ? 1 : 0;
