@@ -78,6 +78,14 @@ TEST(MeshLoaderTest, NanAndInfCoordinatesAreRejected) {
   }
 }
 
+// A normal whose components are tiny (their squares underflow a float) still comes out unit length.
+TEST(MeshLoaderTest, TinyNormalsAreNormalisedExactly) {
+  auto m = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1e-20 1e-20 0\nvn 3e-39 0 4e-39\nf 1//1 2//2 3//1\n", "obj");
+  ASSERT_TRUE(m) << m.error().format();
+  for (const auto& n : m->normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-6f) << n.x << " " << n.y << " " << n.z;
+  EXPECT_NEAR(m->normals[1].z, 0.8f, 1e-6f);
+}
+
 TEST(MeshLoaderTest, OutOfRangeIndicesAreRejected) {
   auto m = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "obj");
   ASSERT_FALSE(m);

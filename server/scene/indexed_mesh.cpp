@@ -21,9 +21,12 @@ Status check_vertices(const IndexedMesh& m) {
   return Ok{};
 }
 
+// In double: a float normal like (1e-20, 1e-20, 0) squares to a denormal in float, and the length
+// that comes back is too inexact to make it unit (the fuzzer's STL, regressions/mesh_loader/crash-37c06ab9…).
 glm::vec3 unit_or_zero(const glm::vec3& n) {
-  const float length = glm::length(n);
-  return length > 0.f && std::isfinite(length) ? n / length : glm::vec3(0.f);
+  const glm::dvec3 d(n);
+  const double length = glm::length(d);
+  return length > 0.0 && std::isfinite(length) ? glm::vec3(d / length) : glm::vec3(0.f);
 }
 
 }  // namespace
