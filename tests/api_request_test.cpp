@@ -57,7 +57,9 @@ TEST(ApiRequestTest, EveryFieldIsTypeCheckedWithItsName) {
 }
 
 TEST(ApiRequestTest, SourceProblemsAreAnsweredBeforeAnyWorker) {
-  EXPECT_EQ(parse({{"vertex", kVertex}, {"fragment", "precision highp float;\nvoid main() {}\n"}}).error().code, ErrorCode::missing_version);
+  // A GLSL ES 1.00 fragment shader (no #version) with an ES 3.00 vertex shader: WebGL 2 does not link them.
+  EXPECT_EQ(parse({{"vertex", kVertex}, {"fragment", "precision highp float;\nvoid main() {}\n"}}).error().code, ErrorCode::link_failed);
+  EXPECT_EQ(parse({{"vertex", kVertex}, {"fragment", "#version 310 es\nvoid main() {}\n"}}).error().code, ErrorCode::missing_version);
   http::RawRequest multipart;  // as a multipart upload brings it: bytes, not JSON text
   multipart.fields = {{"vertex", kVertex}};
   multipart.files["fragment"] = {"phong_frag.js", "#version 300 es\n\xff\xfe"};

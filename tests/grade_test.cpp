@@ -172,12 +172,12 @@ TEST_F(GradeTest, BadGradeRequestsAreProblems) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 404);
   job["reference"] = "specular";
-  job["fragment"] = "void main() {}";  // no #version: graded 0, even with a mistyped maxScore
+  job["fragment"] = "void main() {}";  // GLSL ES 1.00 beside an ES 3.00 vertex shader: graded 0, even with a mistyped maxScore
   job["maxScore"] = "lots";
   r = server_->client().Post("/api/grade", job.dump(), "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200) << r->body;
-  EXPECT_EQ(json::parse(r->body)["diagnosis"], "missing_version");
+  EXPECT_EQ(json::parse(r->body)["diagnosis"], "link_failed");
   job = submission("specular");
   job["reference"] = "specular";
   job["threshold"] = 3;

@@ -291,7 +291,8 @@ TEST_F(HttpTest, ShaderSourceProblemsAre422BeforeAnyDriver) {
   httplib::MultipartFormDataItems items = {{"vertex", kVertex, "v.js", ""},
                                            {"fragment", "#version 300 es\n// caf\xC3\x28\nvoid main() {}\n", "f.js", ""}};
   expect_problem(client().Post("/api/render", items), 422, "shader_source_invalid");
-  expect_problem(post_json("/api/render", small_job("precision highp float;\nvoid main() {}\n")), 422, "missing_version");
+  expect_problem(post_json("/api/render", small_job("precision highp float;\nvoid main() {}\n")), 422, "link_failed");  // ES 1.00 beside ES 3.00
+  expect_problem(post_json("/api/render", small_job("#version 310 es\nvoid main() {}\n")), 422, "missing_version");
 }
 
 TEST_F(HttpTest, LinkMismatchAndRecursionAreShaderErrors) {

@@ -50,6 +50,40 @@ TEST(RenderTest, SameRequestTwiceGivesIdenticalBytes) {
   EXPECT_EQ(first, second);
 }
 
+// A preset's ES 3.00 stage rewritten as the GLSL ES 1.00 a WebGL 1 tutorial would have it.
+std::string as_es100(std::string text, bool vertex) {
+  const auto replace_all = [&](const std::string& from, const std::string& to) {
+    for (size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size()) text.replace(at, from.size(), to);
+  };
+  replace_all("#version 300 es", "#version 100");
+  replace_all("\nin ", vertex ? "\nattribute " : "\nvarying ");
+  replace_all("\nout vec4 fragColor;", "");
+  replace_all("fragColor = ", "gl_FragColor = ");
+  replace_all("\nout ", "\nvarying ");
+  return text;
+}
+
+// WebGL 2 compiles GLSL ES 1.00 pairs (attribute, varying, gl_FragColor): the homework's
+// attributes and uniforms reach them as they reach ES 3.00 ones, and the frames are the same.
+TEST(RenderTest, AGlslEs100PairRendersAsItsEs300Twin) {
+  for (const char* preset : {"gouraud", "specular"}) {
+    auto es300 = testkit::preset_request(preset);
+    es300.width = 160;
+    es300.height = 120;
+    es300.frames = 3;
+    auto es100 = es300;
+    es100.vertex.text = as_es100(es300.vertex.text, true);
+    es100.fragment.text = as_es100(es300.fragment.text, false);
+    ASSERT_EQ(es100.fragment.text.find("#version 300"), std::string::npos);
+    ASSERT_NE(es100.fragment.text.find("gl_FragColor = "), std::string::npos);
+    auto a = render_frames(es300, testkit::builtin("bunny"));
+    auto b = render_frames(es100, testkit::builtin("bunny"));
+    ASSERT_TRUE(a) << a.error().format();
+    ASSERT_TRUE(b) << preset << ": " << b.error().format();
+    for (size_t k = 0; k < a->frames.size(); ++k) EXPECT_EQ(a->frames[k].bytes, b->frames[k].bytes) << preset << " frame " << k;
+  }
+}
+
 TEST(RenderTest, CompileErrorInJsModulePointsAtTheStudentsLine) {
   auto request = testkit::preset_request("specular");
   // Line 1 is a comment, the back-tick opens on line 2; the typo sits on file line 9.

@@ -87,10 +87,29 @@ TEST(ShaderSourceTest, TextAfterTheStringIsAnError) {
   EXPECT_EQ(s.error().diagnostics[0].line, 6);  // the back-tick closes on line 5
 }
 
-TEST(ShaderSourceTest, MissingVersionIsAnError) {
-  auto s = unwrap("precision highp float;\nvoid main() {}\n");
-  ASSERT_FALSE(s);
-  EXPECT_EQ(s.error().code, ErrorCode::missing_version);
+// WebGL 2 compiles GLSL ES 1.00 too: a shader with no #version is one, as is `#version 100`.
+TEST(ShaderSourceTest, NoVersionOrVersion100IsGlslEs100) {
+  for (const char* text : {"precision highp float;\nvoid main() {}\n", "#version 100\nvoid main() {}\n", "  #version 100  \r\nvoid main() {}\n"}) {
+    auto s = unwrap(text);
+    ASSERT_TRUE(s) << text << ": " << s.error().format();
+    EXPECT_EQ(s->version, shader::GlslVersion::es100) << text;
+  }
+  auto es300 = unwrap("#version 300 es\nvoid main() {}\n");
+  ASSERT_TRUE(es300);
+  EXPECT_EQ(es300->version, shader::GlslVersion::es300);
+}
+
+TEST(ShaderSourceTest, ShadersOfTwoVersionsDoNotLinkAndSaySo) {
+  const shader::ShaderFile vf{"phong_vert.js", "#version 300 es\nvoid main() {}\n"}, ff{"phong_frag.js", "void main() {}\n"};
+  auto vs = shader::unwrap(vf, Stage::vertex), fs = shader::unwrap(ff, Stage::fragment);
+  ASSERT_TRUE(vs && fs);
+  auto linked = shader::check_same_version(*vs, *fs, ff);
+  ASSERT_FALSE(linked);
+  EXPECT_EQ(linked.error().code, ErrorCode::link_failed);
+  EXPECT_EQ(linked.error().message, "the vertex shader is GLSL ES 3.00 and the fragment shader GLSL ES 1.00: a program links shaders "
+                                    "of one version (both `#version 300 es`, or both GLSL ES 1.00)");
+  EXPECT_EQ(linked.error().diagnostics.at(0).file, "phong_frag.js");
+  EXPECT_TRUE(shader::check_same_version(*vs, *vs, vf));
 }
 
 TEST(ShaderSourceTest, VersionNotOnTheFirstLineIsAnErrorAtThatLine) {
@@ -102,10 +121,13 @@ TEST(ShaderSourceTest, VersionNotOnTheFirstLineIsAnErrorAtThatLine) {
   EXPECT_NE(s.error().message.find("first line"), std::string::npos);
 }
 
-TEST(ShaderSourceTest, WrongVersionIsAnError) {
-  auto s = unwrap("#version 100\nvoid main() {}\n");
-  ASSERT_FALSE(s);
-  EXPECT_EQ(s.error().code, ErrorCode::missing_version);
+TEST(ShaderSourceTest, AVersionWebGl2DoesNotCompileIsAnError) {
+  for (const char* text : {"#version 310 es\nvoid main() {}\n", "#version 300\nvoid main() {}\n", "#version 330 core\nvoid main() {}\n"}) {
+    auto s = unwrap(text);
+    ASSERT_FALSE(s) << text;
+    EXPECT_EQ(s.error().code, ErrorCode::missing_version) << text;
+    EXPECT_NE(s.error().message.find("`#version 300 es` (GLSL ES 3.00) or `#version 100`"), std::string::npos) << s.error().message;
+  }
 }
 
 TEST(ShaderSourceTest, EmptyNulInvalidUtf8AndOversizedSourcesAreErrors) {

@@ -27,9 +27,11 @@ Status validate(const RenderRequest& r, const RenderLimits& limits) {
 
 Status check_sources(const RenderRequest& r, const RenderLimits& limits) {
   const shader::SourceLimits source_limits{limits.max_source_bytes};
-  if (auto vs = shader::unwrap(r.vertex, shader::Stage::vertex, source_limits); !vs) return vs.take_error();
-  if (auto fs = shader::unwrap(r.fragment, shader::Stage::fragment, source_limits); !fs) return fs.take_error();
-  return Ok{};
+  auto vs = shader::unwrap(r.vertex, shader::Stage::vertex, source_limits);
+  if (!vs) return vs.take_error();
+  auto fs = shader::unwrap(r.fragment, shader::Stage::fragment, source_limits);
+  if (!fs) return fs.take_error();
+  return shader::check_same_version(*vs, *fs, r.fragment);
 }
 
 }  // namespace shadelab::render

@@ -75,6 +75,7 @@ struct Renderer::State {
     if (!vertex) return vertex.take_error();
     auto fragment = shader::unwrap(ff, shader::Stage::fragment, limits);
     if (!fragment) return fragment.take_error();
+    if (auto same = shader::check_same_version(*vertex, *fragment, ff); !same) return same.take_error();
     if (semantics == FloatSemantics::ieee) {  // same lines, so the line maps still hold
       vertex->glsl = shader::with_invariant_outputs(vertex->glsl, shader::Stage::vertex);
       fragment->glsl = shader::with_invariant_outputs(fragment->glsl, shader::Stage::fragment);

@@ -231,32 +231,45 @@ UnwrappedSource identity(const std::string& text) {
   return out;
 }
 
-// WebGL2 accepts only GLSL ES 3.00 and insists that `#version 300 es` is on the first line.
-Status check_version(const ShaderFile& file, const UnwrappedSource& src, Stage stage) {
+// WebGL 2 compiles GLSL ES 3.00 (`#version 300 es`, which must be on the first line) and GLSL ES
+// 1.00 (`#version 100`, or no #version directive at all).
+Expected<GlslVersion> check_version(const ShaderFile& file, const UnwrappedSource& src, Stage stage) {
   const std::string first_line = src.glsl.substr(0, src.glsl.find('\n'));
   size_t i = first_line.find_first_not_of(" \t");
   if (i != std::string::npos && first_line.compare(i, 8, "#version") == 0) {
     std::string rest = first_line.substr(i + 8);
     rest.erase(0, rest.find_first_not_of(" \t"));
-    if (rest.rfind("300", 0) == 0 && rest.find("es") != std::string::npos) return Ok{};
+    rest.erase(rest.find_last_not_of(" \t\r") + 1);
+    if (rest.rfind("300", 0) == 0 && rest.find("es") != std::string::npos) return GlslVersion::es300;
+    if (rest == "100" || rest.rfind("100 ", 0) == 0 || rest.rfind("100\t", 0) == 0) return GlslVersion::es100;
     const auto at = src.locate(1, static_cast<int>(i) + 1);
     return source_error(ErrorCode::missing_version, file, stage, at.file_line, at.file_column,
-                        "WebGL2 shaders must declare `#version 300 es`; found `" + first_line.substr(i) + "`");
+                        "WebGL2 compiles `#version 300 es` (GLSL ES 3.00) or `#version 100` (GLSL ES 1.00); found `" +
+                            first_line.substr(i) + "`");
   }
   const size_t later = src.glsl.find("#version");
-  if (later != std::string::npos) {
-    const int glsl_line = static_cast<int>(std::count(src.glsl.begin(), src.glsl.begin() + static_cast<long>(later), '\n')) + 1;
-    const auto at = src.locate(glsl_line, 1);
-    return source_error(ErrorCode::missing_version, file, stage, at.file_line, at.file_column,
-                        "`#version 300 es` must be on the shader's very first line (WebGL2 rejects anything before "
-                        "it, even a blank line after the opening back-tick)");
-  }
-  const auto at = src.locate(1, 1);
+  if (later == std::string::npos) return GlslVersion::es100;  // no directive: GLSL ES 1.00
+  const int glsl_line = static_cast<int>(std::count(src.glsl.begin(), src.glsl.begin() + static_cast<long>(later), '\n')) + 1;
+  const auto at = src.locate(glsl_line, 1);
   return source_error(ErrorCode::missing_version, file, stage, at.file_line, at.file_column,
-                      "the shader has no `#version 300 es` line; WebGL2 shaders must start with it");
+                      "`#version` must be on the shader's very first line (WebGL2 rejects anything before "
+                      "it, even a blank line after the opening back-tick)");
 }
 
 }  // namespace
+
+Status check_same_version(const UnwrappedSource& vertex, const UnwrappedSource& fragment, const ShaderFile& fragment_file) {
+  if (vertex.version == fragment.version) return Ok{};
+  const auto at = fragment.locate(1, 1);
+  std::string message = "the vertex shader is " + std::string(to_string(vertex.version)) + " and the fragment shader " +
+                        std::string(to_string(fragment.version)) +
+                        ": a program links shaders of one version (both `#version 300 es`, or both GLSL ES 1.00)";
+  Error e = make_error(ErrorCode::link_failed, message);
+  e.diagnostics.push_back(Diagnostic{"link", fragment_file.name, at.file_line, at.file_column, "error", std::move(message)});
+  return e;
+}
+
+std::string_view to_string(GlslVersion version) { return version == GlslVersion::es100 ? "GLSL ES 1.00" : "GLSL ES 3.00"; }
 
 LineOrigin UnwrappedSource::locate(int glsl_line, int glsl_column) const {
   if (lines.empty() || glsl_line < 1) return {0, 0};
@@ -311,7 +324,9 @@ Expected<UnwrappedSource> unwrap(const ShaderFile& file, Stage stage, const Sour
     return source_error(ErrorCode::shader_source_invalid, file, stage, at.file_line, 0,
                         "the shader contains a NUL byte");
   }
-  if (auto v = check_version(file, *unwrapped, stage); !v) return v.take_error();
+  auto version = check_version(file, *unwrapped, stage);
+  if (!version) return version.take_error();
+  unwrapped->version = *version;
   return unwrapped;
 }
 

@@ -30,8 +30,15 @@ struct MappedRun {
   LineOrigin origin;
 };
 
+// The two languages a WebGL 2 context compiles: GLSL ES 3.00 (`#version 300 es` on the first
+// line) and GLSL ES 1.00 (`#version 100`, or no #version at all), as students copy it from
+// WebGL 1 tutorials (`attribute`, `varying`, `gl_FragColor`).
+enum class GlslVersion { es100, es300 };
+std::string_view to_string(GlslVersion version);  // "GLSL ES 1.00", "GLSL ES 3.00"
+
 struct UnwrappedSource {
   std::string glsl;                 // what the driver compiles
+  GlslVersion version = GlslVersion::es300;
   std::vector<LineOrigin> lines;    // one per GLSL line: where it starts in the file
   std::vector<MappedRun> runs;      // ordered by GLSL position
   bool from_js_module = false;
@@ -48,7 +55,12 @@ struct SourceLimits {
 };
 
 // Unwraps and checks what WebGL2 itself checks before the driver sees it: valid UTF-8, no NUL,
-// `#version 300 es` on the first line. Errors carry a Diagnostic located in the file.
+// a #version only on the first line and only one WebGL 2 compiles (300 es or 100). Errors carry a Diagnostic located in the file.
 Expected<UnwrappedSource> unwrap(const ShaderFile& file, Stage stage, const SourceLimits& limits = {});
+
+// WebGL 2 links only shaders of one version: link_failed saying which stage is which (the
+// driver's "all shaders must use same shading language version" does not), located at the
+// fragment shader's first line.
+Status check_same_version(const UnwrappedSource& vertex, const UnwrappedSource& fragment, const ShaderFile& fragment_file);
 
 }  // namespace shadelab::shader
