@@ -164,8 +164,29 @@ TEST(WireTest, AHeaderWithAnOutOfRangeNumberOrDeepNestingIsMalformed) {
   EXPECT_TRUE(decode_message(header_only(R"({"ok":true,"result":{"samples":4.5e8,"ms":-2e9}})")));
   EXPECT_FALSE(decode_message(header_only(R"({"ok":true,"result":{"samples":1e20}})")));
   EXPECT_FALSE(decode_message(header_only(R"({"result":[-3e9]})")));
-  EXPECT_TRUE(decode_message(header_only(std::string(20, '[') + std::string(20, ']'))));
-  EXPECT_FALSE(decode_message(header_only(std::string(40, '[') + std::string(40, ']'))));
+  const auto nested = [](int depth) {
+    std::string text = "{}";
+    for (int i = 1; i < depth; ++i) text = R"({"a":)" + text + "}";
+    return text;
+  };
+  EXPECT_TRUE(decode_message(header_only(nested(20))));
+  EXPECT_FALSE(decode_message(header_only(nested(40))));
+  EXPECT_FALSE(decode_message(header_only("[1,2]"))) << "a header is an object";
+}
+
+// json::value() throws when the key holds another type: every reader of a worker's answer reads
+// a field of the wrong type as a malformed answer instead (CI's fuzz of wire_message found
+// {"ok":{...}} ending the process).
+TEST(WireTest, AnAnswerWithFieldsOfTheWrongTypeIsAProtocolErrorNotAnException) {
+  for (const json& header : {json{{"ok", json::object()}}, json{{"ok", "true"}}, json{{"ok", false}, {"error", {{"code", 7}}}},
+                             json{{"ok", false}, {"error", "compile_failed"}}}) {
+    auto result = result_from<CompileResult>(Message{header, {}});
+    ASSERT_FALSE(result) << header.dump();
+    EXPECT_EQ(result.error().code, ErrorCode::worker_protocol) << header.dump();
+  }
+  EXPECT_EQ(text_field(json{{"event", 3}}, "event", "none"), "none");
+  EXPECT_FALSE(flag_field(json{{"ok", 1}}, "ok"));
+  EXPECT_TRUE(flag_field(json{{"ok", true}}, "ok"));
 }
 
 }  // namespace

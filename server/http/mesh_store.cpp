@@ -18,8 +18,9 @@ std::optional<StoredMesh> decode(const std::string& id, const std::string& value
   auto message = worker::decode_message(value);
   if (!message || mesh_id(message->payload) != id) return std::nullopt;
   const auto& h = message->header;
-  if (!h.value("filename", nlohmann::json()).is_string() || !h.value("format", nlohmann::json()).is_string()) return std::nullopt;
-  return StoredMesh{id, h["filename"], h["format"], std::move(message->payload), h.value("info", nlohmann::json::object())};
+  const std::string filename = worker::text_field(h, "filename"), format = worker::text_field(h, "format");
+  if (filename.empty() || format.empty()) return std::nullopt;
+  return StoredMesh{id, filename, format, std::move(message->payload), h.contains("info") ? h["info"] : nlohmann::json::object()};
 }
 
 }  // namespace

@@ -17,9 +17,9 @@ std::optional<CachedResponse> decode(const std::string& etag, const std::string&
   auto message = worker::decode_message(value);
   if (!message) return std::nullopt;
   const auto& h = message->header;
-  if (h.value("etag", "") != etag || !h.value("contentType", nlohmann::json()).is_string()) return std::nullopt;
+  if (worker::text_field(h, "etag") != etag || !h.contains("contentType") || !h["contentType"].is_string()) return std::nullopt;
   CachedResponse r{h["contentType"], std::move(message->payload), {}};
-  if (const auto& headers = h.value("headers", nlohmann::json::object()); headers.is_object())
+  if (const auto& headers = h.contains("headers") ? h["headers"] : nlohmann::json(); headers.is_object())
     for (const auto& [k, v] : headers.items())
       if (v.is_string()) r.headers[k] = v;
   return r;

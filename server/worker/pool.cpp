@@ -224,15 +224,15 @@ struct WorkerPool::Slot {
 
     Message ready;
     const auto status = read_message(fd, ready, Clock::now() + c.start_deadline);
-    if (status != ReadStatus::ok || ready.header.value("event", "") != "ready" || !ready.header.value("ok", false)) {
+    if (status != ReadStatus::ok || text_field(ready.header, "event") != "ready" || !flag_field(ready.header, "ok")) {
       std::string why = status == ReadStatus::timeout ? "it did not start in time" : "it exited while starting";
-      if (status == ReadStatus::ok && ready.header.contains("error")) why = error_from_json(ready.header["error"]).message;
+      if (status == ReadStatus::ok && ready.header.is_object() && ready.header.contains("error")) why = error_from_json(ready.header["error"]).message;
       reap(true);
       return worker_error(ErrorCode::not_ready, "a render worker could not start: " + why);
     }
     {
       std::lock_guard lock(pool.mutex_);
-      pool.renderer_ = ready.header.value("renderer", "");
+      pool.renderer_ = text_field(ready.header, "renderer");
     }
     reported_ready = true;
     return Ok{};
@@ -262,7 +262,7 @@ struct WorkerPool::Slot {
 
   JobResult run_job(const Message& job) {
     JobResult result;
-    const std::string kind = job.header.value("kind", "");
+    const std::string kind = text_field(job.header, "kind");
     if (!write_message(fd, job)) {
       // The worker died while idle (killed from outside; nothing of this job's doing): a fresh
       // one takes the job.
@@ -284,9 +284,9 @@ struct WorkerPool::Slot {
       // Short slices: the memory watchdog and the CPU clock are read while the worker is busy.
       const auto status = read_message(fd, in, Clock::now() + std::chrono::milliseconds(50));
       if (status == ReadStatus::ok) {
-        const std::string event = in.header.value("event", "");
+        const std::string event = text_field(in.header, "event");
         if (event == "phase") {
-          budget = PhaseBudget(in.header.value("phase", "render"), c.render_deadline, pid, c.wall_clock_factor);
+          budget = PhaseBudget(text_field(in.header, "phase", "render"), c.render_deadline, pid, c.wall_clock_factor);
           continue;
         }
         result.answered = true;

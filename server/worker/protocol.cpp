@@ -76,7 +76,7 @@ bool is_bounded(const nlohmann::json& root) {
 
 std::optional<nlohmann::json> parse_header(std::string_view text) {
   auto header = nlohmann::json::parse(text, nullptr, false);
-  if (header.is_discarded() || !is_bounded(header)) return std::nullopt;
+  if (header.is_discarded() || !header.is_object() || !is_bounded(header)) return std::nullopt;  // one shape: an object
   return header;
 }
 
@@ -176,6 +176,18 @@ Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, con
   } catch (const nlohmann::json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed payload index: ") + e.what());
   }
+}
+
+std::string text_field(const nlohmann::json& header, const char* key, std::string fallback) {
+  if (!header.is_object()) return fallback;
+  const auto it = header.find(key);
+  return it != header.end() && it->is_string() ? it->get<std::string>() : fallback;
+}
+
+bool flag_field(const nlohmann::json& header, const char* key) {
+  if (!header.is_object()) return false;
+  const auto it = header.find(key);
+  return it != header.end() && it->is_boolean() && it->get<bool>();
 }
 
 }  // namespace shadelab::worker

@@ -45,6 +45,12 @@ nlohmann::json pack_parts(const std::vector<PayloadPartView>& parts, std::string
 // The parts an index names; a worker_protocol error when one lies outside the payload.
 Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, const std::string& payload);
 
+// Header fields read from the untrusted side (a worker runs student code; a stored value may be
+// anyone's): the fallback when the header is not an object, lacks the key or holds another type
+// there, where json::value() would throw.
+std::string text_field(const nlohmann::json& header, const char* key, std::string fallback = {});
+bool flag_field(const nlohmann::json& header, const char* key);
+
 inline constexpr size_t kMaxHeaderBytes = 16u << 20;
 inline constexpr size_t kMaxPayloadBytes = 512u << 20;
 

@@ -145,9 +145,9 @@ json to_json(const Error& e) {
 Error error_from_json(const json& j) {
   Error e{ErrorCode::worker_protocol, "a render worker reported an error it did not name", {}, {}};
   if (!j.is_object()) return e;
-  const auto code = error_code_named(j.value("code", ""));
+  const auto code = error_code_named(text_field(j, "code"));
   if (!code) {
-    e.message = "a render worker reported an unknown error code " + j.value("code", json("")).dump();
+    e.message = "a render worker reported an unknown error code " + (j.contains("code") ? j["code"] : json("")).dump();
     return e;
   }
   e.code = *code;
@@ -271,7 +271,7 @@ Message answer(const Error& e) { return {{{"ok", false}, {"error", to_json(e)}},
 template <class Result>
 Expected<Result> result_from(const Message& m) {
   if (!m.header.is_object()) return make_error(ErrorCode::worker_protocol, "a render worker's answer is not an object");
-  if (!m.header.value("ok", false)) return error_from_json(m.header.value("error", json::object()));
+  if (!flag_field(m.header, "ok")) return error_from_json(m.header.contains("error") ? m.header["error"] : json::object());
   try {
     auto files = unpack_parts(m.header.at("files"), m.payload);
     if (!files) return files.take_error();
