@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/environment.h"
 #include "http/service.h"
+#include "worker/fork_server.h"
 #include "worker/worker_main.h"
 
 namespace shadelab::cli {
@@ -146,6 +147,9 @@ Command add_serve_command(CLI::App& app) {
     config->limits.render.max_height = config->limits.render.max_width;
     config->pool.llvmpipe_threads = *lp_threads > 0 ? *lp_threads
                                                     : std::max(1, static_cast<int>(cores) / std::max(1, config->pool.workers));
+    // Now, while this process has one thread: workers are forked from it from here on.
+    if (auto forks = worker::ForkServer::start(); forks) config->pool.fork_server = *forks;
+    else std::cerr << "shadelab: " << forks.error().message << "; workers start with fork + exec\n";
     return serve(*config);
   };
 }

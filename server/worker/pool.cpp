@@ -1,10 +1,9 @@
 #include "worker/pool.h"
+#include "worker/launch.h"
 #include "worker/result.h"
 
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/prctl.h>
-#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -183,40 +182,14 @@ struct WorkerPool::Slot {
     int sv[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
       return worker_error(ErrorCode::not_ready, std::string("socketpair: ") + std::strerror(errno));
-    // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
     const PoolConfig& c = pool.config_;
-    std::vector<std::string> args = {c.executable, "worker", "--fd", "3"};
-    if (c.force_software) args.push_back("--software");
-    std::vector<std::string> env;
-    for (char** e = environ; *e; ++e)
-      if (std::strncmp(*e, "LP_NUM_THREADS=", 15) != 0) env.emplace_back(*e);
-    env.push_back("LP_NUM_THREADS=" + std::to_string(c.llvmpipe_threads));
-    std::vector<char*> argv, envp;
-    for (auto& a : args) argv.push_back(a.data());
-    for (auto& e : env) envp.push_back(e.data());
-    argv.push_back(nullptr);
-    envp.push_back(nullptr);
-    const rlimit cpu{static_cast<rlim_t>(c.cpu_limit_seconds), static_cast<rlim_t>(c.cpu_limit_seconds + 5)};
-    const rlimit files{64, 64};
-    // Threads count against RLIMIT_NPROC (per user): generous enough for llvmpipe's threads,
-    // low enough to stop a fork bomb should one ever get code execution. Root is exempt.
-    const rlimit processes{4096, 4096};
-
-    const pid_t child = ::fork();
-    if (child < 0) {
+    auto launched = launch_worker(c, sv[1]);
+    if (!launched) {
       ::close(sv[0]);
       ::close(sv[1]);
-      return worker_error(ErrorCode::not_ready, std::string("fork: ") + std::strerror(errno));
+      return launched.take_error();
     }
-    if (child == 0) {
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the server
-      ::dup2(sv[1], 3);                     // dup2 clears close-on-exec on fd 3
-      ::setrlimit(RLIMIT_CPU, &cpu);
-      ::setrlimit(RLIMIT_NOFILE, &files);
-      ::setrlimit(RLIMIT_NPROC, &processes);
-      ::execve(argv[0], argv.data(), envp.data());
-      ::_exit(127);
-    }
+    const pid_t child = *launched;
     ::close(sv[1]);
     fd = sv[0];
     pid = child;

@@ -24,6 +24,8 @@
 
 namespace shadelab::worker {
 
+class ForkServer;
+
 struct PoolConfig {
   int workers = 2;
   std::chrono::milliseconds compile_deadline{10'000};  // CPU time
@@ -36,6 +38,9 @@ struct PoolConfig {
   int llvmpipe_threads = 1;                     // LP_NUM_THREADS per worker
   bool force_software = false;
   std::string executable = "/proc/self/exe";    // started as `<executable> worker`
+  // Workers forked from here when set (started before the process's first thread; serve does);
+  // fork + exec of `executable` otherwise, or when it fails.
+  std::shared_ptr<ForkServer> fork_server;
 };
 
 // What became of a job: the worker's answer (worker/result.h reads it), or, when the worker
