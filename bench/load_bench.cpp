@@ -1,5 +1,5 @@
 // Load benchmark against the running service (a small client; wrk is not needed).
-//   build/bench/load_bench [path/to/shadelab] [requests per level]
+//   build/bench/load_bench [path/to/shadelab] [requests per level] [serve flags...]
 // Starts `shadelab serve` on a free loopback port and reports:
 //   - process start to the first 200 from /readyz;
 //   - the canonical grid job (bunny, specular, 9 frames 640 x 480, 4x MSAA), each request a shader
@@ -49,7 +49,12 @@ int main(int argc, char** argv) {
   const auto start = Clock::now();
   const pid_t pid = fork();
   if (pid == 0) {
-    execl(server.c_str(), server.c_str(), "serve", "--port", std::to_string(port).c_str(), static_cast<char*>(nullptr));
+    std::vector<std::string> args = {server, "serve", "--port", std::to_string(port)};
+    for (int i = 3; i < argc; ++i) args.emplace_back(argv[i]);
+    std::vector<char*> argv_c;
+    for (auto& a : args) argv_c.push_back(a.data());
+    argv_c.push_back(nullptr);
+    execv(server.c_str(), argv_c.data());
     _exit(127);
   }
   httplib::Client client("127.0.0.1", port);
