@@ -108,12 +108,12 @@ void BM_GridEncode(benchmark::State& state) {
   (void)renderer().render(request, bunny(), [&](int, const image::Image& f, bool) { frames.push_back(f); });
   image::Image grid = image::compose_grid(layout, frames);
   const int level = static_cast<int>(state.range(0));
-  const int filter = static_cast<int>(state.range(1));
+  const auto filter = static_cast<image::PngFilter>(state.range(1));
   const bool rgba = state.range(2) != 0;
   if (rgba) grid.bytes[3] = 254;  // one non-opaque pixel forces RGBA
   size_t bytes = 0;
   for (auto _ : state) {
-    auto png = image::encode_png(grid, {.compression_level = level, .filter = filter});
+    auto png = image::encode_png(grid, {.compression_level = level, .filter = filter, .threads = static_cast<int>(state.range(3))});
     bytes = png->size();
   }
   state.counters["bytes"] = static_cast<double>(bytes);
@@ -125,14 +125,14 @@ BENCHMARK(BM_CanonicalJob_GridOverlapped)->Unit(benchmark::kMillisecond)->MinTim
 BENCHMARK(BM_CanonicalJob_GridSerial)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_RenderOnly_Msaa4)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 BENCHMARK(BM_RenderOnly_NoMsaa)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-// {zlib level, libpng filter (0 = adaptive), force RGBA}
+// {zlib level, filter (0 none, 1 sub, 2 up), force RGBA, threads (0: one per core)}
 BENCHMARK(BM_GridEncode)
-    ->Args({6, 0, 1})
-    ->Args({1, 0, 1})
-    ->Args({1, 0x10, 1})
-    ->Args({1, 0x10, 0})
-    ->Args({1, 0x20, 0})
-    ->Args({1, 0x08, 0})
+    ->Args({6, 2, 1, 1})
+    ->Args({1, 1, 1, 1})
+    ->Args({1, 1, 0, 1})
+    ->Args({1, 0, 0, 1})
+    ->Args({1, 2, 0, 1})
+    ->Args({1, 2, 0, 0})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0);
 

@@ -3,6 +3,7 @@
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
+#include "image/png_stream.h"
 #include "support/test_support.h"
 
 using namespace shadelab;
@@ -97,4 +98,55 @@ TEST(GridTest, EmptyCellsAreTransparent) {
   const Image img = testkit::decode(*png);
   EXPECT_EQ(testkit::pixel(img, 3, 3), (std::array<int, 4>{0, 0, 0, 0}));
   EXPECT_EQ(testkit::pixel(img, 0, 0), (std::array<int, 4>{50, 0, 0, 255}));
+}
+
+namespace {
+Image noise(int w, int h, bool translucent) {
+  Image img = Image::blank(w, h, PixelType::u8);
+  std::uint32_t state = 12345;
+  for (size_t i = 0; i < img.bytes.size(); ++i) {
+    state = state * 1664525u + 1013904223u;
+    img.bytes[i] = static_cast<std::uint8_t>(state >> 24);
+    if (i % 4 == 3 && !translucent) img.bytes[i] = 255;
+  }
+  return img;
+}
+}  // namespace
+
+// ShadeLab writes its PNGs itself (image/png_stream.h); OpenImageIO's reader (libpng) is the judge.
+// Sizes that are not a multiple of the 32-row segments, every filter, RGB and RGBA.
+TEST(PngWriterTest, EveryFilterRoundTripsThroughLibpng) {
+  for (const bool translucent : {false, true})
+    for (const auto filter : {PngFilter::none, PngFilter::sub, PngFilter::up})
+      for (const auto& [w, h] : {std::pair{37, 101}, std::pair{1, 1}, std::pair{640, 33}}) {
+        const Image img = noise(w, h, translucent);
+        auto png = encode_png(img, {.compression_level = 1, .filter = filter});
+        ASSERT_TRUE(png);
+        EXPECT_EQ((*png)[25], translucent ? 6 : 2);
+        EXPECT_EQ(testkit::decode(*png).bytes, img.bytes) << w << "x" << h << " filter " << static_cast<int>(filter);
+      }
+}
+
+// The bytes depend on the image alone: not on the threads that deflate it, nor on how its rows
+// were handed over (the grid encoder gives a band of cells at a time).
+TEST(PngWriterTest, TheBytesDoNotDependOnThreadsOrHowRowsArrive) {
+  const Image img = noise(97, 203, false);
+  const auto one_thread = encode_png(img, {.threads = 1});
+  const auto seven = encode_png(img, {.threads = 7});
+  ASSERT_TRUE(one_thread && seven);
+  EXPECT_EQ(*one_thread, *seven);
+  PngStream stream(97, 203, 3, {.threads = 3});
+  for (const auto& [from, to] : {std::pair{0, 1}, std::pair{1, 6}, std::pair{6, 64}, std::pair{64, 65}, std::pair{65, 203}})
+    ASSERT_TRUE(stream.write_rows(img, from, to));
+  auto pieces = stream.finish();
+  ASSERT_TRUE(pieces);
+  EXPECT_EQ(*pieces, *one_thread);
+}
+
+TEST(PngWriterTest, RowsOutOfOrderOrMissingAreAnError) {
+  const Image img = noise(8, 40, false);
+  PngStream stream(8, 40, 3, {});
+  EXPECT_FALSE(stream.write_rows(img, 5, 10));
+  ASSERT_TRUE(stream.write_rows(img, 0, 10));
+  EXPECT_FALSE(stream.finish()) << "30 rows never came";
 }

@@ -1,5 +1,6 @@
 #pragma once
-// Encoding images into memory with OpenImageIO (no temporary files).
+// Encoding images into memory (no temporary files): PNG with ShadeLab's own writer (the hot
+// path), EXR with OpenImageIO.
 #include <cstdint>
 #include <vector>
 
@@ -8,12 +9,18 @@
 
 namespace shadelab::image {
 
-// OIIO's defaults (zlib level 6, adaptive filters) take ~165 ms for the 1920 x 1440 grid; level 1
-// with a single filter, alpha declared unassociated and RGB when opaque take ~25 ms for ~10% more
-// bytes. docs/performance.md has the measurements.
+// The PNG row filters (PNG 1.2, section 6): each row is stored as its difference from its left
+// neighbour (sub), from the row above (up), or as it is (none).
+enum class PngFilter : std::uint8_t { none = 0, sub = 1, up = 2 };
+
+// OpenImageIO's PNG writer with its defaults (zlib level 6, adaptive filters) took ~160 ms for the
+// 1920 x 1440 grid; level 1 with the UP filter and RGB when opaque ~31 ms for ~10% more bytes;
+// ShadeLab's own writer (image/png_stream.h) with the same settings on several threads less
+// again. docs/performance.md has the measurements.
 struct PngSettings {
   int compression_level = 1;
-  int filter = 0x20;  // libpng's PNG_FILTER_UP: fastest and smallest single filter here; 0 = adaptive
+  PngFilter filter = PngFilter::up;  // fastest and smallest single filter on these images
+  int threads = 0;                   // deflate threads; 0: one per core
 };
 
 // RGBA8 image -> PNG bytes. Opaque images are written as RGB (lossless: every alpha is 255).
