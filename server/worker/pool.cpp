@@ -3,6 +3,7 @@
 #include "worker/result.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -132,6 +133,7 @@ struct WorkerPool::Slot {
   int index;
   std::atomic<pid_t> pid{-1};        // read by worker_pids() on other threads
   std::atomic<bool> reported_ready{false};  // the worker holds a context and said so
+  bool started_once = false;                // later starts are replacements: they warm up after ready
   int fd = -1;
   bool cgroup_capped = false;
   std::thread thread;
@@ -171,6 +173,14 @@ struct WorkerPool::Slot {
     return std::nullopt;
   }
 
+  // An idle worker sends nothing: a readable or hung-up socket means it died (killed from
+  // outside, or by the kernel) or broke the protocol. Either way it is replaced.
+  bool idle_worker_gone() const {
+    if (fd < 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    return ::poll(&p, 1, 0) > 0;
+  }
+
   void forget() {
     ::close(fd);
     reported_ready = false;
@@ -183,7 +193,7 @@ struct WorkerPool::Slot {
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
       return worker_error(ErrorCode::not_ready, std::string("socketpair: ") + std::strerror(errno));
     const PoolConfig& c = pool.config_;
-    auto launched = launch_worker(c, sv[1]);
+    auto launched = launch_worker(c, sv[1], !started_once);
     if (!launched) {
       ::close(sv[0]);
       ::close(sv[1]);
@@ -208,6 +218,7 @@ struct WorkerPool::Slot {
       pool.renderer_ = text_field(ready.header, "renderer");
     }
     reported_ready = true;
+    started_once = true;
     return Ok{};
   }
 
@@ -301,7 +312,7 @@ struct WorkerPool::Slot {
         if (!started) {
           // Fail the next job with the reason rather than leave it queued forever.
           Pending p;
-          if (!pool.pop(p)) return;
+          if (pool.pop(p, [] { return false; }) != Popped::job) return;
           JobResult r;
           r.error = started.error();
           p.promise.set_value(std::move(r));
@@ -310,7 +321,13 @@ struct WorkerPool::Slot {
         }
       }
       Pending p;
-      if (!pool.pop(p)) return;
+      const Popped popped = pool.pop(p, [this] { return idle_worker_gone(); });
+      if (popped == Popped::stopping) return;
+      if (popped == Popped::worker_gone) {
+        reap(true);
+        pool.restarts_++;
+        continue;
+      }
       const auto start = Clock::now();
       JobResult r = run_job(p.job);
       r.queue_ms = ms_between(p.queued, start);
@@ -356,13 +373,18 @@ Expected<std::future<JobResult>> WorkerPool::submit(Message job, Lane lane) {
   return future;
 }
 
-bool WorkerPool::pop(Pending& out) {
+WorkerPool::Popped WorkerPool::pop(Pending& out, const std::function<bool()>& worker_gone) {
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-  if (stopping_) return false;
+  while (!changed_.wait_for(lock, std::chrono::milliseconds(50), [&] { return stopping_ || !queue_.empty(); })) {
+    lock.unlock();
+    const bool gone = worker_gone();
+    lock.lock();
+    if (gone) return Popped::worker_gone;
+  }
+  if (stopping_) return Popped::stopping;
   out = std::move(queue_.front());
   queue_.pop_front();
-  return true;
+  return Popped::job;
 }
 
 bool WorkerPool::ready() const {

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <future>
 #include <memory>
 #include <mutex>
@@ -84,7 +85,10 @@ class WorkerPool {
     std::promise<JobResult> promise;
     std::chrono::steady_clock::time_point queued;
   };
-  bool pop(Pending& out);  // false when stopping
+  enum class Popped { job, stopping, worker_gone };
+  // The next job; while none comes, `worker_gone` is asked every 50 ms whether the slot's idle
+  // worker has died (killed from outside), so the pool replaces it before a job finds it dead.
+  Popped pop(Pending& out, const std::function<bool()>& worker_gone);
 
   PoolConfig config_;
   mutable std::mutex mutex_;
