@@ -23,6 +23,7 @@ struct WorkerLaunch {
   int llvmpipe_threads = 1;
   bool force_software = false;
   int cpu_limit_seconds = 600;
+  bool warm_before_ready = true;  // worker_main.h's WarmUp
 };
 
 class ForkServer {

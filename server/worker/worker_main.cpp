@@ -240,7 +240,7 @@ class Worker {
 
 }  // namespace
 
-int run_worker(int fd, const egl::ContextOptions& options) {
+int run_worker(int fd, const egl::ContextOptions& options, WarmUp warm_up) {
   auto renderer = render::Renderer::create(options);
   if (!renderer) {
     Message failed = answer(renderer.error());
@@ -250,15 +250,19 @@ int run_worker(int fd, const egl::ContextOptions& options) {
   }
   const auto info = renderer->context_info();
   Worker worker(fd, std::move(*renderer));
-  if (auto warmed = worker.warm_up(); !warmed) {
-    Message failed = answer(warmed.error());
-    failed.header["event"] = "ready";
-    write_message(fd, failed);
-    return 1;
+  if (warm_up == WarmUp::before_ready) {
+    if (auto warmed = worker.warm_up(); !warmed) {
+      Message failed = answer(warmed.error());
+      failed.header["event"] = "ready";
+      write_message(fd, failed);
+      return 1;
+    }
   }
   if (!write_message(fd, {{{"event", "ready"}, {"ok", true}, {"renderer", info.gl_renderer}, {"version", info.gl_version},
                            {"software", info.software}}, {}}))
     return 1;
+  // A replacement's warm-up: a failure here is the first job's to report, as it would be cold.
+  if (warm_up == WarmUp::after_ready) (void)worker.warm_up();
   worker.serve();
   return 0;
 }

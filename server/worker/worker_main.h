@@ -6,6 +6,11 @@
 
 namespace shadelab::worker {
 
-int run_worker(int fd, const egl::ContextOptions& options);
+// When a worker draws its warm-up job (worker_main.cpp): before it says it is ready, at the
+// pool's start, so no client pays it; after, for a replacement, so the pool is whole again in
+// milliseconds and only a job that arrives at once waits for the rest of it.
+enum class WarmUp { before_ready, after_ready };
+
+int run_worker(int fd, const egl::ContextOptions& options, WarmUp warm_up = WarmUp::before_ready);
 
 }  // namespace shadelab::worker
