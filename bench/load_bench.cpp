@@ -4,13 +4,20 @@
 //   - process start to the first 200 from /readyz;
 //   - the canonical grid job (bunny, specular, 9 frames 640 x 480, 4x MSAA), each request a shader
 //     the workers have not seen, with 1, 2 and 8 concurrent clients: p50, p99, throughput;
-//   - a cache hit (the same GET twice): p50, p99.
+//   - a cache hit (the same GET twice): p50, p99;
+//   - the homework's two-objects scene, a fresh colour each request (no cache hit): p50, p99;
+//   - a worker SIGKILLed in the middle of a job: from the kill to /readyz counting every worker
+//     ready again (the replacement forked, its context made, its warm-up drawn).
 #include <httplib.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <dirent.h>
+
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -39,6 +46,70 @@ std::string fresh_job(unsigned serial) {
                          "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;");
   return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"mesh", "bunny"}}.dump();
 }
+// The render workers among `server`'s children (not the fork server), with their CPU ticks.
+std::vector<std::pair<pid_t, long>> workers_of(pid_t server) {
+  std::vector<std::pair<pid_t, long>> out;
+  std::ifstream children("/proc/" + std::to_string(server) + "/task/" + std::to_string(server) + "/children");
+  for (pid_t pid; children >> pid;) {
+    std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+    std::string name;
+    std::getline(comm, name);
+    if (name == "shadelab-forks") continue;
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string text((std::istreambuf_iterator<char>(stat)), {});
+    std::istringstream fields(text.substr(text.rfind(')') + 2));
+    std::string field;
+    long utime = 0, stime = 0;
+    for (int i = 3; i <= 13; ++i) fields >> field;
+    fields >> utime >> stime;
+    out.emplace_back(pid, utime + stime);
+  }
+  return out;
+}
+
+bool pool_whole(httplib::Client& client) {
+  auto r = client.Get("/readyz");
+  const auto j = r ? nlohmann::json::parse(r->body, nullptr, false) : nlohmann::json();
+  return j.is_object() && j.value("workersReady", 0) == j.value("workers", -1);
+}
+
+// A job started, its worker (the one whose CPU time grows) SIGKILLed mid-render, then the time
+// until the pool is whole again.
+double kill_a_busy_worker(pid_t server, int port, unsigned serial) {
+  httplib::Client client("127.0.0.1", port);
+  client.set_read_timeout(120, 0);
+  std::thread job([&] {
+    httplib::Client c("127.0.0.1", port);
+    c.set_read_timeout(120, 0);
+    c.Post("/api/render", fresh_job(serial), "application/json");
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(40));
+  const auto before = workers_of(server);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const auto after = workers_of(server);
+  pid_t busy = -1;
+  long most = -1;
+  for (const auto& [pid, ticks] : after)
+    for (const auto& [pid0, ticks0] : before)
+      if (pid == pid0 && ticks - ticks0 > most) most = ticks - ticks0, busy = pid;
+  if (busy <= 0) {
+    job.join();
+    return -1;
+  }
+  kill(busy, SIGKILL);
+  const auto killed = Clock::now();
+  // Whole again: the killed worker reaped (gone from the children) and every slot ready.
+  const auto replaced = [&] {
+    for (const auto& [pid, ticks] : workers_of(server))
+      if (pid == busy) return false;
+    return pool_whole(client);
+  };
+  while (!replaced()) std::this_thread::sleep_for(std::chrono::microseconds(500));
+  const double ms_to_whole = ms(Clock::now() - killed);
+  job.join();
+  return ms_to_whole;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -65,6 +136,7 @@ int main(int argc, char** argv) {
     else std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   std::printf("start to /readyz: %.0f ms\n", ready_ms);
+  std::fflush(stdout);
   const std::string renderer = client.Get("/readyz") ? nlohmann::json::parse(client.Get("/readyz")->body).value("renderer", "") : "";
   std::printf("renderer: %s, %u cores\n\n", renderer.c_str(), std::thread::hardware_concurrency());
 
@@ -106,6 +178,25 @@ int main(int argc, char** argv) {
     if (!r || r->get_header_value("X-ShadeLab-Cache") != "hit") std::printf("not a cache hit!\n");
   }
   std::printf("\ncache hit (541 KB grid): p50 %.2f ms, p99 %.2f ms\n", percentile(hits, 0.5), percentile(hits, 0.99));
+
+  const auto scene = nlohmann::json::parse(client.Get("/api/scenes/two_objects")->body);
+  std::vector<double> scenes;
+  for (int i = 0; i < per_level; ++i) {
+    auto s = scene;
+    s["objects"][0]["material"]["baseColor"][0] = 0.8 - (serial++ % 1000) * 1e-4;  // no cache hit
+    const auto t = Clock::now();
+    auto r = client.Post("/api/scene", s.dump(), "application/json");
+    if (i > 0) scenes.push_back(ms(Clock::now() - t));  // the first builds the worker's scene renderer
+    if (!r || r->status != 200) std::printf("scene failed!\n");
+  }
+  std::printf("two-objects scene, warm: p50 %.0f ms, p99 %.0f ms\n", percentile(scenes, 0.5), percentile(scenes, 0.99));
+
+  std::vector<double> replaced;
+  for (int i = 0; i < std::max(5, per_level / 2); ++i)
+    if (const double t = kill_a_busy_worker(pid, port, serial++); t >= 0) replaced.push_back(t);
+  if (!replaced.empty())
+    std::printf("worker SIGKILLed mid-job to a whole pool (%zu kills): p50 %.0f ms, p99 %.0f ms\n", replaced.size(),
+                percentile(replaced, 0.5), percentile(replaced, 0.99));
 
   kill(pid, SIGTERM);
   waitpid(pid, nullptr, 0);

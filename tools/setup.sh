@@ -17,6 +17,8 @@ build_packages=(
   # libraries
   libglm-dev libopenimageio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
   libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
+  # the floor benchmark writes its PNG with libpng directly (bench/floor_bench.cpp)
+  libpng-dev
   # the optional shared store (Redis client)
   libhiredis-dev
   # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them
