@@ -24,7 +24,7 @@ void add_milliseconds(CLI::App* cmd, const std::string& flag, std::chrono::milli
 void add_worker_flags(CLI::App* cmd, http::ServiceConfig& config, int& lp_threads, size_t& memory_mb) {
   cmd->add_option("--workers", config.pool.workers, "Render worker processes (default: one per core)")
       ->envname("SHADELAB_WORKERS")->capture_default_str();
-  cmd->add_option("--lp-threads", lp_threads, "LP_NUM_THREADS per worker (default: cores / workers, at least 1)")
+  cmd->add_option("--lp-threads", lp_threads, "LP_NUM_THREADS per worker (default: the number of cores)")
       ->envname("SHADELAB_LP_THREADS");
   cmd->add_option("--queue", config.pool.max_queue, "Jobs that may wait for a worker before 503")
       ->envname("SHADELAB_QUEUE")->capture_default_str();
@@ -145,8 +145,10 @@ Command add_serve_command(CLI::App& app) {
     config->limits.max_body_bytes = *body_mb << 20;
     config->limits.max_mesh_bytes = config->limits.max_body_bytes;
     config->limits.render.max_height = config->limits.render.max_width;
-    config->pool.llvmpipe_threads = *lp_threads > 0 ? *lp_threads
-                                                    : std::max(1, static_cast<int>(cores) / std::max(1, config->pool.workers));
+    // Every worker gets every core: a lone job (a student on the page) rasterises on all of them,
+    // and when all workers are busy the oversubscription measured no loss (docs/performance.md:
+    // 1 client p50 169 -> 150 ms, 8 clients 10.5 -> 11.3 jobs/s on the 2-core machine).
+    config->pool.llvmpipe_threads = *lp_threads > 0 ? *lp_threads : static_cast<int>(cores);
     // Now, while this process has one thread: workers are forked from it from here on.
     if (auto forks = worker::ForkServer::start(); forks) config->pool.fork_server = *forks;
     else std::cerr << "shadelab: " << forks.error().message << "; workers start with fork + exec\n";
