@@ -45,31 +45,33 @@ int thread_count() {
   return -1;
 }
 
-bool send_with_fd(int socket, const Request& request, int fd) {
-  iovec data{const_cast<Request*>(&request), sizeof request};
+// A request datagram with room for one descriptor beside it (SCM_RIGHTS).
+struct RequestDatagram {
+  iovec data;
   alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
   msghdr message{};
-  message.msg_iov = &data;
-  message.msg_iovlen = 1;
-  message.msg_control = control;
-  message.msg_controllen = sizeof control;
-  cmsghdr* header = CMSG_FIRSTHDR(&message);
+  explicit RequestDatagram(Request& request) : data{&request, sizeof request} {
+    message.msg_iov = &data;
+    message.msg_iovlen = 1;
+    message.msg_control = control;
+    message.msg_controllen = sizeof control;
+  }
+};
+
+bool send_with_fd(int socket, Request request, int fd) {
+  RequestDatagram d(request);
+  cmsghdr* header = CMSG_FIRSTHDR(&d.message);
   header->cmsg_level = SOL_SOCKET;
   header->cmsg_type = SCM_RIGHTS;
   header->cmsg_len = CMSG_LEN(sizeof(int));
   std::memcpy(CMSG_DATA(header), &fd, sizeof fd);
-  return ::sendmsg(socket, &message, MSG_NOSIGNAL) == static_cast<ssize_t>(sizeof request);
+  return ::sendmsg(socket, &d.message, MSG_NOSIGNAL) == static_cast<ssize_t>(sizeof request);
 }
 
 // The request and the descriptor it carries (-1 when none came); 0 when the server has gone.
 ssize_t receive_with_fd(int socket, Request& request, int& fd) {
-  iovec data{&request, sizeof request};
-  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
-  msghdr message{};
-  message.msg_iov = &data;
-  message.msg_iovlen = 1;
-  message.msg_control = control;
-  message.msg_controllen = sizeof control;
+  RequestDatagram d(request);
+  msghdr& message = d.message;
   ssize_t n;
   do n = ::recvmsg(socket, &message, MSG_CMSG_CLOEXEC);
   while (n < 0 && errno == EINTR);
