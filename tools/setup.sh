@@ -19,6 +19,8 @@ build_packages=(
   libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
   # the floor benchmark writes its PNG with libpng directly (bench/floor_bench.cpp)
   libpng-dev
+  # WebGL 2's shader rules are checked on glslang's AST (Khronos' reference GLSL front end)
+  glslang-dev
   # the optional shared store (Redis client)
   libhiredis-dev
   # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them

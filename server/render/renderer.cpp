@@ -16,6 +16,7 @@
 #include "render/homework_contract.h"
 #include "shader/driver_log.h"
 #include "shader/invariant_outputs.h"
+#include "shader/webgl_rules.h"
 
 namespace shadelab::render {
 
@@ -66,6 +67,7 @@ struct Renderer::State {
   struct Built {
     gl::Program* program;
     shader::UnwrappedSource vertex, fragment;
+    std::vector<Diagnostic> webgl_warnings;  // the browser's own, which the driver does not give
     bool cached;
   };
   Expected<Built> build(const shader::ShaderFile& vf, const shader::ShaderFile& ff,
@@ -76,24 +78,28 @@ struct Renderer::State {
     auto fragment = shader::unwrap(ff, shader::Stage::fragment, limits);
     if (!fragment) return fragment.take_error();
     if (auto same = shader::check_same_version(*vertex, *fragment, ff); !same) return same.take_error();
+    auto webgl = shader::apply_webgl_rules(*vertex, *fragment, vf, ff);
+    if (!webgl) return webgl.take_error();
     if (semantics == FloatSemantics::ieee) {  // same lines, so the line maps still hold
       vertex->glsl = shader::with_invariant_outputs(vertex->glsl, shader::Stage::vertex);
       fragment->glsl = shader::with_invariant_outputs(fragment->glsl, shader::Stage::fragment);
     }
     std::string key = vertex->glsl + '\0' + fragment->glsl;
     for (auto it = programs.begin(); it != programs.end(); ++it)
-      if (it->key == key) return Built{&touch(programs, it).program, std::move(*vertex), std::move(*fragment), true};
+      if (it->key == key)
+        return Built{&touch(programs, it).program, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), true};
 
     std::optional<gl::BuildFailure> failure;
     gl::Program program = gl::Program::build(vertex->glsl, fragment->glsl, kBindings, failure);
-    if (failure) return build_error(*failure, vf, ff, *vertex, *fragment);
+    if (failure) return build_error(*failure, vf, ff, *vertex, *fragment, *webgl);
     programs.push_front({std::move(key), std::move(program)});
     if (programs.size() > kProgramCacheSize) programs.pop_back();
-    return Built{&programs.front().program, std::move(*vertex), std::move(*fragment), false};
+    return Built{&programs.front().program, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), false};
   }
 
   static Error build_error(const gl::BuildFailure& f, const shader::ShaderFile& vf, const shader::ShaderFile& ff,
-                           const shader::UnwrappedSource& vs, const shader::UnwrappedSource& fs) {
+                           const shader::UnwrappedSource& vs, const shader::UnwrappedSource& fs,
+                           const shader::WebglChecked& webgl) {
     Error e;
     e.driver_log = f.log;
     switch (f.stage) {
@@ -107,11 +113,18 @@ struct Renderer::State {
         e.diagnostics = shader::parse_driver_log(f.log, "fragment", ff.name, &fs);
         e.message = "the fragment shader does not compile";
         break;
-      case gl::BuildStage::link:
+      case gl::BuildStage::link: {
         e.code = ErrorCode::link_failed;
         e.diagnostics = shader::parse_driver_log(f.log, "link", "", nullptr);
-        e.message = "the shaders compile but do not link (do the vertex outputs match the fragment inputs?)";
+        auto causes = shader::link_failure_causes(webgl, fs, ff);
+        if (!causes.empty()) {  // the cause named, then the driver's words
+          e.message = "the shaders do not link: " + causes.front().message;
+          e.diagnostics.insert(e.diagnostics.begin(), causes.begin(), causes.end());
+          return e;
+        }
+        e.message = "the shaders compile but do not link";
         break;
+      }
     }
     for (const auto& d : e.diagnostics)
       if (d.severity == "error") {
@@ -123,7 +136,9 @@ struct Renderer::State {
 
   static std::vector<Diagnostic> warning_diagnostics(const Built& built, const shader::ShaderFile& vf,
                                                      const shader::ShaderFile& ff) {
-    auto out = shader::parse_driver_log(built.program->vertex_log(), "vertex", vf.name, &built.vertex);
+    auto out = built.webgl_warnings;
+    auto vertex = shader::parse_driver_log(built.program->vertex_log(), "vertex", vf.name, &built.vertex);
+    out.insert(out.end(), vertex.begin(), vertex.end());
     auto fragment = shader::parse_driver_log(built.program->fragment_log(), "fragment", ff.name, &built.fragment);
     auto link = shader::parse_driver_log(built.program->link_log(), "link", "", nullptr);
     out.insert(out.end(), fragment.begin(), fragment.end());

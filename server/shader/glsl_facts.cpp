@@ -1,0 +1,311 @@
+#include "shader/glsl_facts.h"
+
+#include <glslang/Include/intermediate.h>
+#include <glslang/MachineIndependent/localintermediate.h>
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+
+#include <cctype>
+#include <mutex>
+#include <optional>
+#include <sstream>
+
+namespace shadelab::shader {
+
+namespace {
+
+void initialize_glslang_once() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+TBuiltInResource webgl2_resources(GlslVersion version, Stage stage) {
+  TBuiltInResource r = *GetDefaultResources();
+  r.minProgramTexelOffset = -8;  // WebGL 2's MIN_PROGRAM_TEXEL_OFFSET / MAX_PROGRAM_TEXEL_OFFSET
+  r.maxProgramTexelOffset = 7;
+  if (version == GlslVersion::es100) {  // GLSL ES 1.00 Appendix A, as WebGL enforces it
+    r.limits.nonInductiveForLoops = false;
+    r.limits.whileLoops = false;
+    r.limits.doWhileLoops = false;
+    r.limits.generalUniformIndexing = false;
+    r.limits.generalAttributeMatrixVectorIndexing = false;
+    r.limits.generalVaryingIndexing = false;
+    // A vertex shader's uniforms, samplers among them, take any index in the browser (Chromium
+    // accepts `t[int(attribute)]` there); Appendix A's sampler rule binds fragment shaders.
+    r.limits.generalSamplerIndexing = stage == Stage::vertex;
+    r.limits.generalVariableIndexing = false;
+    r.limits.generalConstantMatrixVectorIndexing = false;
+  }
+  return r;
+}
+
+EShLanguage language(Stage stage) { return stage == Stage::vertex ? EShLangVertex : EShLangFragment; }
+int default_version(GlslVersion version) { return version == GlslVersion::es100 ? 100 : 300; }
+
+GlslPoint point(const glslang::TSourceLoc& loc) { return {loc.line, loc.column}; }
+
+// "ERROR: 0:9: 'limitations' : while loops not available" -> {9, "limitations", "while loops ..."}.
+std::vector<GlslError> read_info_log(const char* log) {
+  std::vector<GlslError> out;
+  std::istringstream in(log ? log : "");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("ERROR: ", 0) != 0) continue;
+    const size_t colon1 = line.find(':', 7), colon2 = colon1 == std::string::npos ? colon1 : line.find(':', colon1 + 1);
+    if (colon2 == std::string::npos) continue;
+    GlslError e;
+    e.at.line = std::atoi(line.c_str() + colon1 + 1);
+    std::string rest = line.substr(colon2 + 1);
+    const size_t open = rest.find('\''), close = open == std::string::npos ? open : rest.find('\'', open + 1);
+    if (close != std::string::npos) {
+      e.token = rest.substr(open + 1, close - open - 1);
+      rest = rest.substr(close + 1);
+    }
+    const size_t text = rest.find_first_not_of(" :");
+    e.message = text == std::string::npos ? "" : rest.substr(text);
+    while (!e.message.empty() && e.message.back() == ' ') e.message.pop_back();
+    if (e.message == "compilation terminated" || e.message.find("compilation errors") != std::string::npos) continue;
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::string precision_of(const glslang::TType& type) {
+  switch (type.getQualifier().precision) {
+    case glslang::EpqHigh: return "highp";
+    case glslang::EpqMedium: return "mediump";
+    case glslang::EpqLow: return "lowp";
+    default: return "";
+  }
+}
+
+std::string type_words(const glslang::TType& type) {
+  std::string words = type.getCompleteString(false, false, false).c_str();
+  words.erase(0, words.find_first_not_of(' '));
+  return words;
+}
+
+GlslVariable variable(const std::string& name, const glslang::TType& type, const glslang::TSourceLoc& loc) {
+  return {name, type_words(type), precision_of(type), point(loc)};
+}
+
+// A block's members in order; a struct member's fields as "member.field", so a precision that
+// differs inside a struct is found too.
+void add_members(const glslang::TType& type, const std::string& prefix, std::vector<GlslVariable>& out) {
+  for (const auto& field : *type.getStruct()) {
+    const std::string name = prefix + field.type->getFieldName().c_str();
+    if (field.type->isStruct() && !field.type->isArray())
+      add_members(*field.type, name + ".", out);
+    else
+      out.push_back(variable(name, *field.type, field.loc));
+  }
+}
+
+class FactsTraverser : public glslang::TIntermTraverser {
+ public:
+  FactsTraverser(std::string_view glsl, GlslFacts& facts) : facts_(facts) {
+    size_t start = 0;
+    while (start <= glsl.size()) {
+      const size_t end = glsl.find('\n', start);
+      lines_.push_back(glsl.substr(start, end == std::string_view::npos ? glsl.size() - start : end - start));
+      if (end == std::string_view::npos) break;
+      start = end + 1;
+    }
+  }
+
+  bool visitSelection(glslang::TVisit, glslang::TIntermSelection* node) override {
+    if (const auto operand = forbidden_operand(node->getType(), OperatorUse::Kind::ternary)) {
+      // An if statement is a void selection too; it starts with `if` where a `?:` has its `?`.
+      if (*operand != OperatorUse::Operand::void_value || !starts_if(node->getLoc()))
+        facts_.operators.push_back({OperatorUse::Kind::ternary, *operand, point(node->getLoc())});
+    }
+    return true;
+  }
+
+  bool visitAggregate(glslang::TVisit visit, glslang::TIntermAggregate* node) override {
+    if (visit != glslang::EvPreVisit) return true;
+    if (node->getOp() == glslang::EOpComma) {
+      for (auto* operand : node->getSequence())
+        if (auto* typed = operand->getAsTyped())
+          if (const auto what = forbidden_operand(typed->getType(), OperatorUse::Kind::sequence)) {
+            facts_.operators.push_back({OperatorUse::Kind::sequence, *what, point(node->getLoc())});
+            break;
+          }
+    }
+    if (node->getOp() == glslang::EOpLinkerObjects) read_linker_objects(*node);
+    return true;
+  }
+
+  bool visitBinary(glslang::TVisit visit, glslang::TIntermBinary* node) override {
+    if (visit != glslang::EvPreVisit) return true;
+    if (node->getOp() != glslang::EOpIndexDirect && node->getOp() != glslang::EOpIndexIndirect) return true;
+    const auto* base = node->getLeft()->getAsSymbolNode();
+    if (!base || base->getName() != "gl_FragData") return true;
+    const auto* index = node->getRight()->getAsConstantUnion();
+    if (!index || index->getConstArray()[0].getIConst() != 0) facts_.frag_data_nonzero.push_back(point(node->getLoc()));
+    return true;
+  }
+
+ private:
+  static std::optional<OperatorUse::Operand> forbidden_operand(const glslang::TType& type, OperatorUse::Kind kind) {
+    if (type.isArray()) return OperatorUse::Operand::array;
+    if (type.getBasicType() == glslang::EbtStruct && (kind == OperatorUse::Kind::ternary || type.containsArray()))
+      return OperatorUse::Operand::structure;
+    if (type.getBasicType() == glslang::EbtVoid) return OperatorUse::Operand::void_value;
+    return std::nullopt;
+  }
+
+  bool starts_if(const glslang::TSourceLoc& loc) const {
+    if (loc.line < 1 || static_cast<size_t>(loc.line) > lines_.size() || loc.column < 1) return false;
+    const std::string_view line = lines_[static_cast<size_t>(loc.line - 1)];
+    const size_t at = static_cast<size_t>(loc.column - 1);
+    return line.compare(at, 2, "if") == 0 &&
+           (at + 2 >= line.size() || !(std::isalnum(static_cast<unsigned char>(line[at + 2])) || line[at + 2] == '_'));
+  }
+
+  // glslang's linker objects carry no position; a global is declared before any use, so its
+  // first appearance as a whole word is its declaration (comments aside).
+  GlslPoint first_word(std::string_view name) const {
+    for (size_t k = 0; k < lines_.size(); ++k)
+      for (size_t at = lines_[k].find(name); at != std::string_view::npos; at = lines_[k].find(name, at + 1)) {
+        const auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+        const bool starts = at == 0 || !word_char(lines_[k][at - 1]);
+        const bool ends = at + name.size() >= lines_[k].size() || !word_char(lines_[k][at + name.size()]);
+        if (starts && ends) return {static_cast<int>(k) + 1, static_cast<int>(at) + 1};
+      }
+    return {};
+  }
+
+  GlslVariable global(const std::string& name, const glslang::TType& type, const glslang::TSourceLoc& loc) const {
+    GlslVariable v = variable(name, type, loc);
+    if (v.at.line == 0) v.at = first_word(name);
+    return v;
+  }
+
+  void read_linker_objects(glslang::TIntermAggregate& objects) {
+    for (auto* node : objects.getSequence()) {
+      const auto* symbol = node->getAsSymbolNode();
+      if (!symbol) continue;
+      const std::string name = symbol->getName().c_str();
+      const auto& type = symbol->getType();
+      const auto storage = type.getQualifier().storage;
+      if (name.rfind("gl_", 0) == 0) continue;
+      if (storage == glslang::EvqUniform && type.getBasicType() == glslang::EbtBlock) {
+        UniformBlock block{type.getTypeName().c_str(), {}, point(symbol->getLoc())};
+        if (block.at.line == 0) block.at = first_word(block.name);
+        add_members(type, "", block.members);
+        facts_.uniform_blocks.push_back(std::move(block));
+      } else if (storage == glslang::EvqUniform) {
+        facts_.uniforms.push_back(global(name, type, symbol->getLoc()));
+      } else if (storage == glslang::EvqVaryingIn) {
+        facts_.inputs.push_back(global(name, type, symbol->getLoc()));
+      } else if (storage == glslang::EvqVaryingOut) {
+        facts_.outputs.push_back(global(name, type, symbol->getLoc()));
+      }
+    }
+  }
+
+  GlslFacts& facts_;
+  std::vector<std::string_view> lines_;
+};
+
+// glslang's preprocessor stops at an extension it does not know (and WebGL's list is not its
+// list), so for the preprocessing pass each `#extension` becomes a pragma it passes through
+// untouched, still subject to #if. Lines keep their numbers.
+constexpr std::string_view kExtensionPragma = "#pragma shadelab_extension ";
+
+std::string extensions_as_pragmas(std::string_view glsl) {
+  std::string out;
+  size_t start = 0;
+  while (start < glsl.size()) {
+    size_t end = glsl.find('\n', start);
+    end = end == std::string_view::npos ? glsl.size() : end + 1;
+    std::string_view line = glsl.substr(start, end - start);
+    const size_t hash = line.find_first_not_of(" \t");
+    const size_t word = hash == std::string_view::npos || line[hash] != '#' ? std::string_view::npos
+                                                                           : line.find_first_not_of(" \t", hash + 1);
+    if (word != std::string_view::npos && line.compare(word, 9, "extension") == 0) {
+      out += kExtensionPragma;
+      out += line.substr(word + 9);
+    } else {
+      out += line;
+    }
+    start = end;
+  }
+  return out;
+}
+
+// "#pragma shadelab_extensionGL_EXT_frag_depth:require" (the preprocessor drops the spaces).
+std::optional<ExtensionDirective> extension_pragma(const std::string& line, int number) {
+  const std::string_view prefix = kExtensionPragma.substr(0, kExtensionPragma.size() - 1);
+  if (line.rfind(prefix, 0) != 0) return std::nullopt;
+  std::string rest;
+  for (char c : line.substr(prefix.size()))
+    if (c != ' ' && c != '\t') rest += c;
+  const size_t colon = rest.find(':');
+  if (colon == std::string::npos) return std::nullopt;
+  return ExtensionDirective{rest.substr(0, colon), rest.substr(colon + 1), number};
+}
+
+// Directives and layout qualifiers as the preprocessor leaves them: glslang keeps every line in
+// its place, so a line of its output is the same line of the input.
+void read_preprocessed(const std::string& text, GlslFacts& facts) {
+  std::istringstream in(text);
+  int number = 0;
+  bool in_layout = false;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    if (auto directive = extension_pragma(line, number)) {
+      facts.extensions.push_back(std::move(*directive));
+      continue;
+    }
+    // The preprocessor's output separates punctuation from words only where the source did, so
+    // words are read character by character.
+    for (size_t i = 0; i < line.size();) {
+      const auto c = static_cast<unsigned char>(line[i]);
+      if (std::isalpha(c) || c == '_') {
+        size_t end = i;
+        while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '_')) ++end;
+        const std::string_view word(line.data() + i, end - i);
+        if (word == "layout") in_layout = true;
+        else if (in_layout && (word == "shared" || word == "packed"))
+          facts.shared_or_packed.push_back({number, static_cast<int>(i) + 1});
+        i = end;
+      } else {
+        if (c == ')') in_layout = false;
+        ++i;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
+  initialize_glslang_once();
+  const TBuiltInResource resources = webgl2_resources(version, stage);
+  const std::string text(glsl);
+  const char* strings[] = {text.c_str()};
+  GlslFacts facts;
+
+  glslang::TShader shader(language(stage));
+  shader.setStrings(strings, 1);
+  facts.parsed = shader.parse(&resources, default_version(version), EEsProfile, false, false, EShMsgDefault);
+  if (!facts.parsed) facts.errors = read_info_log(shader.getInfoLog());
+  if (facts.parsed && shader.getIntermediate() && shader.getIntermediate()->getTreeRoot()) {
+    FactsTraverser traverser(text, facts);
+    shader.getIntermediate()->getTreeRoot()->traverse(&traverser);
+  }
+
+  const std::string pragmas = extensions_as_pragmas(text);
+  const char* pragma_strings[] = {pragmas.c_str()};
+  glslang::TShader preprocessor(language(stage));
+  preprocessor.setStrings(pragma_strings, 1);
+  glslang::TShader::ForbidIncluder no_includes;
+  std::string preprocessed;
+  if (preprocessor.preprocess(&resources, default_version(version), EEsProfile, false, false, EShMsgDefault,
+                              &preprocessed, no_includes))
+    read_preprocessed(preprocessed, facts);
+  return facts;
+}
+
+}  // namespace shadelab::shader

@@ -1,0 +1,70 @@
+#pragma once
+// What WebGL 2's shader rules need to know about one stage, read by glslang (Khronos' reference
+// GLSL front end): its AST for the operators, blocks and interface, its preprocessor for the
+// directives and layout qualifiers as they stand after #if, and its own errors for the GLSL ES
+// 1.00 Appendix A limits and the texel-offset range, which it checks when told WebGL's values.
+//
+// glslang parses hostile input, so this runs only in a worker, as the driver's compiler does.
+// Every position is in the GLSL the driver gets (1-based; 0 = unknown); UnwrappedSource::locate
+// maps it into the student's file.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "shader/shader_source.h"
+
+namespace shadelab::shader {
+
+struct GlslPoint {
+  int line = 0, column = 0;
+};
+
+// An error glslang reported, as it printed it: "'limitations' : while loops not available".
+struct GlslError {
+  GlslPoint at;
+  std::string token;    // what glslang quotes first ("limitations", "texel offset")
+  std::string message;  // the rest
+};
+
+// A `?:` or `,` on operands WebGL forbids there: `?:` on an array, a struct or void; `,` on an
+// array, a struct holding one, or void.
+struct OperatorUse {
+  enum class Kind { ternary, sequence } kind;
+  enum class Operand { array, structure, void_value } operand;
+  GlslPoint at;  // the `?` or the `,`
+};
+
+struct GlslVariable {
+  std::string name;
+  std::string type;       // glslang's words, precision left out: "4-component vector of float"
+  std::string precision;  // "highp", "mediump", "lowp" or "" (none: bool, or no default)
+  GlslPoint at;
+};
+
+struct UniformBlock {
+  std::string name;                  // the block's name, which the stages match by
+  std::vector<GlslVariable> members; // in order; a struct member's fields as "member.field"
+  GlslPoint at;
+};
+
+struct ExtensionDirective {
+  std::string name, behavior;  // "GL_EXT_frag_depth", "require"
+  int line = 0;
+};
+
+struct GlslFacts {
+  bool parsed = false;                    // glslang compiled the stage: the AST facts are complete
+  std::vector<GlslError> errors;          // glslang's, in order (when !parsed)
+  std::vector<OperatorUse> operators;
+  std::vector<GlslPoint> frag_data_nonzero;  // gl_FragData[n], n not the constant 0 (ES 1.00)
+  std::vector<UniformBlock> uniform_blocks;
+  std::vector<GlslVariable> inputs, outputs, uniforms;  // the stage's interface, blocks aside
+  std::vector<ExtensionDirective> extensions;           // those #if left in
+  std::vector<GlslPoint> shared_or_packed;               // `shared` / `packed` inside layout(...)
+};
+
+// The values glslang checks against, set as WebGL 2 sets them: texel offsets in [-8, 7] and, for
+// GLSL ES 1.00, Appendix A's loop and indexing limits.
+GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version);
+
+}  // namespace shadelab::shader

@@ -1,0 +1,42 @@
+#pragma once
+// WebGL 2's own shader rules, between the source checks and the driver. Mesa follows plain
+// OpenGL ES; the student's browser adds the WebGL 2 specification's rules on top ("Differences
+// Between WebGL and OpenGL ES 3.0"), and for GLSL ES 1.00 shaders the loop and indexing limits of
+// GLSL ES 1.00 Appendix A. A grader that compiled what the browser refused would grade a program
+// the student never saw run. docs/webgl-rules.md lists every rule with its source.
+//
+// Only rules are added here: what glslang cannot parse goes to the driver unjudged, and the
+// driver's verdict stands.
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/expected.h"
+#include "shader/glsl_facts.h"
+#include "shader/shader_source.h"
+
+namespace shadelab::shader {
+
+struct WebglChecked {
+  GlslFacts vertex, fragment;         // for naming a link failure's cause
+  std::vector<Diagnostic> warnings;   // the browser's warnings: extensions it does not support
+};
+
+// Checks both stages and what links them; then rewrites each stage's GLSL where WebGL's defaults
+// are not the driver's, every line keeping its number:
+//  - a stage that declares a uniform block gets `layout(std140) uniform;` (WebGL's only layout,
+//    and its default; the driver's default is `shared`, so a block declared std140 in one stage
+//    and without a layout in the other would not link);
+//  - an extension the browser does not support, enabled (not required), is left out, as the
+//    browser goes on without it.
+// A stage's rule -> compile_failed, a rule between the stages -> link_failed; each diagnostic in
+// the student's file, in the browser's words.
+Expected<WebglChecked> apply_webgl_rules(UnwrappedSource& vertex, UnwrappedSource& fragment,
+                                        const ShaderFile& vertex_file, const ShaderFile& fragment_file);
+
+// What the driver's refusal to link most likely means, in words, located in the fragment shader:
+// an input no output writes, types or block members that differ. Empty when none is found.
+std::vector<Diagnostic> link_failure_causes(const WebglChecked& checked, const UnwrappedSource& fragment,
+                                            const ShaderFile& fragment_file);
+
+}  // namespace shadelab::shader
