@@ -1,0 +1,126 @@
+// WebGL 2's shader rules through the renderer's compile (glslang's AST, then the real driver):
+// every case of tests/webgl_rules/cases.json, accepted or refused as the browser does (the
+// browser test checks Chromium's verdicts on the same file), with the message and the line.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+
+#include "support/files.h"
+#include "support/test_support.h"
+
+using namespace shadelab;
+using nlohmann::json;
+
+namespace {
+
+std::string joined(const json& lines) {
+  std::string out;
+  for (const auto& line : lines) out += line.get<std::string>() + "\n";
+  return out;
+}
+
+json cases() {
+  return json::parse(testkit::read_text(std::string(SHADELAB_SOURCE_DIR) + "/tests/webgl_rules/cases.json"))["cases"];
+}
+
+std::string verdict_of(const Expected<render::CompileReport>& r) {
+  if (r) return "accepted";
+  return std::string(to_string(r.error().code));
+}
+
+const Diagnostic* first_error(const Error& e) {
+  for (const auto& d : e.diagnostics)
+    if (d.severity == "error") return &d;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST(WebglRulesTest, EveryCaseGetsTheBrowsersVerdictMessageAndLine) {
+  const json all = cases();
+  ASSERT_GE(all.size(), 30u);
+  for (const auto& c : all) {
+    SCOPED_TRACE(c["name"].get<std::string>());
+    const auto r = testkit::shared_renderer().compile({"rule_vert.glsl", joined(c["vertex"])},
+                                                      {"rule_frag.glsl", joined(c["fragment"])});
+    ASSERT_EQ(verdict_of(r), c["verdict"].get<std::string>()) << (r ? "" : r.error().format());
+    if (r) continue;
+    const Diagnostic* d = first_error(r.error());
+    ASSERT_NE(d, nullptr) << r.error().format();
+    EXPECT_NE(d->message.find(c["message"].get<std::string>()), std::string::npos) << d->format();
+    EXPECT_EQ(d->line, c["line"].get<int>()) << d->format();
+    EXPECT_EQ(d->file, "rule_frag.glsl");  // every refused case breaks its rule in the fragment shader
+  }
+}
+
+// The rules read the JS module the student edits, and name lines of that file.
+TEST(WebglRulesTest, AViolationInAJsModuleIsLocatedInTheModule) {
+  const std::string fragment =
+      "// phong_frag.js\nexport default `#version 300 es\nprecision mediump float;\nout vec4 c;\n"
+      "void main() { float a[2], b[2]; float d[2] = true ? a : b; c = vec4(d[0]); }\n`;\n";
+  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
+                                                    {"phong_frag.js", fragment});
+  ASSERT_FALSE(r);
+  const Diagnostic* d = first_error(r.error());
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->file, "phong_frag.js");
+  EXPECT_EQ(d->line, 5);
+  EXPECT_EQ(d->column, 51);  // the `?`
+}
+
+// A stage with a uniform block gets WebGL's std140 default before the driver sees it; the
+// driver's own errors after it still name the student's line.
+TEST(WebglRulesTest, TheStd140DefaultMovesNoLine) {
+  const std::string fragment =
+      "#version 300 es\nprecision mediump float;\nuniform Light { vec4 tint; };\nout vec4 c;\n\n"
+      "void main() { c = tint + undefined_name; }\n";
+  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
+                                                    {"f.glsl", fragment});
+  ASSERT_FALSE(r);
+  const Diagnostic* d = first_error(r.error());
+  ASSERT_NE(d, nullptr) << r.error().format();
+  EXPECT_EQ(d->line, 6) << d->format();
+  EXPECT_NE(d->message.find("undefined_name"), std::string::npos) << d->format();
+}
+
+// An extension the browser does not support, only enabled: its warning, and the driver does not
+// get it either (the browser goes on without it).
+TEST(WebglRulesTest, AnUnsupportedEnabledExtensionIsAWarningAndLeftOut) {
+  const std::string fragment =
+      "#version 300 es\n#extension GL_OES_standard_derivatives : enable\nprecision mediump float;\nout vec4 c;\n"
+      "void main() { c = vec4(dFdx(1.0)); }\n";
+  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
+                                                    {"f.glsl", fragment});
+  ASSERT_TRUE(r) << r.error().format();
+  bool warned = false;
+  for (const auto& d : r->diagnostics)
+    warned |= d.severity == "warning" && d.line == 2 && d.message.find("extension is not supported") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+// A link failure names its cause, not a guess.
+TEST(WebglRulesTest, ALinkFailureNamesItsCause) {
+  const std::string vertex = "#version 300 es\nout vec3 vNormal;\nvoid main() { vNormal = vec3(1.0); gl_Position = vec4(0.0); }\n";
+  const std::string missing = "#version 300 es\nprecision mediump float;\nin vec3 vNorml;\nout vec4 c;\nvoid main() { c = vec4(vNorml, 1.0); }\n";
+  const std::string retyped = "#version 300 es\nprecision mediump float;\nin vec4 vNormal;\nout vec4 c;\nvoid main() { c = vNormal; }\n";
+  auto r = testkit::shared_renderer().compile({"v.glsl", vertex}, {"f.glsl", missing});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::link_failed);
+  EXPECT_NE(r.error().message.find("'vNorml' is not an output of the vertex shader"), std::string::npos) << r.error().message;
+  EXPECT_EQ(r.error().diagnostics.front().line, 3);
+  r = testkit::shared_renderer().compile({"v.glsl", vertex}, {"f.glsl", retyped});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::link_failed);
+  EXPECT_NE(r.error().message.find("'vNormal' is 3-component vector of float out of the vertex shader but 4-component vector of float into"),
+            std::string::npos) << r.error().message;
+}
+
+// What glslang cannot parse is not judged by it: the driver's verdict and words stand.
+TEST(WebglRulesTest, WhatGlslangCannotParseIsLeftToTheDriver) {
+  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
+                                                    {"f.glsl", "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0) }\n"});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::compile_failed);
+  EXPECT_FALSE(r.error().driver_log.empty());  // the driver's log, so the driver judged it
+}
