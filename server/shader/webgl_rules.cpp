@@ -171,7 +171,7 @@ std::vector<Diagnostic> block_precision_rules(const StageInput& vs, const StageI
     if (!vb || vb->members.size() != fb.members.size()) continue;
     for (size_t k = 0; k < fb.members.size(); ++k) {
       const auto &v = vb->members[k], &f = fb.members[k];
-      if (v.name != f.name || v.precision == f.precision) continue;
+      if (v.name != f.name || v.type != f.type || v.precision == f.precision) continue;  // other differences: the driver's
       out.push_back(located(fs, "link", f.at, "error",
                             "Precisions of uniform block members differ between shaders: '" + fb.name + "." + f.name + "' is " +
                                 (v.precision.empty() ? "without precision" : v.precision) + " in the vertex shader and " +
