@@ -16,6 +16,7 @@
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
 #include "render/presets.h"
+#include "bench_renderer.h"
 #include "render/renderer.h"
 
 namespace {
@@ -23,18 +24,7 @@ namespace {
 using namespace shadelab;
 using Clock = std::chrono::steady_clock;
 
-render::Renderer& renderer() {
-  static render::Renderer r = [] {
-    auto created = render::Renderer::create({});
-    if (!created) {
-      std::cerr << created.error().format() << "\n";
-      std::exit(1);
-    }
-    std::cerr << "renderer: " << created->context_info().gl_renderer << "\n";
-    return std::move(*created);
-  }();
-  return r;
-}
+using bench::renderer;
 
 const scene::Mesh& bunny() {
   static const scene::Mesh m = *scene::builtin_mesh("bunny");

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "render/presets.h"
+#include "bench_renderer.h"
 #include "render/renderer.h"
 #include "shader/webgl_rules.h"
 
@@ -15,17 +16,7 @@ namespace {
 
 using namespace shadelab;
 
-render::Renderer& renderer() {
-  static render::Renderer r = [] {
-    auto created = render::Renderer::create({});
-    if (!created) {
-      std::cerr << created.error().format() << "\n";
-      std::exit(1);
-    }
-    return std::move(*created);
-  }();
-  return r;
-}
+using bench::renderer;
 
 // The specular fragment shader with a constant no earlier iteration used: a real code change.
 shader::ShaderFile fresh_fragment(const render::Preset& p, long k) {

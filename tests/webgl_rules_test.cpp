@@ -33,10 +33,29 @@ std::string verdict_of(const Expected<render::CompileReport>& r) {
   return std::string(to_string(code));
 }
 
+// A fragment shader beside a minimal ES 3.00 vertex shader, through the renderer's compile.
+Expected<render::CompileReport> compile_fragment(const std::string& name, const std::string& fragment) {
+  return testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
+                                            {name, fragment});
+}
+
 const Diagnostic* first_error(const Error& e) {
   for (const auto& d : e.diagnostics)
     if (d.severity == "error") return &d;
   return nullptr;
+}
+
+// The first error of a fragment shader the compile must refuse (empty, and the test failed, when
+// it was accepted or had no error diagnostic).
+Diagnostic refusal(const std::string& name, const std::string& fragment) {
+  const auto r = compile_fragment(name, fragment);
+  if (r) {
+    ADD_FAILURE() << name << " was accepted";
+    return {};
+  }
+  const Diagnostic* d = first_error(r.error());
+  if (!d) ADD_FAILURE() << r.error().format();
+  return d ? *d : Diagnostic{};
 }
 
 }  // namespace
@@ -63,14 +82,10 @@ TEST(WebglRulesTest, AViolationInAJsModuleIsLocatedInTheModule) {
   const std::string fragment =
       "// phong_frag.js\nexport default `#version 300 es\nprecision mediump float;\nout vec4 c;\n"
       "void main() { float a[2], b[2]; float d[2] = true ? a : b; c = vec4(d[0]); }\n`;\n";
-  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
-                                                    {"phong_frag.js", fragment});
-  ASSERT_FALSE(r);
-  const Diagnostic* d = first_error(r.error());
-  ASSERT_NE(d, nullptr);
-  EXPECT_EQ(d->file, "phong_frag.js");
-  EXPECT_EQ(d->line, 5);
-  EXPECT_EQ(d->column, 51);  // the `?`
+  const Diagnostic d = refusal("phong_frag.js", fragment);
+  EXPECT_EQ(d.file, "phong_frag.js");
+  EXPECT_EQ(d.line, 5);
+  EXPECT_EQ(d.column, 51);  // the `?`
 }
 
 // A stage with a uniform block gets WebGL's std140 default before the driver sees it; the
@@ -79,13 +94,9 @@ TEST(WebglRulesTest, TheStd140DefaultMovesNoLine) {
   const std::string fragment =
       "#version 300 es\nprecision mediump float;\nuniform Light { vec4 tint; };\nout vec4 c;\n\n"
       "void main() { c = tint + undefined_name; }\n";
-  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
-                                                    {"f.glsl", fragment});
-  ASSERT_FALSE(r);
-  const Diagnostic* d = first_error(r.error());
-  ASSERT_NE(d, nullptr) << r.error().format();
-  EXPECT_EQ(d->line, 6) << d->format();
-  EXPECT_NE(d->message.find("undefined_name"), std::string::npos) << d->format();
+  const Diagnostic d = refusal("f.glsl", fragment);
+  EXPECT_EQ(d.line, 6) << d.format();
+  EXPECT_NE(d.message.find("undefined_name"), std::string::npos) << d.format();
 }
 
 // An extension the browser does not support, only enabled: its warning, and the driver does not
@@ -94,8 +105,7 @@ TEST(WebglRulesTest, AnUnsupportedEnabledExtensionIsAWarningAndLeftOut) {
   const std::string fragment =
       "#version 300 es\n#extension GL_OES_standard_derivatives : enable\nprecision mediump float;\nout vec4 c;\n"
       "void main() { c = vec4(dFdx(1.0)); }\n";
-  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
-                                                    {"f.glsl", fragment});
+  const auto r = compile_fragment("f.glsl", fragment);
   ASSERT_TRUE(r) << r.error().format();
   bool warned = false;
   for (const auto& d : r->diagnostics)
@@ -122,8 +132,7 @@ TEST(WebglRulesTest, ALinkFailureNamesItsCause) {
 
 // What glslang cannot parse is not judged by it: the driver's verdict and words stand.
 TEST(WebglRulesTest, WhatGlslangCannotParseIsLeftToTheDriver) {
-  const auto r = testkit::shared_renderer().compile({"v.glsl", "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n"},
-                                                    {"f.glsl", "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0) }\n"});
+  const auto r = compile_fragment("f.glsl", "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0) }\n");
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::compile_failed);
   EXPECT_FALSE(r.error().driver_log.empty());  // the driver's log, so the driver judged it
