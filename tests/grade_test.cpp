@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "grade/reference_cache.h"
 #include "render/presets.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
@@ -188,3 +189,29 @@ TEST_F(GradeTest, BadGradeRequestsAreProblems) {
 }
 
 }  // namespace
+
+// The reference cache keeps what fits its byte budget, the least recently used out first, so a
+// worker that has graded many checkpoints holds at most the budget.
+TEST(ReferenceCacheTest, EvictsTheLeastRecentlyUsedWithinItsBudget) {
+  const auto frames_of_bytes = [](std::size_t n) {
+    auto image = std::make_shared<image::Image>();
+    image->bytes.resize(n);
+    return grade::SharedFrames{image};
+  };
+  grade::ReferenceCache cache(300);
+  cache.insert("a", frames_of_bytes(100));
+  cache.insert("b", frames_of_bytes(100));
+  cache.insert("c", frames_of_bytes(100));
+  EXPECT_EQ(cache.bytes(), 300u);
+  ASSERT_NE(cache.find("a"), nullptr);  // "a" is now the newest; "b" the oldest
+  cache.insert("d", frames_of_bytes(100));
+  EXPECT_EQ(cache.find("b"), nullptr);
+  EXPECT_NE(cache.find("a"), nullptr);
+  EXPECT_NE(cache.find("c"), nullptr);
+  EXPECT_NE(cache.find("d"), nullptr);
+  EXPECT_EQ(cache.bytes(), 300u);
+  cache.insert("huge", frames_of_bytes(301));  // larger than the whole budget: not kept, nothing evicted
+  EXPECT_EQ(cache.find("huge"), nullptr);
+  EXPECT_EQ(cache.bytes(), 300u);
+  EXPECT_NE(cache.find("a"), nullptr);
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 
 #include "image/encode.h"
 #include "image/grid.h"
@@ -10,8 +11,6 @@
 namespace shadelab::grade {
 
 namespace {
-
-constexpr size_t kReferenceCacheEntries = 64;
 
 // Exactly: two different values must never share a key.
 std::string exact(double v) {
@@ -37,22 +36,19 @@ std::string render_key(const render::RenderRequest& r, const std::string& mesh_k
 
 }  // namespace
 
-Expected<GradeSession::Frames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m,
-                                                       render::FloatSemantics semantics) {
-  Frames out;
-  auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(f); }, semantics);
+Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
+  SharedFrames out;
+  auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(std::make_shared<const image::Image>(f)); });
   if (!rendered) return rendered.take_error();
   return out;
 }
 
-Expected<GradeSession::Frames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m,
-                                                           const std::string& mesh_key) {
-  const std::string key = render_key(r, mesh_key);
-  if (auto it = references_.find(key); it != references_.end()) return it->second;
+Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
+  std::string key = render_key(r, mesh_key);
+  if (const SharedFrames* hit = references_.find(key)) return *hit;
   auto frames = frames_of(r, m);
-  if (!frames) return frames;
-  if (references_.size() >= kReferenceCacheEntries) references_.clear();
-  return references_.emplace(key, std::move(*frames)).first->second;
+  if (frames) references_.insert(std::move(key), *frames);
+  return frames;
 }
 
 // `base` with the light moved, for the names the program declares as the page does (vec3); a name
@@ -70,37 +66,58 @@ Expected<render::RenderRequest> GradeSession::with_light(const render::RenderReq
   return lit;
 }
 
-// Every set of frames is rendered under the homework's light, then under each probe light.
-Expected<GradeSession::Frames> GradeSession::render_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
-                                                                 const scene::Mesh& mesh, const std::string* cache_key,
-                                                                 render::FloatSemantics semantics) {
-  Frames all;
-  for (int p = -1; p < static_cast<int>(spec.probes.size()); ++p) {
-    render::RenderRequest lit = base;
-    if (p >= 0) {
-      auto with = with_light(base, spec.probes[static_cast<size_t>(p)].light_position);
-      if (!with) return with.take_error();
-      lit = std::move(*with);
-    }
-    auto frames = cache_key ? cached_frames(lit, mesh, *cache_key) : frames_of(lit, mesh, semantics);
-    if (!frames) return frames.take_error();
-    all.insert(all.end(), std::make_move_iterator(frames->begin()), std::make_move_iterator(frames->end()));
+Status GradeSession::for_each_light(const GradeSpec& spec, const render::RenderRequest& base,
+                                    const std::function<Status(const render::RenderRequest&)>& each) {
+  if (auto s = each(base); !s) return s;
+  for (const auto& probe : spec.probes) {
+    auto lit = with_light(base, probe.light_position);
+    if (!lit) return lit.take_error();
+    if (auto s = each(*lit); !s) return s;
   }
+  return Ok{};
+}
+
+// Every set of frames is rendered under the homework's light, then under each probe light.
+Expected<SharedFrames> GradeSession::render_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
+                                                         const scene::Mesh& mesh, const std::string* cache_key) {
+  SharedFrames all;
+  auto done = for_each_light(spec, base, [&](const render::RenderRequest& lit) -> Status {
+    auto frames = cache_key ? cached_frames(lit, mesh, *cache_key) : frames_of(lit, mesh);
+    if (!frames) return frames.take_error();
+    all.insert(all.end(), frames->begin(), frames->end());
+    return Ok{};
+  });
+  if (!done) return done.take_error();
   return all;
+}
+
+// NaN and infinities counted in each float frame as it is rendered; the frames themselves are not
+// kept (4 floats a pixel: 44 MB a light at 640 x 480).
+Expected<std::vector<image::NonFinite>> GradeSession::non_finite_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
+                                                                              const scene::Mesh& mesh, render::FloatSemantics semantics) {
+  std::vector<image::NonFinite> counts;
+  auto done = for_each_light(spec, base, [&](const render::RenderRequest& lit) -> Status {
+    auto rendered = renderer_.render(lit, mesh, [&](int, const image::Image& f, bool) { counts.push_back(image::count_non_finite(f)); },
+                                     semantics);
+    if (!rendered) return rendered.take_error();
+    return Ok{};
+  });
+  if (!done) return done.take_error();
+  return counts;
 }
 
 // The canvas stores NaN as 0: the submission is rendered to floats as well to find it, with IEEE
 // arithmetic, since the browser's GPU shows a NaN that Mesa's optimiser may fold away. No
 // multisampling needed. If the invariant outputs do not build (a driver's limit), the program as
 // compiled is checked instead.
-Expected<GradeSession::Frames> GradeSession::float_check(const GradeSpec& spec, const render::RenderRequest& submission,
-                                                         const scene::Mesh& mesh) {
+Expected<std::vector<image::NonFinite>> GradeSession::float_check(const GradeSpec& spec, const render::RenderRequest& submission,
+                                                                  const scene::Mesh& mesh) {
   render::RenderRequest as_float = submission;
   as_float.pixel_type = image::PixelType::f32;
   as_float.msaa = 0;
-  auto ieee = render_under_lights(spec, as_float, mesh, nullptr, render::FloatSemantics::ieee);
+  auto ieee = non_finite_under_lights(spec, as_float, mesh, render::FloatSemantics::ieee);
   if (ieee) return ieee;
-  return render_under_lights(spec, as_float, mesh, nullptr);
+  return non_finite_under_lights(spec, as_float, mesh, render::FloatSemantics::as_compiled);
 }
 
 Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
@@ -116,8 +133,8 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   r.pixel_type = image::PixelType::u8;
   auto student = render_under_lights(spec, r, **mesh, nullptr);
   if (!student) return ungradable(student.error());
-  auto student_float = float_check(spec, r, **mesh);
-  if (!student_float) return ungradable(student_float.error());
+  auto student_non_finite = float_check(spec, r, **mesh);
+  if (!student_non_finite) return ungradable(student_non_finite.error());
 
   // The reference gets the same uniform values as the submission: a grader that changes the
   // colours grades against the reference with those colours.
@@ -136,12 +153,12 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
 
   std::vector<std::string> lights = {"homework"};
   for (const auto& p : spec.probes) lights.push_back(p.name);
-  GradeOutput out{report(grade::grade(*student, *student_float, *reference, mistakes, spec.options), spec.reference_name, lights,
+  GradeOutput out{report(grade::grade(*student, *student_non_finite, *reference, mistakes, spec.options), spec.reference_name, lights,
                          static_cast<size_t>(r.frames)),
                   {}};
   out.report.warnings = compiled->warnings;
-  Frames heat;  // the homework light's frames
-  for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap((*student)[k], (*reference)[k]));
+  std::vector<image::Image> heat;  // the homework light's frames
+  for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap(*(*student)[k], *(*reference)[k]));
   if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat)))
     out.heatmap_png.assign(png->begin(), png->end());
   return out;

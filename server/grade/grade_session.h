@@ -5,12 +5,12 @@
 // NaN and infinity survive); the reference and every known mistake are rendered the same way with
 // the submission's uniform values, and grade() decides.
 #include <functional>
-#include <map>
 #include <string>
 #include <vector>
 
 #include "core/expected.h"
 #include "grade/checkpoints.h"
+#include "grade/reference_cache.h"
 #include "grade/report.h"
 #include "render/renderer.h"
 
@@ -37,20 +37,23 @@ class GradeSession {
                               const std::string& mesh_key, const RenderPhaseHook& on_compiled);
 
  private:
-  using Frames = std::vector<image::Image>;
-  Expected<Frames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh,
-                             render::FloatSemantics semantics = render::FloatSemantics::as_compiled);
-  Expected<Frames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
-  Expected<Frames> render_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
-                                       const std::string* cache_key,
-                                       render::FloatSemantics semantics = render::FloatSemantics::as_compiled);
-  Expected<Frames> float_check(const GradeSpec& spec, const render::RenderRequest& submission, const scene::Mesh& mesh);
+  Expected<SharedFrames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh);
+  Expected<SharedFrames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
+  // Calls `each` with `base` under the homework's light, then under each probe light.
+  Status for_each_light(const GradeSpec& spec, const render::RenderRequest& base,
+                        const std::function<Status(const render::RenderRequest&)>& each);
+  Expected<SharedFrames> render_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
+                                             const std::string* cache_key);
+  Expected<std::vector<image::NonFinite>> float_check(const GradeSpec& spec, const render::RenderRequest& submission,
+                                                      const scene::Mesh& mesh);
+  Expected<std::vector<image::NonFinite>> non_finite_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
+                                                                  const scene::Mesh& mesh, render::FloatSemantics semantics);
   Expected<render::RenderRequest> with_light(const render::RenderRequest& base, const std::array<float, 3>& position);
 
   render::Renderer& renderer_;
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch
   // grading a class renders them once per worker.
-  std::map<std::string, Frames> references_;
+  ReferenceCache references_;
 };
 
 }  // namespace shadelab::grade

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <memory>
 
 #include "core/check.h"
 
@@ -31,33 +32,36 @@ double frame_failing(const image::Image& a, const image::Image& b, const GradeOp
 }
 
 // Share of frames that pass when `candidate` stands in for the reference.
-double frames_matching(const std::vector<image::Image>& student, const std::vector<image::Image>& candidate,
+double frames_matching(const SharedFrames& student, const SharedFrames& candidate,
                        const GradeOptions& options) {
   int matching = 0;
   for (size_t k = 0; k < student.size(); ++k)
-    matching += frame_failing(student[k], candidate[k], options) <= options.max_failing_fraction;
+    matching += frame_failing(*student[k], *candidate[k], options) <= options.max_failing_fraction;
   return static_cast<double>(matching) / static_cast<double>(student.size());
 }
 
-double mean_failing(const std::vector<image::Image>& student, const std::vector<image::Image>& candidate,
+double mean_failing(const SharedFrames& student, const SharedFrames& candidate,
                     const GradeOptions& options) {
   double sum = 0;
-  for (size_t k = 0; k < student.size(); ++k) sum += frame_failing(student[k], candidate[k], options);
+  for (size_t k = 0; k < student.size(); ++k) sum += frame_failing(*student[k], *candidate[k], options);
   return sum / static_cast<double>(student.size());
 }
 
 // The student's frames with RGB permuted: does some order other than R, G, B match the reference?
-std::string swapped_channels(const std::vector<image::Image>& student, const std::vector<image::Image>& reference,
+std::string swapped_channels(const SharedFrames& student, const SharedFrames& reference,
                              const GradeOptions& options) {
   constexpr std::array<std::array<int, 3>, 5> orders = {{{0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
   const char* names = "RGB";
   for (const auto& order : orders) {
-    std::vector<image::Image> permuted = student;
-    for (auto& f : permuted)
-      for (size_t i = 0; i < f.bytes.size(); i += 4) {
-        const std::uint8_t rgb[3] = {f.bytes[i], f.bytes[i + 1], f.bytes[i + 2]};
-        for (int c = 0; c < 3; ++c) f.bytes[i + c] = rgb[order[c]];
+    SharedFrames permuted;
+    for (const auto& frame : student) {
+      auto f = std::make_shared<image::Image>(*frame);
+      for (size_t i = 0; i < f->bytes.size(); i += 4) {
+        const std::uint8_t rgb[3] = {f->bytes[i], f->bytes[i + 1], f->bytes[i + 2]};
+        for (int c = 0; c < 3; ++c) f->bytes[i + c] = rgb[order[c]];
       }
+      permuted.push_back(std::move(f));
+    }
     if (frames_matching(permuted, reference, options) == 1.0)
       return std::string("colour channels swapped: your (") + names[order[0]] + ", " + names[order[1]] + ", " +
              names[order[2]] + ") would match the reference's (R, G, B)";
@@ -67,9 +71,8 @@ std::string swapped_channels(const std::vector<image::Image>& student, const std
 
 }  // namespace
 
-GradeResult grade(const std::vector<image::Image>& student, const std::vector<image::Image>& student_float,
-                  const std::vector<image::Image>& reference, const std::vector<RenderedMistake>& mistakes,
-                  const GradeOptions& options) {
+GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite,
+                  const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes, const GradeOptions& options) {
   SHADELAB_CHECK(!student.empty() && student.size() == reference.size(), "grade needs matching frame lists");
   GradeResult r;
   r.max_score = options.max_score;
@@ -77,14 +80,14 @@ GradeResult grade(const std::vector<image::Image>& student, const std::vector<im
   int passing = 0, worst = 0;
   for (size_t k = 0; k < student.size(); ++k) {
     FrameGrade f;
-    f.metrics = image::compare(student[k], reference[k], options.compare);
-    f.failing_fraction_of_object = failing_of_object(student[k], reference[k], f.metrics);
-    if (k < student_float.size()) f.non_finite = image::count_non_finite(student_float[k]);
+    f.metrics = image::compare(*student[k], *reference[k], options.compare);
+    f.failing_fraction_of_object = failing_of_object(*student[k], *reference[k], f.metrics);
+    if (k < student_non_finite.size()) f.non_finite = student_non_finite[k];
     f.pass = f.failing_fraction_of_object <= options.max_failing_fraction && f.non_finite.nan == 0 && f.non_finite.inf == 0;
     passing += f.pass;
     nan += f.non_finite.nan;
     inf += f.non_finite.inf;
-    pixels += static_cast<std::size_t>(student[k].width) * student[k].height;
+    pixels += static_cast<std::size_t>(student[k]->width) * student[k]->height;
     r.frames.push_back(f);
   }
   for (size_t k = 1; k < r.frames.size(); ++k)

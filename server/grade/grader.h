@@ -1,6 +1,7 @@
 #pragma once
 // From rendered frames to a verdict, a score and messages a student understands. Pure CPU work
 // on images: the worker renders, this decides.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,14 @@ struct FrameGrade {
   bool pass = false;
 };
 
+// Frames shared between a worker's reference cache and the grades that read them: a class graded
+// against one checkpoint holds its reference renders once, not once more per submission.
+using SharedFrames = std::vector<std::shared_ptr<const image::Image>>;
+
 // A known mistake, rendered: the same frames as the student's.
 struct RenderedMistake {
   std::string id, message;
-  std::vector<image::Image> frames;
+  SharedFrames frames;
 };
 
 struct GradeResult {
@@ -38,10 +43,10 @@ struct GradeResult {
   std::string diagnosis;  // id of the mistake recognised, "swapped_channels", "nan", or ""
 };
 
-// `student` and `reference` are RGBA8 frames; `student_float` the same frames rendered to a float
-// target (for NaN and infinity, which the 8-bit canvas hides); empty to skip that check.
-GradeResult grade(const std::vector<image::Image>& student, const std::vector<image::Image>& student_float,
-                  const std::vector<image::Image>& reference, const std::vector<RenderedMistake>& mistakes,
-                  const GradeOptions& options);
+// `student` and `reference` are RGBA8 frames; `student_non_finite` counts NaN and infinity in the
+// same frames rendered to a float target (the 8-bit canvas hides them), one per frame; empty to
+// skip that check.
+GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite,
+                  const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes, const GradeOptions& options);
 
 }  // namespace shadelab::grade

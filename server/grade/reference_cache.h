@@ -1,0 +1,35 @@
+#pragma once
+// A worker's reference and mistake renders, kept for the next submission of the same checkpoint
+// (a class is graded checkpoint by checkpoint): least recently used out first, within a byte
+// budget, so a worker's memory does not grow with the checkpoints and sizes it has seen.
+#include <cstddef>
+#include <list>
+#include <string>
+
+#include "grade/grader.h"
+
+namespace shadelab::grade {
+
+class ReferenceCache {
+ public:
+  // The specular checkpoint at 640 x 480 keeps 12 sets of 9 frames (the reference and five
+  // mistakes, under two lights): ~133 MB. The default holds one checkpoint's sets at that size.
+  static constexpr std::size_t kDefaultBytes = 160u << 20;
+
+  explicit ReferenceCache(std::size_t max_bytes = kDefaultBytes) : max_bytes_(max_bytes) {}
+
+  const SharedFrames* find(const std::string& key);  // nullptr when absent; a hit becomes the newest
+  void insert(std::string key, SharedFrames frames);  // a set larger than the budget is not kept
+  std::size_t bytes() const { return bytes_; }
+
+ private:
+  struct Entry {
+    std::string key;
+    SharedFrames frames;
+    std::size_t bytes;
+  };
+  std::size_t max_bytes_, bytes_ = 0;
+  std::list<Entry> entries_;  // newest first
+};
+
+}  // namespace shadelab::grade
