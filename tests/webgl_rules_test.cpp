@@ -116,13 +116,16 @@ TEST(WebglRulesTest, AnUnsupportedEnabledExtensionIsAWarningAndLeftOut) {
 // A link failure names its cause, not a guess.
 TEST(WebglRulesTest, ALinkFailureNamesItsCause) {
   const std::string vertex = "#version 300 es\nout vec3 vNormal;\nvoid main() { vNormal = vec3(1.0); gl_Position = vec4(0.0); }\n";
-  const std::string missing = "#version 300 es\nprecision mediump float;\nin vec3 vNorml;\nout vec4 c;\nvoid main() { c = vec4(vNorml, 1.0); }\n";
+  // A comment naming the input first: the cause is located at the declaration, not the comment.
+  const std::string missing =
+      "#version 300 es\n// vNorml: the normal\nprecision mediump float;\nin vec3 vNorml;\nout vec4 c;\nvoid main() { c = vec4(vNorml, 1.0); }\n";
   const std::string retyped = "#version 300 es\nprecision mediump float;\nin vec4 vNormal;\nout vec4 c;\nvoid main() { c = vNormal; }\n";
   auto r = testkit::shared_renderer().compile({"v.glsl", vertex}, {"f.glsl", missing});
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::link_failed);
   EXPECT_NE(r.error().message.find("'vNorml' is not an output of the vertex shader"), std::string::npos) << r.error().message;
-  EXPECT_EQ(r.error().diagnostics.front().line, 3);
+  EXPECT_EQ(r.error().diagnostics.front().line, 4);
+  EXPECT_EQ(r.error().diagnostics.front().column, 9);
   r = testkit::shared_renderer().compile({"v.glsl", vertex}, {"f.glsl", retyped});
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::link_failed);

@@ -100,17 +100,34 @@ void add_members(const glslang::TType& type, const std::string& prefix, std::vec
   }
 }
 
+std::vector<std::string_view> lines_of(std::string_view text) {
+  std::vector<std::string_view> lines;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t end = text.find('\n', start);
+    lines.push_back(text.substr(start, end == std::string_view::npos ? text.size() - start : end - start));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  return lines;
+}
+
+// Where `name` stands as a whole word in `line`, or npos.
+size_t whole_word(std::string_view line, std::string_view name) {
+  const auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (size_t at = line.find(name); at != std::string_view::npos; at = line.find(name, at + 1)) {
+    const bool starts = at == 0 || !word_char(line[at - 1]);
+    const bool ends = at + name.size() >= line.size() || !word_char(line[at + name.size()]);
+    if (starts && ends) return at;
+  }
+  return std::string_view::npos;
+}
+
 class FactsTraverser : public glslang::TIntermTraverser {
  public:
-  FactsTraverser(std::string_view glsl, GlslFacts& facts) : facts_(facts) {
-    size_t start = 0;
-    while (start <= glsl.size()) {
-      const size_t end = glsl.find('\n', start);
-      lines_.push_back(glsl.substr(start, end == std::string_view::npos ? glsl.size() - start : end - start));
-      if (end == std::string_view::npos) break;
-      start = end + 1;
-    }
-  }
+  // `preprocessed`: the same text without comments, each line in its place ("" if unavailable).
+  FactsTraverser(std::string_view glsl, std::string_view preprocessed, GlslFacts& facts)
+      : facts_(facts), lines_(lines_of(glsl)), code_lines_(preprocessed.empty() ? lines_ : lines_of(preprocessed)) {}
 
   bool visitSelection(glslang::TVisit, glslang::TIntermSelection* node) override {
     if (const auto operand = forbidden_operand(node->getType(), OperatorUse::Kind::ternary)) {
@@ -163,15 +180,14 @@ class FactsTraverser : public glslang::TIntermTraverser {
   }
 
   // glslang's linker objects carry no position; a global is declared before any use, so its
-  // first appearance as a whole word is its declaration (comments aside).
+  // first appearance as a whole word outside comments is its declaration. The line comes from the
+  // preprocessor's output, the column from the source line.
   GlslPoint first_word(std::string_view name) const {
-    for (size_t k = 0; k < lines_.size(); ++k)
-      for (size_t at = lines_[k].find(name); at != std::string_view::npos; at = lines_[k].find(name, at + 1)) {
-        const auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-        const bool starts = at == 0 || !word_char(lines_[k][at - 1]);
-        const bool ends = at + name.size() >= lines_[k].size() || !word_char(lines_[k][at + name.size()]);
-        if (starts && ends) return {static_cast<int>(k) + 1, static_cast<int>(at) + 1};
-      }
+    for (size_t k = 0; k < code_lines_.size(); ++k) {
+      if (whole_word(code_lines_[k], name) == std::string_view::npos) continue;
+      const size_t column = k < lines_.size() ? whole_word(lines_[k], name) : std::string_view::npos;
+      return {static_cast<int>(k) + 1, column == std::string_view::npos ? 0 : static_cast<int>(column) + 1};
+    }
     return {};
   }
 
@@ -205,7 +221,7 @@ class FactsTraverser : public glslang::TIntermTraverser {
   }
 
   GlslFacts& facts_;
-  std::vector<std::string_view> lines_;
+  std::vector<std::string_view> lines_, code_lines_;
 };
 
 // glslang's preprocessor stops at an extension it does not know (and WebGL's list is not its
@@ -287,15 +303,6 @@ GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
   const char* strings[] = {text.c_str()};
   GlslFacts facts;
 
-  glslang::TShader shader(language(stage));
-  shader.setStrings(strings, 1);
-  facts.parsed = shader.parse(&resources, default_version(version), EEsProfile, false, false, EShMsgDefault);
-  if (!facts.parsed) facts.errors = read_info_log(shader.getInfoLog());
-  if (facts.parsed && shader.getIntermediate() && shader.getIntermediate()->getTreeRoot()) {
-    FactsTraverser traverser(text, facts);
-    shader.getIntermediate()->getTreeRoot()->traverse(&traverser);
-  }
-
   const std::string pragmas = extensions_as_pragmas(text);
   const char* pragma_strings[] = {pragmas.c_str()};
   glslang::TShader preprocessor(language(stage));
@@ -305,6 +312,17 @@ GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
   if (preprocessor.preprocess(&resources, default_version(version), EEsProfile, false, false, EShMsgDefault,
                               &preprocessed, no_includes))
     read_preprocessed(preprocessed, facts);
+  else
+    preprocessed.clear();
+
+  glslang::TShader shader(language(stage));
+  shader.setStrings(strings, 1);
+  facts.parsed = shader.parse(&resources, default_version(version), EEsProfile, false, false, EShMsgDefault);
+  if (!facts.parsed) facts.errors = read_info_log(shader.getInfoLog());
+  if (facts.parsed && shader.getIntermediate() && shader.getIntermediate()->getTreeRoot()) {
+    FactsTraverser traverser(text, preprocessed, facts);
+    shader.getIntermediate()->getTreeRoot()->traverse(&traverser);
+  }
   return facts;
 }
 
