@@ -190,6 +190,32 @@ TEST_F(GradeTest, BadGradeRequestsAreProblems) {
 
 }  // namespace
 
+// /metrics says what each worker holds: its resident set, and after a grade the reference renders
+// it keeps for the next submission (bounded) and the programs it keeps warm.
+TEST_F(GradeTest, MetricsReportWhatEachWorkerKeeps) {
+  grade(submission("specular"), "specular");
+  auto r = server_->client().Get("/metrics");
+  ASSERT_TRUE(r);
+  const auto values = [&](const std::string& name) {
+    std::vector<double> out;
+    for (size_t at = r->body.find(name + "{worker=\""); at != std::string::npos; at = r->body.find(name + "{worker=\"", at + 1))
+      out.push_back(std::stod(r->body.substr(r->body.find("} ", at) + 2)));
+    return out;
+  };
+  const auto resident = values("shadelab_worker_resident_bytes");
+  const auto references = values("shadelab_worker_reference_cache_bytes");
+  const auto programs = values("shadelab_worker_cached_programs");
+  ASSERT_EQ(resident.size(), 2u) << r->body;  // one per worker of the test server
+  for (double v : resident) EXPECT_GT(v, 10e6);
+  ASSERT_EQ(references.size(), 2u);
+  const double held = std::max(references[0], references[1]);
+  EXPECT_GT(held, 160.0 * 120 * 4 * 9);  // at least the reference's 9 frames at 160 x 120
+  EXPECT_LE(held, double(grade::ReferenceCache::kDefaultBytes));
+  ASSERT_EQ(programs.size(), 2u);
+  EXPECT_GE(std::max(programs[0], programs[1]), 1.0);
+  EXPECT_LE(std::max(programs[0], programs[1]), 32.0);
+}
+
 // The reference cache keeps what fits its byte budget, the least recently used out first, so a
 // worker that has graded many checkpoints holds at most the budget.
 TEST(ReferenceCacheTest, EvictsTheLeastRecentlyUsedWithinItsBudget) {

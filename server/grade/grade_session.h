@@ -36,6 +36,8 @@ class GradeSession {
   Expected<GradeOutput> grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh,
                               const std::string& mesh_key, const RenderPhaseHook& on_compiled);
 
+  std::size_t reference_cache_bytes() const { return references_.bytes(); }
+
  private:
   Expected<SharedFrames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh);
   Expected<SharedFrames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);

@@ -22,6 +22,21 @@ void Metrics::phase(const std::string& phase, double seconds) {
   phases_[phase].observe(seconds);
 }
 
+namespace {
+// Per worker (label: its slot), what it holds: the resident set the kernel reports, the grade's
+// reference renders (bounded at 160 MiB) and the renderer's warm programs (32) and meshes (8).
+void render_worker_memory(std::ostringstream& out, const std::vector<worker::WorkerMemory>& memory) {
+  const auto gauge = [&](const char* name, std::uint64_t worker::WorkerMemory::*field) {
+    out << "# TYPE " << name << " gauge\n";
+    for (const auto& m : memory) out << name << "{worker=\"" << m.worker << "\"} " << m.*field << "\n";
+  };
+  gauge("shadelab_worker_resident_bytes", &worker::WorkerMemory::resident_bytes);
+  gauge("shadelab_worker_reference_cache_bytes", &worker::WorkerMemory::reference_cache_bytes);
+  gauge("shadelab_worker_cached_programs", &worker::WorkerMemory::cached_programs);
+  gauge("shadelab_worker_cached_meshes", &worker::WorkerMemory::cached_meshes);
+}
+}  // namespace
+
 std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
   std::lock_guard lock(mutex_);
   std::ostringstream out;
@@ -51,6 +66,7 @@ std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
       << "# TYPE shadelab_ready gauge\nshadelab_ready " << (ready ? 1 : 0) << "\n"
       << "# TYPE shadelab_workers gauge\nshadelab_workers " << pool.workers << "\n"
       << "# TYPE shadelab_workers_ready gauge\nshadelab_workers_ready " << pool.workers_ready << "\n";
+  render_worker_memory(out, pool.memory);
   return out.str();
 }
 

@@ -192,6 +192,8 @@ Expected<Renderer> Renderer::create(const egl::ContextOptions& options) {
 
 const egl::ContextInfo& Renderer::context_info() const { return state_->context.info(); }
 
+Renderer::CacheSizes Renderer::cache_sizes() const { return {state_->programs.size(), state_->meshes.size()}; }
+
 Expected<CompileReport> Renderer::compile(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment) {
   const auto start = Clock::now();
   auto built = state_->build(vertex, fragment);

@@ -33,6 +33,12 @@ class Renderer {
 
   const egl::ContextInfo& context_info() const;
 
+  // What the renderer keeps warm between jobs, for /metrics: at most 32 programs and 8 meshes.
+  struct CacheSizes {
+    std::size_t programs = 0, meshes = 0;
+  };
+  CacheSizes cache_sizes() const;
+
   // Unwraps, compiles, links and reflects; renders nothing.
   Expected<CompileReport> compile(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment);
   // Renders request.frames frames of `mesh`, handing each to `sink` as soon as it is read back.

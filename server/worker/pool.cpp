@@ -134,6 +134,8 @@ struct WorkerPool::Slot {
   std::atomic<pid_t> pid{-1};        // read by worker_pids() on other threads
   std::atomic<bool> reported_ready{false};  // the worker holds a context and said so
   bool started_once = false;                // later starts are replacements: they warm up after ready
+  // The caches the worker's last answer reported (worker_main's caches()); a new worker starts at 0.
+  std::atomic<std::uint64_t> reference_cache_bytes{0}, cached_programs{0}, cached_meshes{0};
   int fd = -1;
   bool cgroup_capped = false;
   std::thread thread;
@@ -184,6 +186,7 @@ struct WorkerPool::Slot {
   void forget() {
     ::close(fd);
     reported_ready = false;
+    reference_cache_bytes = cached_programs = cached_meshes = 0;
     pid = -1;
     fd = -1;
   }
@@ -273,6 +276,10 @@ struct WorkerPool::Slot {
           budget = PhaseBudget(text_field(in.header, "phase", "render"), c.render_deadline, pid, c.wall_clock_factor);
           continue;
         }
+        const auto& caches = in.header.is_object() && in.header.contains("caches") ? in.header["caches"] : nlohmann::json();
+        reference_cache_bytes = count_field(caches, "referenceBytes");
+        cached_programs = count_field(caches, "programs");
+        cached_meshes = count_field(caches, "meshes");
         result.answered = true;
         result.answer = std::move(in);
         return result;
@@ -397,8 +404,15 @@ bool WorkerPool::ready() const {
 PoolStats WorkerPool::stats() const {
   std::lock_guard lock(mutex_);
   size_t ready = 0;
-  for (const auto& slot : slots_) ready += slot->reported_ready ? 1 : 0;
-  return {queue_.size(), crashes_.load(), timeouts_.load(), restarts_.load(), out_of_memory_.load(), ready, slots_.size()};
+  std::vector<WorkerMemory> memory;
+  for (const auto& slot : slots_) {
+    ready += slot->reported_ready ? 1 : 0;
+    const pid_t pid = slot->pid;
+    memory.push_back({slot->index, pid > 0 ? resident_bytes(pid) : 0, slot->reference_cache_bytes, slot->cached_programs,
+                      slot->cached_meshes});
+  }
+  return {queue_.size(), crashes_.load(), timeouts_.load(), restarts_.load(), out_of_memory_.load(), ready, slots_.size(),
+          std::move(memory)};
 }
 
 std::string WorkerPool::renderer() const {

@@ -54,11 +54,19 @@ struct JobResult {
   double worker_ms = 0;   // in the worker, from hand-over to result
 };
 
+// One worker's memory as the pool last saw it: its resident set now, and the caches its last
+// answer reported.
+struct WorkerMemory {
+  int worker = 0;  // the slot: 0 .. workers - 1 (a replacement keeps its slot)
+  std::uint64_t resident_bytes = 0, reference_cache_bytes = 0, cached_programs = 0, cached_meshes = 0;
+};
+
 struct PoolStats {
   size_t queue_depth = 0;
   std::uint64_t crashes = 0, timeouts = 0, restarts = 0, out_of_memory = 0;
   size_t workers_ready = 0;  // holding a context and waiting for or running a job
   size_t workers = 0;        // configured: the pool is whole when every one is ready
+  std::vector<WorkerMemory> memory;  // one per slot
 };
 
 class WorkerPool {

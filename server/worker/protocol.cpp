@@ -190,4 +190,10 @@ bool flag_field(const nlohmann::json& header, const char* key) {
   return it != header.end() && it->is_boolean() && it->get<bool>();
 }
 
+std::uint64_t count_field(const nlohmann::json& header, const char* key) {
+  if (!header.is_object()) return 0;
+  const auto it = header.find(key);
+  return it != header.end() && it->is_number_unsigned() ? it->get<std::uint64_t>() : 0;
+}
+
 }  // namespace shadelab::worker

@@ -50,6 +50,8 @@ Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, con
 // there, where json::value() would throw.
 std::string text_field(const nlohmann::json& header, const char* key, std::string fallback = {});
 bool flag_field(const nlohmann::json& header, const char* key);
+// A count: 0 unless the key holds a non-negative integer.
+std::uint64_t count_field(const nlohmann::json& header, const char* key);
 
 inline constexpr size_t kMaxHeaderBytes = 16u << 20;
 inline constexpr size_t kMaxPayloadBytes = 512u << 20;

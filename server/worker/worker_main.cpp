@@ -97,11 +97,18 @@ class Worker {
       if (status != ReadStatus::ok) continue;
       Message out = handle(in);
       out.header["event"] = "result";
+      out.header["caches"] = caches();
       if (!write_message(fd_, out)) return;
     }
   }
 
  private:
+  // What this worker keeps between jobs, sent with every result for the server's /metrics.
+  nlohmann::json caches() const {
+    const auto sizes = renderer_.cache_sizes();
+    return {{"programs", sizes.programs}, {"meshes", sizes.meshes}, {"referenceBytes", grading_.reference_cache_bytes()}};
+  }
+
   template <class Result>
   static Message answer_or_error(Expected<Result> r) { return r ? answer(*r) : answer(r.error()); }
 
