@@ -226,6 +226,15 @@ TEST(RenderTest, FloatTargetKeepsValuesBeyondOneAndNan) {
   std::memcpy(px, decoded.row(1), sizeof px);
   EXPECT_EQ(px[0], 2.5f);
   EXPECT_TRUE(std::isnan(px[2]));
+  // Every float of every pixel, bit for bit (the NaN's payload too), in the same row order.
+  EXPECT_EQ(decoded.type, image::PixelType::f32);
+  EXPECT_TRUE(decoded.bytes == r->frames[0].bytes);
+}
+
+TEST(RenderTest, ExrEncodingRefusesAnEightBitImage) {
+  const auto exr = image::encode_exr(image::Image::blank(4, 3, image::PixelType::u8));
+  ASSERT_FALSE(exr);
+  EXPECT_EQ(exr.error().code, ErrorCode::io_error);
 }
 
 TEST(RenderTest, FlatVaryingsTakeTheLastCornerOfEachTriangle) {

@@ -15,7 +15,7 @@ build_packages=(
   # headless GL: EGL + GLES headers, Mesa's EGL and llvmpipe (the CPU device)
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   # libraries
-  libglm-dev libopenimageio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
+  libglm-dev libopenexr-dev libopencolorio-dev nlohmann-json3-dev libassimp-dev libcli11-dev
   libcpp-httplib-dev libssl-dev zlib1g-dev libbrotli-dev libzip-dev
   # the floor benchmark writes its PNG with libpng directly (bench/floor_bench.cpp)
   libpng-dev
@@ -29,6 +29,8 @@ build_packages=(
   libcairo2-dev fonts-dejavu-core
 )
 test_packages=(
+  # the tests and benchmarks read ShadeLab's PNG and EXR outputs back with OpenImageIO
+  libopenimageio-dev
   # the Kubernetes manifests' test (YAML)
   libyaml-cpp-dev
   # the local cluster and its tests: nginx in front of the replicas, Redis behind them

@@ -17,7 +17,7 @@
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
 #include "cli/submission_files.h"
-#include <OpenImageIO/strutil.h>
+#include "core/base64.h"
 #include "grade/report.h"
 
 namespace shadelab::cli {
@@ -72,7 +72,7 @@ json graded_test(const AutogradeFlags& f, const std::string& checkpoint, const s
   test["output"] = "<pre>" + html_escape(test["output"].get<std::string>()) +
                    "</pre><p>Where your frames differ from the reference (brighter: further off):</p>"
                    "<img alt=\"difference heat map\" style=\"max-width:100%\" src=\"data:image/png;base64," +
-                   OIIO::Strutil::base64_encode(png) + "\">";
+                   base64_encode(png) + "\">";
   return test;
 }
 

@@ -1,6 +1,5 @@
 // POST /api/grade: a submission against a checkpoint or a custom reference, through a worker.
-#include <OpenImageIO/strutil.h>
-
+#include "core/base64.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -43,7 +42,7 @@ void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res)
   }
   if (format == "gradescope") return send_json(res, 200, grade::to_gradescope(graded.report, seconds));
   json body = grade::to_json(graded.report);
-  if (!graded.heatmap_png.empty()) body["heatmap"] = OIIO::Strutil::base64_encode(graded.heatmap_png);
+  if (!graded.heatmap_png.empty()) body["heatmap"] = base64_encode(graded.heatmap_png);
   send_json(res, 200, body);
 }
 

@@ -1,6 +1,5 @@
 // POST/GET /api/render and POST /api/compile: the homework's spinning mesh, through a worker.
-#include <OpenImageIO/strutil.h>
-
+#include "core/base64.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -36,7 +35,7 @@ std::vector<std::string> warnings_of(const ParsedJob& parsed, const worker::Rend
 std::string json_body(const worker::RenderResult& r, const std::vector<std::string>& warnings, const std::string& renderer, double queue_ms) {
   json constant = json::array(), frames = json::array();
   for (const auto& c : r.constant_frames) constant.push_back({{"frame", c.frame}, {"rgba", c.rgba}});
-  for (const auto& f : r.frames) frames.push_back({{"name", f.name}, {"data", OIIO::Strutil::base64_encode(f.bytes)}});
+  for (const auto& f : r.frames) frames.push_back({{"name", f.name}, {"data", base64_encode(f.bytes)}});
   json timings = worker::to_json(r.timings);
   timings["queue"] = queue_ms;
   return json_text({{"renderer", renderer},
@@ -47,7 +46,7 @@ std::string json_body(const worker::RenderResult& r, const std::vector<std::stri
                     {"attributes", worker::variables_json(r.attributes)},
                     {"uniforms", worker::variables_json(r.uniforms)},
                     {"timings", timings},
-                    {"images", {{"grid", OIIO::Strutil::base64_encode(r.body)}, {"frames", frames}}}},
+                    {"images", {{"grid", base64_encode(r.body)}, {"frames", frames}}}},
                    -1);
 }
 

@@ -3,11 +3,10 @@
 // in headers: X-ShadeLab-Passes / -Features / -Framing and Server-Timing.
 #include "http/scene_routes.h"
 
-#include <OpenImageIO/strutil.h>
-
 #include <cstdio>
 #include <set>
 
+#include "core/base64.h"
 #include "core/embedded_files.h"
 #include "core/number_list.h"
 #include "http/route_context.h"
@@ -115,7 +114,7 @@ void render_scene(RouteContext& c, const httplib::Request& req, httplib::Respons
     report["renderer"] = c.pool.renderer();
     report["queueMs"] = answered->queue_ms;
     report["encodeMs"] = r.encode_ms;
-    report["image"] = OIIO::Strutil::base64_encode(r.png);
+    report["image"] = base64_encode(r.png);
     response.content_type = "application/json";
     response.body = json_text(report);
   } else {

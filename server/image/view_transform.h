@@ -1,6 +1,7 @@
 #pragma once
 // Blender's Filmic view transform, baked from Blender's own OCIO config (Debian's blender-data)
-// through OpenImageIO's OpenColorIO binding, into two tables the GPU applies per pixel:
+// through OpenColorIO (linked directly: OpenImageIO's binding cost every process its 267
+// libraries at start, ~250 ms), into two tables the GPU applies per pixel:
 //
 // | Step | Table                 | Domain                                         | Size       |
 // |------|-----------------------|------------------------------------------------|------------|

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include <OpenImageIO/strutil.h>
+#include "core/base64.h"
 
 namespace shadelab::sheet {
 
@@ -51,7 +51,7 @@ void checkpoint(std::ostringstream& out, const CheckpointSection& s, size_t inde
   if (s.grid_png.empty())
     out << "<p class=\"note\">(no grid: the shaders did not render)</p>\n";
   else
-    out << "<img alt=\"3x3 grid of " << escape(s.checkpoint) << "\" src=\"data:image/png;base64," << OIIO::Strutil::base64_encode(s.grid_png) << "\">\n";
+    out << "<img alt=\"3x3 grid of " << escape(s.checkpoint) << "\" src=\"data:image/png;base64," << base64_encode(s.grid_png) << "\">\n";
   for (const auto& listing : s.code) code(out, listing);
   out << "</section>\n";
 }
@@ -66,7 +66,7 @@ void scene(std::ostringstream& out, const SceneSection& s) {
   const bool all_in = !s.framing.empty() && std::all_of(s.framing.begin(), s.framing.end(), [](const auto& f) { return f.fully_visible || !f.drawn; });
   out << " (lens " << s.lens_mm << " mm, " << s.width << " x " << s.height << ")</h2>\n<p class=\"" << (all_in ? "pass" : "fail") << "\">"
       << escape(framing_verdict(s)) << "</p>\n<div class=\"render\" style=\"overflow:hidden\"><img alt=\"" << escape(s.name)
-      << "\" src=\"data:image/png;base64," << OIIO::Strutil::base64_encode(s.png) << "\">";
+      << "\" src=\"data:image/png;base64," << base64_encode(s.png) << "\">";
   char style[200];
   for (const auto& f : s.framing) {
     if (!f.box || s.width <= 0 || s.height <= 0) continue;

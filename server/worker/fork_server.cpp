@@ -165,10 +165,10 @@ void preload_gl_drivers() {
   }
 }
 
-// Threads that libraries start as they load, before main: OpenImageIO pulls in OpenVDB, which
-// pulls in log4cplus, whose constructor starts a pool of 4 (on this machine) that idle in a
-// condition wait for the whole run and hold no lock that a fork would copy. What a fork must not
-// copy is a thread of ours (a pool slot, an HTTP handler) in the middle of its work.
+// Threads that libraries may start as they load, before main (OpenImageIO's OpenVDB started a
+// log4cplus pool of 4 when the binary still linked it); such threads idle for the whole run and
+// hold no lock a fork would copy. What a fork must not copy is a thread of ours (a pool slot, an
+// HTTP handler) in the middle of its work.
 const int threads_at_load = thread_count();
 
 Error fork_server_error(const std::string& what) { return make_error(ErrorCode::not_ready, "the fork server " + what); }

@@ -1,9 +1,8 @@
 #pragma once
 // A fork server (Android's zygote, Chromium's zygote): a process forked from the server before
 // the server starts any thread, with every library already loaded, which forks render workers on
-// request. A worker started from it skips exec and the dynamic loader (OpenImageIO alone pulls
-// in 267 libraries: ~200 ms of a cold start on the 2-core machine), so replacing a worker killed
-// by a hostile shader costs a fork and an EGL context.
+// request. A worker started from it skips exec, the dynamic loader and Mesa's driver load, so
+// replacing a worker killed by a hostile shader costs a fork and an EGL context.
 //
 // The workers stay the server's own children: each is forked through a short-lived intermediate
 // that exits at once, and the server is their subreaper (PR_SET_CHILD_SUBREAPER), so the pool
