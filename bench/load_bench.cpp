@@ -57,7 +57,11 @@ std::vector<std::pair<pid_t, long>> workers_of(pid_t server) {
     if (name == "shadelab-forks") continue;
     std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
     std::string text((std::istreambuf_iterator<char>(stat)), {});
-    std::istringstream fields(text.substr(text.rfind(')') + 2));
+    // A child listed a moment ago may be gone (a worker's short-lived fork intermediate, a killed
+    // worker reaped): its stat reads empty.
+    const size_t name_end = text.rfind(')');
+    if (name_end == std::string::npos || name_end + 2 > text.size()) continue;
+    std::istringstream fields(text.substr(name_end + 2));
     std::string field;
     long utime = 0, stime = 0;
     for (int i = 3; i <= 13; ++i) fields >> field;
