@@ -4,9 +4,10 @@
 #include <cmath>
 #include <cstring>
 
+#include "gl/mesh_buffer.h"
+#include "image/encode.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
-#include "image/encode.h"
 #include "support/test_support.h"
 
 using namespace shadelab;
@@ -341,4 +342,27 @@ TEST(RenderTest, AttributesThePageDoesNotFeedAreWarnedAbout) {
   auto r = render_frames(request, bunny());
   ASSERT_TRUE(r) << r.error().format();
   EXPECT_TRUE(has_warning(r->report, "aTexCoord"));
+}
+
+// gl/mesh_buffer.h: the index buffer draws exactly the page's corner list.
+TEST(MeshBufferTest, IndexedCornersRebuildTheCornerListAndShareOnlyIdenticalVertices) {
+  // Two triangles of a quad sharing an edge, then a corner that differs from the first only in
+  // the sign of a zero normal component: a different input to a shader, so a different vertex.
+  const std::vector<float> corners = {0, 0, 0, 0, 0, 1,  1, 0, 0, 0, 0, 1,  1, 1, 0, 0, 0, 1,
+                                      0, 0, 0, 0, 0, 1,  1, 1, 0, 0, 0, 1,  0, 1, 0, 0, 0, 1,
+                                      0, 0, 0, -0.0f, 0, 1,  1, 0, 0, 0, 0, 1,  0, 1, 0, 0, 0, 1};
+  const auto indexed = gl::index_corners(corners);
+  EXPECT_EQ(indexed.vertices.size() / 6, 5u);
+  EXPECT_EQ(indexed.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 4, 1, 3}));
+  std::vector<float> rebuilt;
+  for (auto i : indexed.indices) rebuilt.insert(rebuilt.end(), indexed.vertices.begin() + i * 6, indexed.vertices.begin() + i * 6 + 6);
+  ASSERT_EQ(rebuilt.size(), corners.size());
+  EXPECT_EQ(std::memcmp(rebuilt.data(), corners.data(), corners.size() * sizeof(float)), 0);
+}
+
+TEST(MeshBufferTest, AClosedMeshStoresEachVertexOnce) {
+  const auto bunny_corners = scene::builtin_mesh("bunny")->interleaved();
+  const auto indexed = gl::index_corners(bunny_corners);
+  EXPECT_EQ(indexed.indices.size(), bunny_corners.size() / 6);
+  EXPECT_LT(indexed.vertices.size() * 3, bunny_corners.size()) << "the bunny shares most corners";
 }
