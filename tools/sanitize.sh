@@ -17,7 +17,7 @@ case $kind in
     build=build-asan
     flags=(-DSHADELAB_SANITIZE=ON)
     labels=()
-    # Leaks are checked by the fuzz targets (tools/fuzz.sh); here Mesa's and OpenImageIO's
+    # Leaks are checked by the fuzz targets (tools/fuzz.sh); here Mesa's and (in the tests) OpenImageIO's
     # process-lifetime allocations (caches, the DRI driver's screen) would report at exit.
     export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1:detect_stack_use_after_return=0
     export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:suppressions=$root/tools/sanitizers/ubsan.supp
