@@ -322,7 +322,13 @@ TEST_F(HttpTest, HostileShadersAreStoppedWhileNormalRequestsGoOn) {
   auto normal = post_json("/api/render", {{"preset", "smooth"}, {"width", 32}, {"height", 24}, {"frames", 1}});
   ASSERT_TRUE(normal);
   EXPECT_EQ(normal->status, 200) << normal->body;
-  EXPECT_LT(std::chrono::steady_clock::now() - normal_start, std::chrono::seconds(12));
+  // It waits for one hostile job's worker at most: that job's deadline is CPU time, capped on the
+  // wall clock at wall_clock_factor deadlines, which is what a machine busy with other work
+  // stretches it to (measured: 13.5 s beside a second full test suite). Behind both hostile jobs it
+  // would wait twice that.
+  const auto config = testkit::test_config();
+  const auto one_worker_freed = config.pool.wall_clock_factor * std::max(config.pool.compile_deadline, config.pool.render_deadline);
+  EXPECT_LT(std::chrono::steady_clock::now() - normal_start, one_worker_freed + std::chrono::seconds(2));
 
   const auto loop = hostile_loop.get();
   expect_problem(loop, 422, "render_timeout");

@@ -5,9 +5,12 @@
 
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <thread>
 
@@ -35,8 +38,21 @@ class RedisServer {
                "--logfile", log_.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
+    // Ready when it accepts a connection: redis creates the socket file at bind(), before
+    // listen(), and a connect in between is refused (seen on a loaded machine).
     const auto deadline = Clock::now() + 10s;
-    while (!fs::exists(socket_) && Clock::now() < deadline) std::this_thread::sleep_for(10ms);
+    while (!accepts_connections() && Clock::now() < deadline) std::this_thread::sleep_for(10ms);
+  }
+  bool accepts_connections() const {
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    if (socket_.size() >= sizeof address.sun_path) return false;
+    std::memcpy(address.sun_path, socket_.c_str(), socket_.size() + 1);
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) return false;
+    const bool connected = ::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
+    ::close(fd);
+    return connected;
   }
   void stop() {
     if (pid_ <= 0) return;
