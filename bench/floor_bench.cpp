@@ -26,6 +26,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "fresh_shader.h"
 #include "render/homework_contract.h"
 #include "render/presets.h"
 #include "scene/mesh.h"
@@ -230,8 +231,7 @@ int main(int argc, char** argv) {
   const unsigned base = std::random_device{}() % 100000000u;
   std::vector<Phases> runs;
   for (int i = -2; i < jobs; ++i) {  // two warm-up jobs: the context's first draws, the vertex shader's JIT
-    std::string fresh = fragment;
-    fresh.insert(fresh.find(entry) + entry.size(), "\n    if (gl_FragCoord.x < -" + std::to_string(base + static_cast<unsigned>(i + 2)) + ".0) discard;");
+    const std::string fresh = shadelab::bench::with_fresh_branch(fragment, base + static_cast<unsigned>(i + 2));
     const Phases p = one_job(vertex, fresh, vao, static_cast<GLsizei>(bunny->positions.size()), fb);
     if (i >= 0) runs.push_back(p);
   }

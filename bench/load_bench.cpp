@@ -27,6 +27,7 @@
 #include <thread>
 #include <vector>
 
+#include "fresh_shader.h"
 #include "render/presets.h"
 
 namespace {
@@ -39,12 +40,8 @@ double percentile(std::vector<double> v, double p) {
 }
 
 std::string fresh_job(unsigned serial) {
-  auto p = *shadelab::render::find_preset("specular");
-  // Mesa caches programs by IR, so only a real code change makes a fresh shader (see render_bench).
-  const std::string from = "void main(void) {";
-  p.fragment.text.insert(p.fragment.text.find(from) + from.size(),
-                         "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;");
-  return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"mesh", "bunny"}}.dump();
+  const auto p = *shadelab::render::find_preset("specular");
+  return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", shadelab::bench::with_fresh_branch(p.fragment.text, serial)}, {"mesh", "bunny"}}.dump();
 }
 // The render workers among `server`'s children (not the fork server), with their CPU ticks.
 std::vector<std::pair<pid_t, long>> workers_of(pid_t server) {

@@ -17,6 +17,7 @@
 #include "image/grid_png_encoder.h"
 #include "render/presets.h"
 #include "bench_renderer.h"
+#include "fresh_shader.h"
 #include "render/renderer.h"
 
 namespace {
@@ -34,13 +35,8 @@ const scene::Mesh& bunny() {
 render::RenderRequest canonical(int msaa, int serial) {
   const auto preset = *render::find_preset("specular");
   render::RenderRequest r{.vertex = preset.vertex, .fragment = preset.fragment, .msaa = msaa};
-  // Mesa caches compiled shaders by their IR, in memory and on disk across processes, so a
-  // comment would not make the shader new. A branch that is never taken, on a constant unique to
-  // this process and iteration, does; it changes no pixel.
-  static const unsigned base = std::random_device{}() % 1000000u;
-  const std::string from = "void main(void) {";
-  const auto at = r.fragment.text.find(from) + from.size();
-  r.fragment.text.insert(at, "\n    if (gl_FragCoord.x < -" + std::to_string(base * 1000u + static_cast<unsigned>(serial)) + ".0) discard;");
+  static const unsigned base = std::random_device{}() % 1000000u;  // unique to this process
+  r.fragment.text = bench::with_fresh_branch(r.fragment.text, base * 1000u + static_cast<unsigned>(serial));
   return r;
 }
 

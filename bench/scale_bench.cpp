@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bench_renderer.h"
+#include "fresh_shader.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
 #include "render/presets.h"
@@ -36,8 +37,7 @@ render::RenderRequest fresh_specular(int width, int height) {
   const auto preset = *render::find_preset("specular");
   render::RenderRequest r{.vertex = preset.vertex, .fragment = preset.fragment, .width = width, .height = height};
   static unsigned serial = std::random_device{}() % 100000000u;
-  const std::string from = "void main(void) {";
-  r.fragment.text.insert(r.fragment.text.find(from) + from.size(), "\n    if (gl_FragCoord.x < -" + std::to_string(++serial) + ".0) discard;");
+  r.fragment.text = bench::with_fresh_branch(r.fragment.text, ++serial);
   return r;
 }
 

@@ -34,6 +34,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fresh_shader.h"
 #include "render/presets.h"
 #include "support/local_cluster.h"
 #include "support/raw_socket.h"
@@ -52,11 +53,8 @@ double percentile(std::vector<double> v, double p) {
 
 // The specular preset with a line no earlier request compiled (Mesa caches programs by their IR).
 std::pair<std::string, std::string> fresh_shaders(unsigned serial, const std::string& extra = "") {
-  auto p = *shadelab::render::find_preset("specular");
-  const std::string from = "void main(void) {";
-  p.fragment.text.insert(p.fragment.text.find(from) + from.size(),
-                         "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;" + extra);
-  return {p.vertex.text, p.fragment.text};
+  const auto p = *shadelab::render::find_preset("specular");
+  return {p.vertex.text, shadelab::bench::with_fresh_branch(p.fragment.text, serial, extra)};
 }
 
 // Memory of a process and its children (the workers), from /proc/PID/smaps_rollup: the sum of

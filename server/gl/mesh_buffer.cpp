@@ -67,7 +67,6 @@ MeshBuffer MeshBuffer::upload(std::span<const float> interleaved) {
                GL_STATIC_DRAW);
   glBindVertexArray(0);
   m.corner_count_ = static_cast<int>(indexed.indices.size());
-  m.vertex_count_ = static_cast<int>(indexed.vertices.size() / kFloatsPerVertex);
   return m;
 }
 

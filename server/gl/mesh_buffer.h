@@ -28,15 +28,13 @@ class MeshBuffer {
   // `interleaved` holds 6 floats per corner, 3 corners per triangle.
   static MeshBuffer upload(std::span<const float> interleaved);
 
-  int corner_count() const { return corner_count_; }
-  int vertex_count() const { return vertex_count_; }  // distinct vertices stored
   // Points the given attribute locations (-1: not used by the program) at the data and draws.
   void draw(int position_location, int normal_location) const;
 
  private:
   VertexArrayName vao_;
   BufferName vbo_, ibo_;
-  int corner_count_ = 0, vertex_count_ = 0;
+  int corner_count_ = 0;  // 3 per triangle
 };
 
 }  // namespace shadelab::gl
