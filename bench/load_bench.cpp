@@ -4,6 +4,9 @@
 //   - process start to the first 200 from /readyz;
 //   - the canonical grid job (bunny, specular, 9 frames 640 x 480, 4x MSAA), each request a shader
 //     the workers have not seen, with 1, 2 and 8 concurrent clients: p50, p99, throughput;
+//   - the same job against the floor (bench/floor_job.h) run in this process, job by job in
+//     alternating order, so both see the same machine: both p50s and the median of the pairs'
+//     ratios (issue 15's "0.9x the floor, measured in the same run");
 //   - a cache hit (the same GET twice): p50, p99;
 //   - the homework's two-objects scene, a fresh colour each request (no cache hit): p50, p99;
 //   - a worker SIGKILLed in the middle of a job: from the kill to /readyz counting every worker
@@ -27,6 +30,7 @@
 #include <thread>
 #include <vector>
 
+#include "floor_job.h"
 #include "fresh_shader.h"
 #include "render/presets.h"
 
@@ -44,6 +48,38 @@ std::string fresh_job(unsigned serial) {
   return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", shadelab::bench::with_fresh_branch(p.fragment.text, serial)}, {"mesh", "bunny"}}.dump();
 }
 // The render workers among `server`'s children (not the fork server), with their CPU ticks.
+// Floor and service jobs alternate (floor first in even pairs, the service first in odd ones), each
+// with a shader neither has seen; the ratio is taken per pair, so a slow spell of the machine
+// weighs on both sides of it.
+void against_the_floor(int port, int pairs, std::atomic<unsigned>& serial) {
+  shadelab::bench::FloorJob floor;
+  httplib::Client client("127.0.0.1", port);
+  client.set_read_timeout(120, 0);
+  for (int i = 0; i < 2; ++i) floor.run(serial++);  // the context's first draws, the vertex shader's JIT
+  std::vector<double> floors, services, ratios;
+  int failures = 0;
+  for (int i = 0; i < pairs; ++i) {
+    double floor_ms = 0, service_ms = 0;
+    const auto service_job = [&] {
+      const std::string body = fresh_job(serial++);
+      const auto t = Clock::now();
+      auto r = client.Post("/api/render", body, "application/json");
+      service_ms = ms(Clock::now() - t);
+      if (!r || r->status != 200) ++failures;
+    };
+    if (i % 2 == 1) service_job();
+    floor_ms = floor.run(serial++).total;
+    if (i % 2 == 0) service_job();
+    floors.push_back(floor_ms);
+    services.push_back(service_ms);
+    ratios.push_back(service_ms / floor_ms);
+  }
+  std::printf("\nagainst the floor, %d pairs: floor p50 %.0f ms, service p50 %.0f ms, service / floor per pair: p50 %.2f (p25 %.2f, p75 %.2f)%s\n",
+              pairs, percentile(floors, 0.5), percentile(services, 0.5), percentile(ratios, 0.5), percentile(ratios, 0.25),
+              percentile(ratios, 0.75), failures ? " (failures!)" : "");
+  std::fflush(stdout);
+}
+
 std::vector<std::pair<pid_t, long>> workers_of(pid_t server) {
   std::vector<std::pair<pid_t, long>> out;
   std::ifstream children("/proc/" + std::to_string(server) + "/task/" + std::to_string(server) + "/children");
@@ -168,6 +204,8 @@ int main(int argc, char** argv) {
     std::printf("| %d | %d | %.0f | %.0f | %.2f |%s\n", clients, per_level, percentile(latencies, 0.5),
                 percentile(latencies, 0.99), per_level / seconds, failures ? " (failures!)" : "");
   }
+
+  against_the_floor(port, 2 * per_level, serial);
 
   const char* url = "/api/render?preset=specular&mesh=bunny";
   client.Get(url);  // fill the cache
