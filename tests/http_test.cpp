@@ -404,6 +404,35 @@ TEST(HttpPoolTest, AWorkerKilledMidJobFailsThatJobAndThePoolRecovers) {
   EXPECT_NE(server.service->pool().worker_pids().at(0), pid);
 }
 
+// One worker renders A fitted, B fitted, then A fitted again: the worker keeps the last fitted
+// mesh between jobs, and must fit B afresh and know A again. The prefix only names frame files,
+// so the third request is a new job (no response-cache hit) whose grid must equal the first.
+TEST(HttpPoolTest, AWorkerFitsEachUploadedMeshItRendersAndKnowsItAgain) {
+  auto config = testkit::test_config();
+  config.pool.workers = 1;
+  testkit::RunningService server(config);
+  ASSERT_TRUE(server.ok()) << server.failure;
+  const auto upload = [&](const std::string& obj) {
+    auto up = server.client().Post("/api/meshes?filename=m.obj", obj, "application/octet-stream");
+    EXPECT_TRUE(up && up->status == 201) << (up ? up->body : "no response");
+    return up ? json::parse(up->body).value("id", "") : "";
+  };
+  const std::string a = upload("v -1 0 0\nv 1 0 0\nv 0 2 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
+  const std::string b = upload("v -2 0 -1\nv 2 0 -1\nv 0 0.5 1\nf 1 2 3\n");
+  const auto grid = [&](const std::string& mesh, const std::string& prefix) {
+    auto r = server.client().Post("/api/render", json{{"preset", "diffuse"}, {"mesh", mesh}, {"fit", true}, {"prefix", prefix},
+                                                      {"width", 64}, {"height", 48}, {"frames", 3}}.dump(), "application/json");
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no response");
+    EXPECT_NE(r ? r->get_header_value("X-ShadeLab-Cache") : "", "hit");
+    return r ? r->body : "";
+  };
+  const std::string first_a = grid(a, "a1");
+  const std::string then_b = grid(b, "b");
+  const std::string again_a = grid(a, "a2");
+  EXPECT_NE(first_a, then_b) << "B was drawn as the A fitted before it";
+  EXPECT_EQ(first_a, again_a) << "A fitted again differs from A fitted first";
+}
+
 TEST(HttpPoolTest, AFullQueueAnswers503WithRetryAfter) {
   auto config = testkit::test_config();
   config.pool.workers = 1;

@@ -366,3 +366,31 @@ TEST(MeshBufferTest, AClosedMeshStoresEachVertexOnce) {
   EXPECT_EQ(indexed.indices.size(), bunny_corners.size() / 6);
   EXPECT_LT(indexed.vertices.size() * 3, bunny_corners.size()) << "the bunny shares most corners";
 }
+
+TEST(MeshBufferTest, TheCacheKnowsAMeshAgainAndTellsApartMeshesThatDifferInOneBit) {
+  auto request = testkit::preset_request("specular");
+  request.width = 64;
+  request.height = 48;
+  request.frames = 1;
+  const auto upload_ms = [&](const scene::Mesh& mesh) {  // 0 exactly when the buffer came from the cache
+    auto report = testkit::shared_renderer().render(request, mesh, [](int, const image::Image&, bool) {});
+    EXPECT_TRUE(report) << report.error().format();
+    return report ? report->times.upload_ms : -1.0;
+  };
+  const auto flip_lowest_bit = [](float& f) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    bits ^= 1u;
+    std::memcpy(&f, &bits, sizeof bits);
+  };
+  upload_ms(bunny());
+  EXPECT_EQ(upload_ms(bunny()), 0.0) << "the same mesh again is a cache hit";
+  scene::Mesh normal_differs = bunny();
+  flip_lowest_bit(normal_differs.normals[1234].y);
+  EXPECT_GT(upload_ms(normal_differs), 0.0) << "one bit of one normal makes another mesh";
+  EXPECT_EQ(upload_ms(normal_differs), 0.0);
+  scene::Mesh position_differs = bunny();
+  flip_lowest_bit(position_differs.positions.back().x);
+  EXPECT_GT(upload_ms(position_differs), 0.0) << "one bit of one position makes another mesh";
+  EXPECT_EQ(upload_ms(bunny()), 0.0) << "the first mesh is still cached";
+}
