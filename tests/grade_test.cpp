@@ -4,8 +4,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/lru_cache.h"
 #include "grade/reference_cache.h"
 #include "render/presets.h"
+#include "scene/mesh.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
 
@@ -214,6 +216,11 @@ TEST_F(GradeTest, MetricsReportWhatEachWorkerKeeps) {
   ASSERT_EQ(programs.size(), 2u);
   EXPECT_GE(std::max(programs[0], programs[1]), 1.0);
   EXPECT_LE(std::max(programs[0], programs[1]), 32.0);
+  const auto mesh_bytes = values("shadelab_worker_cached_mesh_bytes");
+  ASSERT_EQ(mesh_bytes.size(), 2u);
+  const double bunny = double(scene::bytes_of(*scene::builtin_mesh("bunny")));
+  EXPECT_GT(std::max(mesh_bytes[0], mesh_bytes[1]), bunny) << "the parsed bunny and its buffers";
+  EXPECT_LE(std::max(mesh_bytes[0], mesh_bytes[1]), double((384u + 256u) << 20) + 2 * bunny);
 }
 
 // The reference cache keeps what fits its byte budget, the least recently used out first, so a
@@ -240,4 +247,29 @@ TEST(ReferenceCacheTest, EvictsTheLeastRecentlyUsedWithinItsBudget) {
   EXPECT_EQ(cache.find("huge"), nullptr);
   EXPECT_EQ(cache.bytes(), 300u);
   EXPECT_NE(cache.find("a"), nullptr);
+}
+
+// The caches a worker keeps between jobs: a count and a byte budget, the least recently used out
+// first; the entry just inserted stays even when it alone is over budget (its job is using it).
+TEST(LruCacheTest, EvictsTheLeastRecentlyUsedWithinItsCountAndBytes) {
+  LruCache<int> cache(3, 100);
+  cache.insert("a", 1, 10);
+  cache.insert("b", 2, 10);
+  cache.insert("c", 3, 10);
+  ASSERT_NE(cache.find("a"), nullptr);  // "a" is now the newest; "b" the oldest
+  EXPECT_EQ(cache.insert("d", 4, 10), 4);
+  EXPECT_EQ(cache.find("b"), nullptr) << "a fourth entry evicts the least recently used";
+  EXPECT_EQ(cache.size(), 3u);
+  EXPECT_EQ(cache.bytes(), 30u);
+  cache.insert("e", 5, 85);  // "c" goes for the count; then 20 + 85 > 100, so "a" goes for the bytes
+  EXPECT_EQ(cache.find("c"), nullptr);
+  EXPECT_EQ(cache.find("a"), nullptr);
+  EXPECT_EQ(cache.bytes(), 95u);
+  EXPECT_EQ(*cache.find("d"), 4);
+  EXPECT_EQ(cache.insert("huge", 6, 500), 6) << "kept for the job that inserted it";
+  EXPECT_EQ(cache.size(), 1u);
+  EXPECT_EQ(cache.bytes(), 500u);
+  cache.insert("f", 7, 10);
+  EXPECT_EQ(cache.find("huge"), nullptr) << "and out at the next insert";
+  EXPECT_EQ(cache.bytes(), 10u);
 }

@@ -67,6 +67,7 @@ MeshBuffer MeshBuffer::upload(std::span<const float> interleaved) {
                GL_STATIC_DRAW);
   glBindVertexArray(0);
   m.corner_count_ = static_cast<int>(indexed.indices.size());
+  m.bytes_ = indexed.vertices.size() * sizeof(float) + indexed.indices.size() * sizeof(std::uint32_t);
   return m;
 }
 

@@ -8,6 +8,7 @@
 // those of the page's glDrawArrays, but the driver shades a shared vertex once where its vertex
 // cache still holds it (a closed mesh shares each vertex among ~6 triangles). On llvmpipe that is
 // most of a large mesh's cost per frame (docs/performance.md, the triangle-count table).
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -30,11 +31,14 @@ class MeshBuffer {
 
   // Points the given attribute locations (-1: not used by the program) at the data and draws.
   void draw(int position_location, int normal_location) const;
+  // The vertex and index buffers' sizes.
+  std::size_t bytes() const { return bytes_; }
 
  private:
   VertexArrayName vao_;
   BufferName vbo_, ibo_;
   int corner_count_ = 0;  // 3 per triangle
+  std::size_t bytes_ = 0;
 };
 
 }  // namespace shadelab::gl

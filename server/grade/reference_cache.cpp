@@ -2,32 +2,12 @@
 
 namespace shadelab::grade {
 
-namespace {
-std::size_t bytes_of(const SharedFrames& frames) {
-  std::size_t n = 0;
-  for (const auto& f : frames) n += f->bytes.size();
-  return n;
-}
-}  // namespace
-
-const SharedFrames* ReferenceCache::find(const std::string& key) {
-  for (auto it = entries_.begin(); it != entries_.end(); ++it)
-    if (it->key == key) {
-      entries_.splice(entries_.begin(), entries_, it);
-      return &entries_.front().frames;
-    }
-  return nullptr;
-}
-
 void ReferenceCache::insert(std::string key, SharedFrames frames) {
-  const std::size_t size = bytes_of(frames);
-  if (size > max_bytes_) return;
-  while (!entries_.empty() && bytes_ + size > max_bytes_) {
-    bytes_ -= entries_.back().bytes;
-    entries_.pop_back();
-  }
-  entries_.push_front({std::move(key), std::move(frames), size});
-  bytes_ += size;
+  std::size_t size = 0;
+  for (const auto& f : frames) size += f->bytes.size();
+  // The grade holds these frames anyway; keeping an oversize set would empty the cache for it.
+  if (size > sets_.max_bytes()) return;
+  sets_.insert(std::move(key), std::move(frames), size);
 }
 
 }  // namespace shadelab::grade

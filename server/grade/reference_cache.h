@@ -3,9 +3,10 @@
 // (a class is graded checkpoint by checkpoint): least recently used out first, within a byte
 // budget, so a worker's memory does not grow with the checkpoints and sizes it has seen.
 #include <cstddef>
-#include <list>
+#include <limits>
 #include <string>
 
+#include "core/lru_cache.h"
 #include "grade/grader.h"
 
 namespace shadelab::grade {
@@ -16,20 +17,14 @@ class ReferenceCache {
   // mistakes, under two lights): ~133 MB. The default holds one checkpoint's sets at that size.
   static constexpr std::size_t kDefaultBytes = 160u << 20;
 
-  explicit ReferenceCache(std::size_t max_bytes = kDefaultBytes) : max_bytes_(max_bytes) {}
+  explicit ReferenceCache(std::size_t max_bytes = kDefaultBytes) : sets_(std::numeric_limits<std::size_t>::max(), max_bytes) {}
 
-  const SharedFrames* find(const std::string& key);  // nullptr when absent; a hit becomes the newest
+  const SharedFrames* find(const std::string& key) { return sets_.find(key); }  // a hit becomes the newest
   void insert(std::string key, SharedFrames frames);  // a set larger than the budget is not kept
-  std::size_t bytes() const { return bytes_; }
+  std::size_t bytes() const { return sets_.bytes(); }
 
  private:
-  struct Entry {
-    std::string key;
-    SharedFrames frames;
-    std::size_t bytes;
-  };
-  std::size_t max_bytes_, bytes_ = 0;
-  std::list<Entry> entries_;  // newest first
+  LruCache<SharedFrames> sets_;
 };
 
 }  // namespace shadelab::grade

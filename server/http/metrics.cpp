@@ -24,7 +24,8 @@ void Metrics::phase(const std::string& phase, double seconds) {
 
 namespace {
 // Per worker (label: its slot), what it holds: the resident set the kernel reports, the grade's
-// reference renders (bounded at 160 MiB) and the renderer's warm programs (32) and meshes (8).
+// reference renders (bounded at 160 MiB), the renderer's warm programs (32) and meshes (8), and
+// the bytes of the meshes it keeps: parsed (384 MiB), fitted (the last one) and uploaded (256 MiB).
 void render_worker_memory(std::ostringstream& out, const std::vector<worker::WorkerMemory>& memory) {
   const auto gauge = [&](const char* name, std::uint64_t worker::WorkerMemory::*field) {
     out << "# TYPE " << name << " gauge\n";
@@ -34,6 +35,7 @@ void render_worker_memory(std::ostringstream& out, const std::vector<worker::Wor
   gauge("shadelab_worker_reference_cache_bytes", &worker::WorkerMemory::reference_cache_bytes);
   gauge("shadelab_worker_cached_programs", &worker::WorkerMemory::cached_programs);
   gauge("shadelab_worker_cached_meshes", &worker::WorkerMemory::cached_meshes);
+  gauge("shadelab_worker_cached_mesh_bytes", &worker::WorkerMemory::cached_mesh_bytes);
 }
 }  // namespace
 

@@ -33,9 +33,10 @@ class Renderer {
 
   const egl::ContextInfo& context_info() const;
 
-  // What the renderer keeps warm between jobs, for /metrics: at most 32 programs and 8 meshes.
+  // What the renderer keeps warm between jobs, for /metrics: at most 32 programs, and 8 meshes'
+  // vertex and index buffers within 256 MiB.
   struct CacheSizes {
-    std::size_t programs = 0, meshes = 0;
+    std::size_t programs = 0, meshes = 0, mesh_bytes = 0;
   };
   CacheSizes cache_sizes() const;
 

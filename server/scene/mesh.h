@@ -1,6 +1,7 @@
 #pragma once
 // A triangle mesh as the homework page draws it: non-indexed, three corners per triangle in the
 // file's face order (so `flat` varyings take each triangle's last corner, as in the browser).
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -23,6 +24,9 @@ struct Mesh {
   // 6 floats per corner: position then normal, as gl::MeshBuffer takes them.
   std::vector<float> interleaved() const;
 };
+
+// The memory a mesh's positions and normals take.
+inline std::size_t bytes_of(const Mesh& mesh) { return (mesh.positions.size() + mesh.normals.size()) * sizeof(glm::vec3); }
 
 struct Bounds {
   glm::vec3 min{0.f}, max{0.f};

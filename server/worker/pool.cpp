@@ -135,7 +135,7 @@ struct WorkerPool::Slot {
   std::atomic<bool> reported_ready{false};  // the worker holds a context and said so
   bool started_once = false;                // later starts are replacements: they warm up after ready
   // The caches the worker's last answer reported (worker_main's caches()); a new worker starts at 0.
-  std::atomic<std::uint64_t> reference_cache_bytes{0}, cached_programs{0}, cached_meshes{0};
+  std::atomic<std::uint64_t> reference_cache_bytes{0}, cached_programs{0}, cached_meshes{0}, cached_mesh_bytes{0};
   int fd = -1;
   bool cgroup_capped = false;
   std::thread thread;
@@ -186,7 +186,7 @@ struct WorkerPool::Slot {
   void forget() {
     ::close(fd);
     reported_ready = false;
-    reference_cache_bytes = cached_programs = cached_meshes = 0;
+    reference_cache_bytes = cached_programs = cached_meshes = cached_mesh_bytes = 0;
     pid = -1;
     fd = -1;
   }
@@ -280,6 +280,7 @@ struct WorkerPool::Slot {
         reference_cache_bytes = count_field(caches, "referenceBytes");
         cached_programs = count_field(caches, "programs");
         cached_meshes = count_field(caches, "meshes");
+        cached_mesh_bytes = count_field(caches, "meshBytes");
         result.answered = true;
         result.answer = std::move(in);
         return result;
@@ -409,7 +410,7 @@ PoolStats WorkerPool::stats() const {
     ready += slot->reported_ready ? 1 : 0;
     const pid_t pid = slot->pid;
     memory.push_back({slot->index, pid > 0 ? resident_bytes(pid) : 0, slot->reference_cache_bytes, slot->cached_programs,
-                      slot->cached_meshes});
+                      slot->cached_meshes, slot->cached_mesh_bytes});
   }
   return {queue_.size(), crashes_.load(), timeouts_.load(), restarts_.load(), out_of_memory_.load(), ready, slots_.size(),
           std::move(memory)};

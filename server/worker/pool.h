@@ -59,6 +59,7 @@ struct JobResult {
 struct WorkerMemory {
   int worker = 0;  // the slot: 0 .. workers - 1 (a replacement keeps its slot)
   std::uint64_t resident_bytes = 0, reference_cache_bytes = 0, cached_programs = 0, cached_meshes = 0;
+  std::uint64_t cached_mesh_bytes = 0;  // parsed meshes and their vertex and index buffers
 };
 
 struct PoolStats {

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 
+#include "core/lru_cache.h"
 #include "grade/grade_session.h"
 #include "image/encode.h"
 #include "image/grid.h"
@@ -106,7 +107,9 @@ class Worker {
   // What this worker keeps between jobs, sent with every result for the server's /metrics.
   nlohmann::json caches() const {
     const auto sizes = renderer_.cache_sizes();
-    return {{"programs", sizes.programs}, {"meshes", sizes.meshes}, {"referenceBytes", grading_.reference_cache_bytes()}};
+    const size_t mesh_bytes = sizes.mesh_bytes + meshes_.bytes() + scene::bytes_of(fitted_);
+    return {{"programs", sizes.programs}, {"meshes", sizes.meshes}, {"meshBytes", mesh_bytes},
+            {"referenceBytes", grading_.reference_cache_bytes()}};
   }
 
   template <class Result>
@@ -135,13 +138,13 @@ class Worker {
   }
 
   Expected<const scene::Mesh*> mesh(const Job& job, const std::string& payload) {
-    if (auto it = meshes_.find(job.mesh); it != meshes_.end()) return &it->second;
+    if (const scene::Mesh* hit = meshes_.find(job.mesh)) return hit;
     Expected<scene::Mesh> loaded =
         payload.empty() ? scene::builtin_mesh(job.mesh)
                         : scene::load_mesh({reinterpret_cast<const std::uint8_t*>(payload.data()), payload.size()}, job.mesh_format, job.mesh);
     if (!loaded) return loaded.take_error();
-    if (meshes_.size() >= 16) meshes_.erase(meshes_.begin());
-    return &meshes_.emplace(job.mesh, std::move(*loaded)).first->second;
+    const size_t bytes = scene::bytes_of(*loaded);
+    return &meshes_.insert(job.mesh, std::move(*loaded), bytes);
   }
 
   // The job's mesh, fitted to the homework framing when it asks for that. The last fitted mesh is
@@ -246,7 +249,9 @@ class Worker {
   int fd_;
   render::Renderer renderer_;
   grade::GradeSession grading_;
-  std::map<std::string, scene::Mesh> meshes_;
+  // Parsed meshes by id (a built-in's name or an upload's content address). An upload of 16 MiB
+  // parses to up to ~1M triangles, 72 MB: the budget keeps five of those, or the class's few.
+  LruCache<scene::Mesh> meshes_{16, 384u << 20};
   scene::Mesh fitted_;
   std::string fitted_of_;  // the id of the mesh fitted_ was made from; empty: none
   std::optional<scene_render::SceneRenderer> scene_renderer_;  // made on the first scene job
