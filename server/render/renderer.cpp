@@ -39,10 +39,9 @@ std::vector<VariableInfo> describe(const std::vector<gl::ActiveVariable>& vars) 
   return out;
 }
 
-
 // What names a mesh's data in the cache: the SHA-256 of its positions and of its normals. One
 // worker's cache serves every tenant, so the name must resist a crafted collision (core/hash.h).
-// It is taken from the arrays as they are: ~20 ms for a million triangles on the 2-core machine,
+// It is taken from the arrays as they are: ~40 ms for a million triangles on the 2-core machine,
 // where building the interleaved array to FNV-hash it took ~115 ms on every job, hit or miss.
 std::string fingerprint(const scene::Mesh& mesh) {
   const auto bytes = [](const std::vector<glm::vec3>& v) {
