@@ -394,3 +394,34 @@ TEST(MeshBufferTest, TheCacheKnowsAMeshAgainAndTellsApartMeshesThatDifferInOneBi
   EXPECT_GT(upload_ms(position_differs), 0.0) << "one bit of one position makes another mesh";
   EXPECT_EQ(upload_ms(bunny()), 0.0) << "the first mesh is still cached";
 }
+
+// A GPU reads frames back through pixel buffers and fences, llvmpipe directly. Either way the
+// frames are the same bytes, in 8-bit and float targets, multisampled or not; the tests run the
+// pixel-buffer path on llvmpipe so that it is checked where there is no GPU.
+TEST(ReadbackTest, PixelBuffersGiveTheSameBytesAsDirectReads) {
+  auto& renderer = testkit::shared_renderer();
+  const gl::Readback original = renderer.readback();
+  for (const auto pixel_type : {image::PixelType::u8, image::PixelType::f32})
+    for (const int msaa : {4, 0}) {
+      auto request = testkit::preset_request("specular");
+      request.width = 96;
+      request.height = 72;
+      request.frames = 3;
+      request.msaa = msaa;
+      request.pixel_type = pixel_type;
+      renderer.set_readback(gl::Readback::direct);
+      auto direct = render_frames(request, bunny());
+      renderer.set_readback(gl::Readback::pixel_buffer);
+      auto buffered = render_frames(request, bunny());
+      ASSERT_TRUE(direct && buffered);
+      ASSERT_EQ(direct->frames.size(), 3u);
+      ASSERT_EQ(buffered->frames.size(), 3u);
+      for (size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(direct->frames[k].bytes, buffered->frames[k].bytes) << "frame " << k << ", msaa " << msaa;
+        EXPECT_EQ(direct->opaque[k], buffered->opaque[k]);
+      }
+      EXPECT_NE(direct->frames[0].bytes, direct->frames[1].bytes) << "the frames differ, so a stale buffer would show";
+    }
+  renderer.set_readback(original);
+  EXPECT_EQ(original, renderer.context_info().software ? gl::Readback::direct : gl::Readback::pixel_buffer);
+}

@@ -28,6 +28,7 @@ struct RenderFlags {
   std::string grid, frames_dir, prefix, format = "png";
   bool software = software_from_environment();
   bool timings = false;
+  std::string readback = "auto";
 };
 
 Expected<shader::ShaderFile> read_shader(const std::string& path) {
@@ -100,6 +101,7 @@ int run_render(const RenderFlags& f) {
   if (!mesh) return fail(mesh.error());
   auto renderer = render::Renderer::create({.force_software = f.software});
   if (!renderer) return fail(renderer.error());
+  if (f.readback != "auto") renderer->set_readback(f.readback == "direct" ? gl::Readback::direct : gl::Readback::pixel_buffer);
 
   const std::string grid_path = f.grid.empty() && f.frames_dir.empty() ? "grid." + f.format : f.grid;
   const auto layout = image::GridLayout::for_frames(request.frames, request.width, request.height);
@@ -136,7 +138,8 @@ int run_render(const RenderFlags& f) {
     const auto& t = report->times;
     std::cerr << "renderer: " << renderer->context_info().gl_renderer << ", " << report->samples << " samples\n"
               << "compile " << t.compile_ms << " ms, upload " << t.upload_ms << " ms, first frame " << t.first_frame_ms
-              << " ms, render " << t.render_ms << " ms, readback " << t.readback_ms << " ms, total " << t.total_ms << " ms\n";
+              << " ms, render " << t.render_ms << " ms, readback " << t.readback_ms << " ms ("
+              << (renderer->readback() == gl::Readback::direct ? "direct" : "pixel buffers") << "), total " << t.total_ms << " ms\n";
   }
   return 0;
 }
@@ -165,6 +168,11 @@ Command add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--software", flags->software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
   cmd->add_flag("--timings", flags->timings, "Print the time of each phase");
+  cmd->add_option("--readback", flags->readback,
+                  "How frames leave the driver: direct (glReadPixels into memory), pixel-buffer (a pixel pack buffer "
+                  "and a fence per frame), or auto (pixel buffers on a GPU, direct on llvmpipe)")
+      ->check(CLI::IsMember({"auto", "direct", "pixel-buffer"}))
+      ->capture_default_str();
   return [flags] { return run_render(*flags); };
 }
 

@@ -1,6 +1,8 @@
 #include "gl/render_target.h"
 
+#include <cstring>
 #include <string>
+#include <utility>
 
 namespace shadelab::gl {
 
@@ -88,10 +90,72 @@ void RenderTarget::resolve() const {
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
-void RenderTarget::read(void* dst) const {
+Fence Fence::after_queued_commands() {
+  Fence f;
+  f.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  return f;
+}
+
+Fence::Fence(Fence&& other) noexcept : sync_(std::exchange(other.sync_, nullptr)) {}
+
+Fence& Fence::operator=(Fence&& other) noexcept {
+  if (this != &other) {
+    if (sync_) glDeleteSync(sync_);
+    sync_ = std::exchange(other.sync_, nullptr);
+  }
+  return *this;
+}
+
+Fence::~Fence() {
+  if (sync_) glDeleteSync(sync_);
+}
+
+bool Fence::wait() const {
+  // The flush with the first wait; then a second at a time for as long as it takes: the job's
+  // deadline (the worker is killed past it) bounds a GPU that never gets there.
+  GLenum status = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+  while (status == GL_TIMEOUT_EXPIRED) status = glClientWaitSync(sync_, 0, 1'000'000'000);
+  return status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED;
+}
+
+void RenderTarget::start_read(Readback mode) {
+  read_done_ = Fence();  // a read a failed job left behind is not this one
+  if (mode == Readback::direct) return;
+  if (!pack_buffer_) {
+    GLuint id = 0;
+    glGenBuffers(1, &id);
+    pack_buffer_ = BufferName(id);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, id);
+    glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(bytes_per_frame()), nullptr, GL_STREAM_READ);
+  }
   glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_.get() : draw_fbo_.get());
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, dst);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, nullptr);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  read_done_ = Fence::after_queued_commands();
+}
+
+Status RenderTarget::finish_read(void* dst) {
+  if (!read_done_) {  // direct
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_.get() : draw_fbo_.get());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, dst);
+    return Ok{};
+  }
+  const bool passed = read_done_.wait();
+  read_done_ = Fence();
+  if (!passed) return make_error(ErrorCode::gl_error, "the driver failed while waiting for a frame's readback");
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_.get());
+  const auto bytes = static_cast<GLsizeiptr>(bytes_per_frame());
+  const void* mapped = glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, bytes, GL_MAP_READ_BIT);
+  if (mapped) {
+    std::memcpy(dst, mapped, static_cast<size_t>(bytes));
+    glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+  }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  if (!mapped) return make_error(ErrorCode::gl_error, "the driver could not map a frame's pixel buffer");
+  return Ok{};
 }
 
 }  // namespace shadelab::gl

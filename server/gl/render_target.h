@@ -8,6 +8,31 @@ namespace shadelab::gl {
 
 enum class PixelFormat { rgba8, rgba32f };
 
+// How a frame leaves the driver.
+// - direct: glReadPixels into memory, which waits for the frame and copies it. On llvmpipe the
+//   "GPU" is this process's own threads, and this is the fastest (docs/performance.md).
+// - pixel_buffer: glReadPixels into a pixel pack buffer, with a fence behind it. A GPU copies the
+//   frame out while it renders the next one; the CPU maps the buffer once the fence has passed.
+enum class Readback { direct, pixel_buffer };
+
+// A fence in the command stream (glFenceSync), move-only; deleted with its owner.
+class Fence {
+ public:
+  Fence() = default;
+  static Fence after_queued_commands();
+  Fence(Fence&& other) noexcept;
+  Fence& operator=(Fence&& other) noexcept;
+  Fence(const Fence&) = delete;
+  Fence& operator=(const Fence&) = delete;
+  ~Fence();
+  explicit operator bool() const { return sync_ != nullptr; }
+  // Flushes and blocks until the GPU has passed the fence; false if the driver says it failed.
+  bool wait() const;
+
+ private:
+  GLsync sync_ = nullptr;
+};
+
 class RenderTarget {
  public:
   // samples = 0 renders single-sampled. Errors when the driver cannot give the sample count.
@@ -25,15 +50,20 @@ class RenderTarget {
   // Queues the multisample resolve (no-op when single-sampled). Returns at once: the driver works
   // on it while the caller submits the next frame to another target.
   void resolve() const;
-  // Reads the resolved frame into `dst` (bytes_per_frame() bytes), bottom row first; waits only
-  // for the commands this target's frame depends on.
-  void read(void* dst) const;
+  // Starts taking the resolved frame out. With Readback::pixel_buffer the copy is queued behind
+  // the frame and this returns at once; with direct, nothing happens until finish_read.
+  void start_read(Readback mode);
+  // Copies the frame that start_read began into `dst` (bytes_per_frame() bytes), bottom row first;
+  // waits only for the commands this target's frame depends on.
+  Status finish_read(void* dst);
 
  private:
   int width_ = 0, height_ = 0, samples_ = 0;
   PixelFormat format_ = PixelFormat::rgba8;
   FramebufferName draw_fbo_, resolve_fbo_;
   RenderbufferName color_, depth_, resolve_color_;
+  BufferName pack_buffer_;  // made on the first pixel_buffer read
+  Fence read_done_;         // set while a pixel_buffer read is in flight
 };
 
 // Storage for one attachment (samples = 0: single-sampled), bound to GL_RENDERBUFFER on return.

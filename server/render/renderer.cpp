@@ -58,6 +58,7 @@ struct Renderer::State {
   LruCache<gl::MeshBuffer> meshes{kMeshCacheSize, kMeshCacheBytes};  // by fingerprint()
   // Two targets, so frame k is read back while the driver renders frame k + 1.
   std::array<std::optional<gl::RenderTarget>, 2> targets;
+  gl::Readback readback = context.info().software ? gl::Readback::direct : gl::Readback::pixel_buffer;
   std::vector<std::uint8_t> staging;
 
   // Unwraps both stages and builds (or finds) the program; errors carry located diagnostics.
@@ -185,6 +186,9 @@ Expected<Renderer> Renderer::create(const egl::ContextOptions& options) {
 
 const egl::ContextInfo& Renderer::context_info() const { return state_->context.info(); }
 
+gl::Readback Renderer::readback() const { return state_->readback; }
+void Renderer::set_readback(gl::Readback mode) { state_->readback = mode; }
+
 Renderer::CacheSizes Renderer::cache_sizes() const {
   return {state_->programs.size(), state_->meshes.size(), state_->meshes.bytes()};
 }
@@ -255,7 +259,7 @@ Expected<RenderReport> Renderer::render(const RenderRequest& request, const scen
   image::Image frame = image::Image::blank(request.width, request.height, request.pixel_type);
   const auto read_and_emit = [&](int k) {
     const auto read_start = Clock::now();
-    (*targets)[static_cast<size_t>(k % 2)]->read(state_->staging.data());
+    if (auto read = (*targets)[static_cast<size_t>(k % 2)]->finish_read(state_->staging.data()); !read) return read;
     bool opaque = false;
     if (request.pixel_type == image::PixelType::u8)
       opaque = image::canvas_blob_from_readback(state_->staging.data(), frame);
@@ -265,6 +269,7 @@ Expected<RenderReport> Renderer::render(const RenderRequest& request, const scen
     const auto sink_start = Clock::now();
     sink(k, frame, opaque);
     report.times.sink_ms += ms_since(sink_start);
+    return Status{Ok{}};
   };
 
   // Frame k is submitted, then frame k - 1 is read: llvmpipe rasterises k on its threads while
@@ -272,7 +277,7 @@ Expected<RenderReport> Renderer::render(const RenderRequest& request, const scen
   const auto loop_start = Clock::now();
   for (int k = 0; k < request.frames; ++k) {
     const auto submit_start = Clock::now();
-    const gl::RenderTarget& rt = *(*targets)[static_cast<size_t>(k % 2)];
+    gl::RenderTarget& rt = *(*targets)[static_cast<size_t>(k % 2)];
     const FrameTransforms t = homework_transforms(request.width, request.height, k * request.degrees_per_frame);
     if (plan->world_to_clip) program.set_uniform(*plan->world_to_clip, {glm::value_ptr(t.world_to_clip), 16});
     if (plan->mesh_to_world) program.set_uniform(*plan->mesh_to_world, {glm::value_ptr(t.mesh_to_world), 16});
@@ -280,11 +285,13 @@ Expected<RenderReport> Renderer::render(const RenderRequest& request, const scen
     rt.begin_frame();
     buffer.draw(position_location, normal_location);
     rt.resolve();
+    rt.start_read(state_->readback);
     // The draw call is where llvmpipe JIT-compiles the program's code for this state.
     if (k == 0) report.times.first_frame_ms = ms_since(submit_start);
-    if (k > 0) read_and_emit(k - 1);
+    if (k > 0)
+      if (auto read = read_and_emit(k - 1); !read) return read.take_error();
   }
-  read_and_emit(request.frames - 1);
+  if (auto read = read_and_emit(request.frames - 1); !read) return read.take_error();
   report.times.render_ms = ms_since(loop_start) - report.times.readback_ms - report.times.sink_ms;
   report.times.total_ms = ms_since(start);
   return report;

@@ -5,6 +5,7 @@
 
 #include "core/expected.h"
 #include "egl/headless_context.h"
+#include "gl/render_target.h"
 #include "render/render_request.h"
 #include "scene/mesh.h"
 
@@ -32,6 +33,11 @@ class Renderer {
   ~Renderer();
 
   const egl::ContextInfo& context_info() const;
+
+  // How frames are read back (gl::Readback): through pixel buffers on a GPU, directly on llvmpipe,
+  // each the faster there. Tests and `shadelab render --readback` choose.
+  gl::Readback readback() const;
+  void set_readback(gl::Readback mode);
 
   // What the renderer keeps warm between jobs, for /metrics: at most 32 programs, and 8 meshes'
   // vertex and index buffers within 256 MiB.
