@@ -18,12 +18,14 @@
 
 #include "http/service.h"
 #include "support/files.h"
+#include "stats.h"
 
 using nlohmann::json;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 namespace {
+using shadelab::bench::percentile;
 
 double ms_since_fault(long long fault_ns, Clock::time_point t) {
   return (std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count() - fault_ns) / 1e6;
@@ -36,11 +38,6 @@ long long last_fault_ns(const fs::path& log) {
   while (std::getline(lines, line))
     if (!line.empty()) last = line;
   return std::stoll(last.substr(last.rfind(' ') + 1));
-}
-
-double percentile(std::vector<double> v, double p) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
 }
 
 }  // namespace

@@ -33,15 +33,12 @@
 #include "floor_job.h"
 #include "fresh_shader.h"
 #include "render/presets.h"
+#include "stats.h"
 
 namespace {
+using shadelab::bench::percentile;
 using Clock = std::chrono::steady_clock;
 double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
-
-double percentile(std::vector<double> v, double p) {
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
-}
 
 std::string fresh_job(unsigned serial) {
   const auto p = *shadelab::render::find_preset("specular");

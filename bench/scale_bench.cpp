@@ -12,34 +12,19 @@
 //   build/bench/scale_bench [JOBS=3]
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "bench_renderer.h"
-#include "fresh_shader.h"
-#include "image/grid.h"
-#include "image/grid_png_encoder.h"
-#include "render/presets.h"
-#include "scene/mesh.h"
+#include "grid_job.h"
 #include "scene/uv_sphere.h"
+#include "stats.h"
 
 namespace {
 
 using namespace shadelab;
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-render::RenderRequest fresh_specular(int width, int height) {
-  const auto preset = *render::find_preset("specular");
-  render::RenderRequest r{.vertex = preset.vertex, .fragment = preset.fragment, .width = width, .height = height};
-  static unsigned serial = std::random_device{}() % 100000000u;
-  r.fragment.text = bench::with_fresh_branch(r.fragment.text, ++serial);
-  return r;
-}
 
 struct Cell {
   size_t triangles = 0;
@@ -49,30 +34,15 @@ struct Cell {
   double mpixels() const { return static_cast<double>(width) * height / 1e6; }
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 Cell measure(const scene::Mesh& mesh, int width, int height, int jobs) {
+  static unsigned serial = std::random_device{}() % 100000000u;
   std::vector<double> totals, renders;
   for (int j = 0; j < jobs; ++j) {
-    const auto request = fresh_specular(width, height);
-    const auto start = Clock::now();
-    image::GridPngEncoder grid(image::GridLayout::for_frames(request.frames, width, height), request.frames);
-    auto report = bench::renderer().render(request, mesh, [&](int k, const image::Image& f, bool opaque) { grid.add_frame(k, f, opaque); });
-    if (!report) {
-      std::fprintf(stderr, "scale_bench: %s\n", report.error().format().c_str());
-      std::exit(1);
-    }
-    if (auto png = grid.finish(); !png) {
-      std::fprintf(stderr, "scale_bench: %s\n", png.error().format().c_str());
-      std::exit(1);
-    }
-    totals.push_back(ms_since(start));
-    renders.push_back(report->times.render_ms);
+    const auto t = bench::run_grid_job(bench::fresh_specular(++serial, width, height), mesh);
+    totals.push_back(t.total_ms);
+    renders.push_back(t.render_ms);
   }
-  return {mesh.triangle_count(), width, height, median(totals), median(renders)};
+  return {mesh.triangle_count(), width, height, bench::median(totals), bench::median(renders)};
 }
 
 // Least squares for y = a + b * x1 + c * x2 (normal equations, 3 x 3, Cramer's rule).

@@ -23,10 +23,12 @@
 #include "image/metrics.h"
 #include "scene/scene_description.h"
 #include "scene_render/scene_renderer.h"
+#include "stats.h"
 
 using namespace shadelab;
 
 namespace {
+using shadelab::bench::median;
 
 std::optional<image::Image> read_rgba8(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
@@ -39,11 +41,6 @@ std::optional<image::Image> read_rgba8(const std::string& path) {
     for (int c = 0; c < 4; ++c)
       img.bytes[i * 4 + c] = c < spec.nchannels ? px[i * spec.nchannels + c] : (c == 3 ? 255 : px[i * spec.nchannels]);
   return img;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
 }
 
 struct Timed {

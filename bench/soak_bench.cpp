@@ -38,18 +38,14 @@
 #include "render/presets.h"
 #include "support/local_cluster.h"
 #include "support/raw_socket.h"
+#include "stats.h"
 
 namespace {
+using shadelab::bench::percentile;
 
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
-}
 
 // The specular preset with a line no earlier request compiled (Mesa caches programs by their IR).
 std::pair<std::string, std::string> fresh_shaders(unsigned serial, const std::string& extra = "") {

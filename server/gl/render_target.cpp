@@ -90,6 +90,12 @@ void RenderTarget::resolve() const {
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
+void RenderTarget::read_pixels(void* dst) const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_.get() : draw_fbo_.get());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, dst);
+}
+
 Fence Fence::after_queued_commands() {
   Fence f;
   f.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
@@ -128,19 +134,15 @@ void RenderTarget::start_read(Readback mode) {
     glBindBuffer(GL_PIXEL_PACK_BUFFER, id);
     glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(bytes_per_frame()), nullptr, GL_STREAM_READ);
   }
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_.get() : draw_fbo_.get());
   glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_.get());
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, nullptr);
+  read_pixels(nullptr);  // offset 0 in the bound pack buffer
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   read_done_ = Fence::after_queued_commands();
 }
 
 Status RenderTarget::finish_read(void* dst) {
   if (!read_done_) {  // direct
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_.get() : draw_fbo_.get());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, dst);
+    read_pixels(dst);
     return Ok{};
   }
   const bool passed = read_done_.wait();

@@ -58,6 +58,9 @@ class RenderTarget {
   Status finish_read(void* dst);
 
  private:
+  // glReadPixels of the resolved frame into `dst`: memory, or an offset into a bound pack buffer.
+  void read_pixels(void* dst) const;
+
   int width_ = 0, height_ = 0, samples_ = 0;
   PixelFormat format_ = PixelFormat::rgba8;
   FramebufferName draw_fbo_, resolve_fbo_;

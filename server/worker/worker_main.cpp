@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cstring>
-#include <map>
 #include <optional>
 
 #include "core/lru_cache.h"
