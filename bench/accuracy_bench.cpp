@@ -4,8 +4,8 @@
 //
 //   build/bench/accuracy_bench [out_dir=docs] [repeats=7]
 // writes out_dir/accuracy.csv, accuracy.md (the table) and accuracy.svg (error vs time, Pareto
-// front marked). The baseline: per-fragment Phong, a 64-segment sphere, 4x MSAA, no
-// supersampling, 640 x 480, highp. Each series changes one knob.
+// front marked). The baseline: per-fragment Phong (the course's specular reference), a 64-segment
+// sphere, 4x MSAA, no supersampling, the course's canvas (512 x 512), highp. Each series changes one knob.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,8 +15,9 @@
 #include <map>
 #include <sstream>
 
+#include "canonical_job.h"
+#include "course/reference_sphere.h"
 #include "reference/phong_raycast.h"
-#include "render/presets.h"
 #include "render/renderer.h"
 #include "scene/uv_sphere.h"
 
@@ -28,7 +29,7 @@ using Clock = std::chrono::steady_clock;
 struct Point {
   std::string series, label;
   std::string shading = "phong";
-  int segments = 64, msaa = 4, supersample = 1, width = 640, height = 480;
+  int segments = 64, msaa = 4, supersample = 1, width = 0, height = 0;  // 0: the course's canvas
   bool mediump = false;
 };
 
@@ -57,14 +58,15 @@ uniform vec4 uAmbientColor;
 uniform vec4 uDiffuseColor;
 uniform vec4 uSpecularColor;
 uniform vec3 uLightPosition;
+uniform vec4 uLightColor;
 out vec4 vColor;
 void main(void) {
     vec4 p = uMeshToWorldMatrix * aVertexPosition;
     vec3 N = normalize((uMeshToWorldRotMatrix * aVertexNormal).xyz);
     vec3 L = normalize(uLightPosition - p.xyz);
     float NdotL = dot(N, L);
-    vec4 color = uAmbientColor + uDiffuseColor * max(0.0, NdotL);
-    if (NdotL > 0.0) color += uSpecularColor * pow(max(0.0, dot(normalize(-p.xyz), reflect(-L, N))), 0.6);
+    vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);
+    if (NdotL > 0.0) color += uSpecularColor * uLightColor * pow(max(0.0, dot(normalize(-p.xyz), reflect(-L, N))), ALPHA);
     vColor = color;
     gl_Position = uWorldToClipSpaceMatrix * p;
 }
@@ -76,14 +78,24 @@ out vec4 fragColor;
 void main(void) { fragColor = vColor; }
 )";
 
+// A GLSL float literal of the course's exponent.
+std::string alpha_literal() {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(6);
+  s << bench::canonical_course().specular_exponent();
+  return s.str();
+}
+
 render::RenderRequest request_for(const Point& p) {
-  const auto phong = *render::find_preset("specular");
-  render::RenderRequest r{.vertex = phong.vertex, .fragment = phong.fragment};
+  const auto& course = bench::canonical_course();
+  const auto& phong = *course.preset("specular");
+  render::RenderRequest r = course.render_request(phong.vertex, phong.fragment);
   if (p.shading == "flat") {
-    r.vertex.text = replace_all(r.vertex.text, "out vec4 vNormal;", "flat out vec4 vNormal;");
-    r.fragment.text = replace_all(r.fragment.text, "in vec4 vNormal;", "flat in vec4 vNormal;");
+    r.vertex.text = replace_all(r.vertex.text, "out vec3 vNormal;", "flat out vec3 vNormal;");
+    r.fragment.text = replace_all(r.fragment.text, "in vec3 vNormal;", "flat in vec3 vNormal;");
   } else if (p.shading == "gouraud") {
-    r.vertex = {"gouraud_vert.glsl", kGouraudVertex};
+    r.vertex = {"gouraud_vert.glsl", replace_all(kGouraudVertex, "ALPHA", alpha_literal())};
     r.fragment = {"gouraud_frag.glsl", kGouraudFragment};
   }
   if (p.mediump)
@@ -201,11 +213,19 @@ int main(int argc, char** argv) {
   for (int seg : {8, 16, 32, 64, 128}) points.push_back({"density", std::to_string(seg) + " segments", "phong", seg});
   for (int s : {0, 2, 4, 8}) points.push_back({"msaa", "MSAA " + std::to_string(s), "phong", 64, s});
   for (int k : {1, 2, 4}) points.push_back({"supersampling", "SSAA " + std::to_string(k) + "x", "phong", 64, 0, k});
-  for (auto [w, h] : {std::pair{320, 240}, {640, 480}, {1280, 960}})
+  const auto& course = bench::canonical_course();
+  for (auto [w, h] : {std::pair{course.width / 2, course.height / 2}, {course.width, course.height}, {2 * course.width, 2 * course.height}})
     points.push_back({"resolution", std::to_string(w) + "x" + std::to_string(h), "phong", 64, 4, 1, w, h});
-  for (bool m : {true, false}) points.push_back({"precision", m ? "mediump" : "highp", "phong", 64, 4, 1, 640, 480, m});
+  for (bool m : {true, false}) points.push_back({"precision", m ? "mediump" : "highp", "phong", 64, 4, 1, 0, 0, m});
+  for (auto& p : points)
+    if (p.width == 0) p.width = course.width, p.height = course.height;
 
-  const reference::PhongSphere scene;
+  auto sphere_of_course = course::reference_sphere(course);
+  if (!sphere_of_course) {
+    std::cerr << sphere_of_course.error().format() << "\n";
+    return 1;
+  }
+  const reference::PhongSphere scene = *sphere_of_course;
   std::map<std::pair<int, int>, image::Image> references;
   std::vector<Measured> results;
   for (const auto& p : points) {

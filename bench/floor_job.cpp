@@ -14,9 +14,9 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "canonical_job.h"
 #include "fresh_shader.h"
 #include "render/homework_contract.h"
-#include "render/presets.h"
 #include "scene/mesh.h"
 #include "shader/shader_source.h"
 
@@ -26,8 +26,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-constexpr int kWidth = 640, kHeight = 480, kFrames = 9, kSamples = 4;
 
 [[noreturn]] void fail(const std::string& what) {
   std::fprintf(stderr, "floor job: %s\n", what.c_str());
@@ -77,22 +75,22 @@ struct Framebuffers {
   GLuint multisampled = 0, resolved = 0;
 };
 
-Framebuffers make_framebuffers() {
+Framebuffers make_framebuffers(const render::RenderRequest& r) {
   Framebuffers f;
   GLuint colour = 0, depth = 0, resolved_colour = 0;
   glGenRenderbuffers(1, &colour);
   glBindRenderbuffer(GL_RENDERBUFFER, colour);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, kSamples, GL_RGBA8, kWidth, kHeight);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, r.msaa, GL_RGBA8, r.width, r.height);
   glGenRenderbuffers(1, &depth);
   glBindRenderbuffer(GL_RENDERBUFFER, depth);
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, kSamples, GL_DEPTH_COMPONENT24, kWidth, kHeight);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, r.msaa, GL_DEPTH_COMPONENT24, r.width, r.height);
   glGenFramebuffers(1, &f.multisampled);
   glBindFramebuffer(GL_FRAMEBUFFER, f.multisampled);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
   glGenRenderbuffers(1, &resolved_colour);
   glBindRenderbuffer(GL_RENDERBUFFER, resolved_colour);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kWidth, kHeight);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, r.width, r.height);
   glGenFramebuffers(1, &f.resolved);
   glBindFramebuffer(GL_FRAMEBUFFER, f.resolved);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolved_colour);
@@ -137,25 +135,28 @@ std::vector<unsigned char> encode_png(const std::vector<unsigned char>& rgb, int
   return out;
 }
 
-FloorPhases one_job(const std::string& vertex, const std::string& fragment, GLuint vao, GLsizei corners, const Framebuffers& fb) {
+// The course's job (`r`: its size, frames, samples, camera and uniform values) with these shaders.
+FloorPhases one_job(const render::RenderRequest& r, const std::string& vertex, const std::string& fragment, GLuint vao, GLsizei corners,
+                    const Framebuffers& fb) {
+  const int width = r.width, height = r.height, frames_count = r.frames, columns = 3;
   FloorPhases p;
   const auto start = Clock::now();
   GLuint program = link(vertex, fragment);
   glUseProgram(program);
-  for (const auto& u : render::homework_constant_uniforms()) {
-    const GLint at = glGetUniformLocation(program, std::string(u.name).c_str());
+  for (const auto& u : r.page.uniforms) {
+    const GLint at = glGetUniformLocation(program, u.name.c_str());
     if (at >= 0 && u.components == 4) glUniform4fv(at, 1, u.value.data());
     if (at >= 0 && u.components == 3) glUniform3fv(at, 1, u.value.data());
   }
   p.compile = ms_since(start);
 
-  std::vector<unsigned char> frames(static_cast<size_t>(kFrames) * kWidth * kHeight * 4);
-  glViewport(0, 0, kWidth, kHeight);
+  std::vector<unsigned char> frames(static_cast<size_t>(frames_count) * width * height * 4);
+  glViewport(0, 0, width, height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
-  for (int k = 0; k < kFrames; ++k) {
+  for (int k = 0; k < frames_count; ++k) {
     const auto frame_start = Clock::now();
-    const auto t = render::homework_transforms(kWidth, kHeight, 20.0 * k);
+    const auto t = render::homework_transforms(r.page.camera, width, height, render::frame_angle(r, k));
     glUniformMatrix4fv(glGetUniformLocation(program, render::kWorldToClip), 1, GL_FALSE, glm::value_ptr(t.world_to_clip));
     glUniformMatrix4fv(glGetUniformLocation(program, render::kMeshToWorld), 1, GL_FALSE, glm::value_ptr(t.mesh_to_world));
     glUniformMatrix4fv(glGetUniformLocation(program, render::kMeshToWorldRot), 1, GL_FALSE, glm::value_ptr(t.mesh_to_world_rot));
@@ -166,25 +167,26 @@ FloorPhases one_job(const std::string& vertex, const std::string& fragment, GLui
     glDrawArrays(GL_TRIANGLES, 0, corners);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fb.multisampled);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb.resolved);
-    glBlitFramebuffer(0, 0, kWidth, kHeight, 0, 0, kWidth, kHeight, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glFinish();
     p.render += ms_since(frame_start);
     const auto read_start = Clock::now();
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fb.resolved);
-    glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, &frames[static_cast<size_t>(k) * kWidth * kHeight * 4]);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, &frames[static_cast<size_t>(k) * width * height * 4]);
     p.readback += ms_since(read_start);
   }
   glDeleteProgram(program);
 
   const auto encode_start = Clock::now();
-  const int grid_width = 3 * kWidth, grid_height = 3 * kHeight;
+  const int rows = (frames_count + columns - 1) / columns;
+  const int grid_width = columns * width, grid_height = rows * height;
   std::vector<unsigned char> rgb(static_cast<size_t>(grid_width) * grid_height * 3);
-  for (int k = 0; k < kFrames; ++k)
-    for (int y = 0; y < kHeight; ++y) {
+  for (int k = 0; k < frames_count; ++k)
+    for (int y = 0; y < height; ++y) {
       // glReadPixels gives the bottom row first; a PNG starts at the top.
-      const unsigned char* from = &frames[(static_cast<size_t>(k) * kHeight + static_cast<size_t>(kHeight - 1 - y)) * kWidth * 4];
-      unsigned char* to = &rgb[((static_cast<size_t>(k / 3) * kHeight + static_cast<size_t>(y)) * grid_width + static_cast<size_t>(k % 3) * kWidth) * 3];
-      for (int x = 0; x < kWidth; ++x) std::memcpy(to + x * 3, from + x * 4, 3);
+      const unsigned char* from = &frames[(static_cast<size_t>(k) * height + static_cast<size_t>(height - 1 - y)) * width * 4];
+      unsigned char* to = &rgb[((static_cast<size_t>(k / columns) * height + static_cast<size_t>(y)) * grid_width + static_cast<size_t>(k % columns) * width) * 3];
+      for (int x = 0; x < width; ++x) std::memcpy(to + x * 3, from + x * 4, 3);
     }
   const auto png = encode_png(rgb, grid_width, grid_height);
   p.encode = ms_since(encode_start);
@@ -202,6 +204,7 @@ std::string glsl_of(const shader::ShaderFile& file, shader::Stage stage) {
 }  // namespace
 
 struct FloorJob::State {
+  render::RenderRequest request = canonical_request();
   std::string vertex, fragment;
   GLuint vao = 0;
   GLsizei corners = 0;
@@ -209,21 +212,20 @@ struct FloorJob::State {
 };
 
 FloorJob::FloorJob() : state_(std::make_unique<State>()) {
-  const auto preset = render::find_preset("specular");
-  auto bunny = scene::builtin_mesh("bunny");
-  if (!preset || !bunny) fail("the specular preset or the bunny is missing");
-  state_->vertex = glsl_of(preset->vertex, shader::Stage::vertex);
-  state_->fragment = glsl_of(preset->fragment, shader::Stage::fragment);
+  const scene::Mesh& mesh = canonical_mesh();
+  state_->vertex = glsl_of(state_->request.vertex, shader::Stage::vertex);
+  state_->fragment = glsl_of(state_->request.fragment, shader::Stage::fragment);
   open_context();
-  state_->vao = upload(*bunny);
-  state_->corners = static_cast<GLsizei>(bunny->positions.size());
-  state_->framebuffers = make_framebuffers();
+  state_->vao = upload(mesh);
+  state_->corners = static_cast<GLsizei>(mesh.positions.size());
+  state_->framebuffers = make_framebuffers(state_->request);
 }
 
 FloorJob::~FloorJob() = default;
 
 FloorPhases FloorJob::run(unsigned serial) {
-  return one_job(state_->vertex, with_fresh_branch(state_->fragment, serial), state_->vao, state_->corners, state_->framebuffers);
+  return one_job(state_->request, state_->vertex, with_fresh_branch(state_->fragment, serial), state_->vao, state_->corners,
+                 state_->framebuffers);
 }
 
 }  // namespace shadelab::bench

@@ -1,5 +1,5 @@
 #pragma once
-// The canonical job in process, shaped as a worker runs it: the specular preset with a fragment
+// The canonical job (canonical_job.h) in process, shaped as a worker runs it: with a fragment
 // shader not seen before, the frames rendered, the grid PNG encoded while they render. A
 // benchmark cannot go on past an error, so one ends the process with the reason.
 #include <chrono>
@@ -7,17 +7,18 @@
 #include <cstdlib>
 
 #include "bench_renderer.h"
+#include "canonical_job.h"
 #include "fresh_shader.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
-#include "render/presets.h"
 #include "scene/mesh.h"
 
 namespace shadelab::bench {
 
-inline render::RenderRequest fresh_specular(unsigned serial, int width = 640, int height = 480) {
-  const auto preset = *render::find_preset("specular");
-  render::RenderRequest r{.vertex = preset.vertex, .fragment = preset.fragment, .width = width, .height = height};
+// The canonical request with a fresh fragment shader; at another size when one is given.
+inline render::RenderRequest fresh_canonical(unsigned serial, int width = 0, int height = 0) {
+  render::RenderRequest r = canonical_request();
+  if (width > 0) r.width = width, r.height = height;
   r.fragment.text = with_fresh_branch(r.fragment.text, serial);
   return r;
 }

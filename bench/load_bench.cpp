@@ -2,7 +2,7 @@
 //   build/bench/load_bench [path/to/shadelab] [requests per level] [serve flags...]
 // Starts `shadelab serve` on a free loopback port and reports:
 //   - process start to the first 200 from /readyz;
-//   - the canonical grid job (bunny, specular, 9 frames 640 x 480, 4x MSAA), each request a shader
+//   - the canonical grid job (canonical_job.h: the course's bunny, specular, 9 frames 512 x 512, 4x MSAA), each request a shader
 //     the workers have not seen, with 1, 2 and 8 concurrent clients: p50, p99, throughput;
 //   - the same job against the floor (bench/floor_job.h) run in this process, job by job in
 //     alternating order, so both see the same machine: both p50s and the median of the pairs'
@@ -32,7 +32,7 @@
 
 #include "floor_job.h"
 #include "fresh_shader.h"
-#include "render/presets.h"
+#include "canonical_job.h"
 #include "stats.h"
 
 namespace {
@@ -41,8 +41,8 @@ using Clock = std::chrono::steady_clock;
 double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
 std::string fresh_job(unsigned serial) {
-  const auto p = *shadelab::render::find_preset("specular");
-  return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", shadelab::bench::with_fresh_branch(p.fragment.text, serial)}, {"mesh", "bunny"}}.dump();
+  const auto& p = shadelab::bench::canonical_preset();
+  return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", shadelab::bench::with_fresh_branch(p.fragment.text, serial)}, {"mesh", shadelab::bench::canonical_course().default_mesh}}.dump();
 }
 // The render workers among `server`'s children (not the fork server), with their CPU ticks.
 // Floor and service jobs alternate (floor first in even pairs, the service first in odd ones), each

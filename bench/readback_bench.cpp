@@ -1,5 +1,5 @@
-// Direct reads against pixel buffers (gl::Readback) on the canonical job (bunny, specular, 9
-// frames 640 x 480, 4x MSAA, the grid PNG encoded while the frames render, as a worker does), in
+// Direct reads against pixel buffers (gl::Readback) on the canonical job (canonical_job.h, the grid
+// PNG encoded while the frames render, as a worker does), in
 // one process, the two modes alternating job by job, each job a fragment shader not seen before.
 // Prints each mode's p50 (job and readback) and the median of the pairs' ratios: what
 // `gl::Readback`'s default per device rests on.
@@ -19,12 +19,11 @@ using bench::median;
 
 int main(int argc, char** argv) {
   const int pairs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 20;
-  const auto bunny = scene::builtin_mesh("bunny");
-  if (!bunny) return 1;
+  const scene::Mesh* bunny = &bench::canonical_mesh();
   unsigned serial = std::random_device{}() % 100000000u;
   const auto one_job = [&](gl::Readback mode) {
     bench::renderer().set_readback(mode);
-    return bench::run_grid_job(bench::fresh_specular(serial++), *bunny);
+    return bench::run_grid_job(bench::fresh_canonical(serial++), *bunny);
   };
   for (auto mode : {gl::Readback::direct, gl::Readback::pixel_buffer}) one_job(mode);  // warm both paths
   std::vector<double> direct, buffered, direct_read, buffered_read, ratios;

@@ -1,4 +1,5 @@
-// The canonical job (bunny, `specular`, 9 frames 640 x 480, 4x MSAA, grid PNG) in a warm process,
+// The canonical job (canonical_job.h: the course's bunny, `specular`, 9 frames 512 x 512, 4x MSAA,
+// grid PNG) in a warm process,
 // as a render worker runs it. Each iteration submits a shader the process has not seen (a unique
 // constant), so compiling it is part of the time, as for a student's fresh submission.
 //
@@ -15,8 +16,8 @@
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
-#include "render/presets.h"
 #include "bench_renderer.h"
+#include "canonical_job.h"
 #include "fresh_shader.h"
 #include "render/renderer.h"
 
@@ -27,14 +28,11 @@ using Clock = std::chrono::steady_clock;
 
 using bench::renderer;
 
-const scene::Mesh& bunny() {
-  static const scene::Mesh m = *scene::builtin_mesh("bunny");
-  return m;
-}
+const scene::Mesh& bunny() { return bench::canonical_mesh(); }
 
 render::RenderRequest canonical(int msaa, int serial) {
-  const auto preset = *render::find_preset("specular");
-  render::RenderRequest r{.vertex = preset.vertex, .fragment = preset.fragment, .msaa = msaa};
+  render::RenderRequest r = bench::canonical_request();
+  r.msaa = msaa;
   static const unsigned base = std::random_device{}() % 1000000u;  // unique to this process
   r.fragment.text = bench::with_fresh_branch(r.fragment.text, base * 1000u + static_cast<unsigned>(serial));
   return r;
@@ -75,7 +73,7 @@ void run_job(benchmark::State& state, int msaa, Output output) {
   state.counters["compile_ms"] = compile / n;
   state.counters["first_frame_ms"] = first / n;
   state.counters["render_ms"] = render_ms / n;
-  state.counters["per_frame_ms"] = render_ms / n / 9;
+  state.counters["per_frame_ms"] = render_ms / n / bench::canonical_course().frames;
   state.counters["readback_ms"] = readback / n;
   state.counters["encode_tail_ms"] = tail / n;
   state.counters["total_ms"] = total / n;
@@ -89,7 +87,7 @@ void BM_RenderOnly_NoMsaa(benchmark::State& s) { run_job(s, 0, Output::none); }
 // The grid encode alone, for the PNG settings table in docs/performance.md.
 void BM_GridEncode(benchmark::State& state) {
   const auto request = canonical(4, 0);
-  const auto layout = image::GridLayout::for_frames(9, 640, 480);
+  const auto layout = image::GridLayout::for_frames(request.frames, request.width, request.height);
   std::vector<image::Image> frames;
   (void)renderer().render(request, bunny(), [&](int, const image::Image& f, bool) { frames.push_back(f); });
   image::Image grid = image::compose_grid(layout, frames);

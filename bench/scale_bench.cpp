@@ -1,6 +1,7 @@
 // How the canonical job's time grows with the mesh and the frame: 9 frames of a UV sphere of
-// ~10k, ~100k and ~1M triangles at 0.3, 1.2 and 4.9 MPixel (640 x 480, 1280 x 960, 2560 x 1920),
-// the `specular` preset, 4x MSAA, the grid PNG encoded while the frames render, as a worker does.
+// ~10k, ~100k and ~1M triangles at the course's canvas and 2x and 4x it each way (512 x 512: 0.26, 1.0
+// and 4.2 MPixel),
+// the course's default preset and samples, the grid PNG encoded while the frames render, as a worker does.
 // Each job compiles a fragment shader the process has not seen (a never-taken branch on a new
 // constant), so every cell pays a fresh JIT as a student's submission does.
 //
@@ -30,7 +31,7 @@ struct Cell {
   size_t triangles = 0;
   int width = 0, height = 0;
   double job_ms = 0, render_ms = 0;
-  double per_frame() const { return job_ms / 9; }
+  double per_frame() const { return job_ms / bench::canonical_course().frames; }
   double mpixels() const { return static_cast<double>(width) * height / 1e6; }
 };
 
@@ -38,7 +39,7 @@ Cell measure(const scene::Mesh& mesh, int width, int height, int jobs) {
   static unsigned serial = std::random_device{}() % 100000000u;
   std::vector<double> totals, renders;
   for (int j = 0; j < jobs; ++j) {
-    const auto t = bench::run_grid_job(bench::fresh_specular(++serial, width, height), mesh);
+    const auto t = bench::run_grid_job(bench::fresh_canonical(++serial, width, height), mesh);
     totals.push_back(t.total_ms);
     renders.push_back(t.render_ms);
   }
@@ -75,12 +76,15 @@ std::array<double, 3> fit(const std::vector<Cell>& cells) {
 int main(int argc, char** argv) {
   const int jobs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
   const std::array<int, 3> segments = {100, 316, 1000};  // a UV sphere has segments^2 triangles
-  const std::array<std::array<int, 2>, 3> sizes = {{{640, 480}, {1280, 960}, {2560, 1920}}};
+  // The course's canvas, and 2x and 4x it each way.
+  const auto& course = bench::canonical_course();
+  const std::array<std::array<int, 2>, 3> sizes = {
+      {{course.width, course.height}, {2 * course.width, 2 * course.height}, {4 * course.width, 4 * course.height}}};
   std::vector<Cell> cells;
   std::printf("| triangles | frame | MPixel | job ms (median of %d) | render ms | ms per frame |\n| --- | --- | --- | --- | --- | --- |\n", jobs);
   for (int s : segments) {
     scene::Mesh mesh = scene::uv_sphere(1.0, {0, 0, 0}, s);
-    scene::fit_to_homework(mesh);
+    scene::fit_to(mesh, scene::bounds(bench::canonical_mesh()));
     for (const auto& [w, h] : sizes) {
       const Cell c = measure(mesh, w, h, jobs);
       cells.push_back(c);

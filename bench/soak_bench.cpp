@@ -35,7 +35,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fresh_shader.h"
-#include "render/presets.h"
+#include "canonical_job.h"
 #include "support/local_cluster.h"
 #include "support/raw_socket.h"
 #include "stats.h"
@@ -49,7 +49,7 @@ double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(
 
 // The specular preset with a line no earlier request compiled (Mesa caches programs by their IR).
 std::pair<std::string, std::string> fresh_shaders(unsigned serial, const std::string& extra = "") {
-  const auto p = *shadelab::render::find_preset("specular");
+  const auto& p = shadelab::bench::canonical_preset();
   return {p.vertex.text, shadelab::bench::with_fresh_branch(p.fragment.text, serial, extra)};
 }
 
@@ -144,7 +144,7 @@ Probe probe(int port, std::atomic<unsigned>& serial) {
     const auto t = Clock::now();
     httplib::Result r = i < 40 ? c.Get("/livez") : [&] {
       const auto [v, f] = fresh_shaders(serial++);
-      return c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", "bunny"}}.dump(), "application/json");
+      return c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", shadelab::bench::canonical_course().default_mesh}}.dump(), "application/json");
     }();
     (i < 40 ? p.livez : p.render).push_back(ms(Clock::now() - t));
     p.failures += !r || r->status != 200;
@@ -207,7 +207,7 @@ struct Outcome {
 std::pair<int, bool> request(httplib::Client& c, Kind kind, unsigned serial, int nth, const json& scene) {
   if (kind == Kind::render || kind == Kind::grade) {
     const auto [v, f] = fresh_shaders(serial);
-    json job{{"vertex", v}, {"fragment", f}, {"mesh", "bunny"}};
+    json job{{"vertex", v}, {"fragment", f}, {"mesh", shadelab::bench::canonical_course().default_mesh}};
     if (kind == Kind::grade) job["reference"] = "specular";
     auto r = c.Post(kind == Kind::grade ? "/api/grade" : "/api/render", job.dump(), "application/json");
     return {r ? r->status : 0, r && r->status == 200};
@@ -224,7 +224,7 @@ std::pair<int, bool> request(httplib::Client& c, Kind kind, unsigned serial, int
   const auto [v, f] = fresh_shaders(serial, hang ? "\n    float s = gl_FragCoord.x; while (true) { s = sin(s); if (s > 2.0) break; }"
                                                    "\n    if (s > 1.5) discard;"
                                                  : "\n    this is not GLSL;");
-  auto r = c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", "bunny"}}.dump(), "application/json");
+  auto r = c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", shadelab::bench::canonical_course().default_mesh}}.dump(), "application/json");
   return {r ? r->status : 0, r && r->status == 422};
 }
 

@@ -7,7 +7,7 @@
 
 #include <iostream>
 
-#include "render/presets.h"
+#include "canonical_job.h"
 #include "bench_renderer.h"
 #include "render/renderer.h"
 #include "shader/webgl_rules.h"
@@ -19,7 +19,7 @@ using namespace shadelab;
 using bench::renderer;
 
 // The specular fragment shader with a constant no earlier iteration used: a real code change.
-shader::ShaderFile fresh_fragment(const render::Preset& p, long k) {
+shader::ShaderFile fresh_fragment(const course::Preset& p, long k) {
   shader::ShaderFile f = p.fragment;
   const std::string marker = "void main";
   f.text.insert(f.text.find(marker), "const float kChange = " + std::to_string(k) + ".0;\n");
@@ -27,7 +27,7 @@ shader::ShaderFile fresh_fragment(const render::Preset& p, long k) {
 }
 
 void BM_WebglRulesOnly(benchmark::State& state) {
-  const auto p = *render::find_preset("specular");
+  const auto& p = bench::canonical_preset();
   long k = 0;
   for (auto _ : state) {
     auto vertex = shader::unwrap(p.vertex, shader::Stage::vertex);
@@ -39,7 +39,7 @@ void BM_WebglRulesOnly(benchmark::State& state) {
 }
 
 void BM_CompileAndLink(benchmark::State& state) {
-  const auto p = *render::find_preset("specular");
+  const auto& p = bench::canonical_preset();
   long k = 1'000'000;
   for (auto _ : state) {
     auto report = renderer().compile(p.vertex, fresh_fragment(p, ++k));

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "http/api_request.h"
-#include "render/presets.h"
+#include "course/course_reader.h"
 
 using namespace shadelab;
 using nlohmann::json;
@@ -15,7 +15,7 @@ const char* kFragment = "#version 300 es\nprecision highp float;\nout vec4 c;\nv
 Expected<http::ParsedJob> parse(const json& fields, worker::JobKind kind = worker::JobKind::render) {
   auto raw = http::from_json_body(fields.dump());
   if (!raw) return raw.take_error();
-  return http::parse_job(*raw, kind, http::Limits{});
+  return http::parse_job(*raw, kind, http::Limits{}, course::builtin_course());
 }
 
 std::string error_of(const json& fields) {
@@ -34,10 +34,12 @@ TEST(ApiRequestTest, ABodyMustBeAJsonObject) {
 TEST(ApiRequestTest, APresetExpandsToItsShadersAndNamesTheFrames) {
   auto parsed = parse({{"preset", "specular"}, {"mesh", "teapot"}, {"width", 320}, {"height", 240}, {"frames", 3}});
   ASSERT_TRUE(parsed) << parsed.error().message;
-  const auto preset = render::find_preset("specular");
-  EXPECT_EQ(parsed->job.request.fragment.text, preset->fragment.text);
+  const auto& c = course::builtin_course();
+  EXPECT_EQ(parsed->job.request.fragment.text, c.preset("specular")->fragment.text);
   EXPECT_EQ(parsed->job.prefix, "specular");
-  EXPECT_EQ(parsed->job.mesh, "teapot");
+  EXPECT_EQ(parsed->job.mesh, c.mesh("teapot")->id);
+  EXPECT_EQ(parsed->job.mesh_embedded, c.mesh("teapot")->id);
+  EXPECT_EQ(parsed->job.frame_name, c.frame_name);
   EXPECT_EQ(parsed->job.request.width, 320);
   EXPECT_EQ(parsed->job.request.frames, 3);
   EXPECT_TRUE(parsed->warnings.empty());
@@ -63,7 +65,7 @@ TEST(ApiRequestTest, SourceProblemsAreAnsweredBeforeAnyWorker) {
   http::RawRequest multipart;  // as a multipart upload brings it: bytes, not JSON text
   multipart.fields = {{"vertex", kVertex}};
   multipart.files["fragment"] = {"phong_frag.js", "#version 300 es\n\xff\xfe"};
-  EXPECT_EQ(http::parse_job(multipart, worker::JobKind::render, http::Limits{}).error().code, ErrorCode::shader_source_invalid);
+  EXPECT_EQ(http::parse_job(multipart, worker::JobKind::render, http::Limits{}, course::builtin_course()).error().code, ErrorCode::shader_source_invalid);
   EXPECT_EQ(parse({{"vertex", kVertex}, {"fragment", std::string(70 * 1024, ' ')}}).error().code, ErrorCode::payload_too_large);
 }
 
@@ -89,7 +91,7 @@ TEST(ApiRequestTest, AnUploadedMeshIsNamedByItsContentAndFormat) {
   http::RawRequest raw;
   raw.fields = {{"preset", "smooth"}};
   raw.files["mesh"] = {"Model.GLB", "glTF-bytes"};
-  auto parsed = http::parse_job(raw, worker::JobKind::render, http::Limits{});
+  auto parsed = http::parse_job(raw, worker::JobKind::render, http::Limits{}, course::builtin_course());
   ASSERT_TRUE(parsed) << parsed.error().message;
   EXPECT_EQ(parsed->job.mesh, http::mesh_id("glTF-bytes"));
   EXPECT_EQ(parsed->job.mesh_format, "GLB");
@@ -115,7 +117,7 @@ TEST(ApiRequestTest, AGradeNamesACheckpointOrACustomReferenceAndItsTolerances) {
   const auto grade = [](json fields) {
     fields["vertex"] = kVertex;
     fields["fragment"] = kFragment;
-    return http::parse_grade_job(*http::from_json_body(fields.dump()), http::Limits{});
+    return http::parse_grade_job(*http::from_json_body(fields.dump()), http::Limits{}, course::builtin_course());
   };
   auto specular = grade({{"reference", "specular"}, {"threshold", 0.05}, {"format", "gradescope"}});
   ASSERT_TRUE(specular) << specular.error().message;
@@ -126,8 +128,12 @@ TEST(ApiRequestTest, AGradeNamesACheckpointOrACustomReferenceAndItsTolerances) {
   EXPECT_FALSE(grade(json::object()));
   EXPECT_FALSE(grade({{"reference", "specular"}, {"referenceVertex", kVertex}}));
   EXPECT_EQ(grade({{"reference", "shiny"}}).error().code, ErrorCode::unknown_preset);
-  EXPECT_EQ(grade({{"reference", "smooth"}, {"threshold", 2}}).error().code, ErrorCode::invalid_argument);
-  EXPECT_EQ(grade({{"reference", "smooth"}, {"spatialTolerance", "yes"}}).error().message, "'spatialTolerance' must be true or false");
+  // A warm-up preset is not a deliverable, and the message says so.
+  const auto smooth = grade({{"reference", "smooth"}});
+  ASSERT_FALSE(smooth);
+  EXPECT_NE(smooth.error().message.find("'smooth' is a preset (a warm-up step), not a deliverable"), std::string::npos);
+  EXPECT_EQ(grade({{"reference", "normals"}, {"threshold", 2}}).error().code, ErrorCode::invalid_argument);
+  EXPECT_EQ(grade({{"reference", "normals"}, {"spatialTolerance", "yes"}}).error().message, "'spatialTolerance' must be true or false");
   auto custom = grade({{"referenceVertex", kVertex}, {"referenceFragment", kFragment}});
   ASSERT_TRUE(custom) << custom.error().message;
   EXPECT_EQ(custom->parsed.job.grade.reference_name, "custom");

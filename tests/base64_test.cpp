@@ -39,5 +39,14 @@ TEST(Base64Test, ALongInputEncodesAsItsChunksJoined) {
   EXPECT_EQ(whole.back(), '=');
 }
 
+// What a client sends a PNG as: the bytes back, whatever their padding; anything else refused.
+TEST(Base64Test, DecodingGivesTheBytesBackAndRefusesWhatIsNotBase64) {
+  for (const std::string& bytes : {std::string(), std::string("a"), std::string("ab"), std::string("abc"), std::string("\x89PNG\r\n\x1a\n\0\0", 10)})
+    EXPECT_EQ(base64_decode(base64_encode(bytes)), bytes) << bytes.size();
+  EXPECT_FALSE(base64_decode("abc"));
+  EXPECT_FALSE(base64_decode("ab!="));
+  EXPECT_FALSE(base64_decode("ab\ncd=="));
+}
+
 }  // namespace
 }  // namespace shadelab

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/presets.h"
+#include "support/test_support.h"
 #include "support/http_fixture.h"
 #include "support/raw_socket.h"
 
@@ -30,7 +30,7 @@ double p99(std::vector<double> v) {
 // The canonical job with a shader no earlier request compiled (Mesa caches programs by their IR,
 // and the response cache by the request), so each render really runs.
 std::string fresh_canonical_job(int serial) {
-  auto p = *render::find_preset("specular");
+  auto p = *testkit::course().preset("specular");
   const std::string from = "void main(void) {";
   p.fragment.text.insert(p.fragment.text.find(from) + from.size(), "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;");
   return nlohmann::json{{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"mesh", "bunny"}}.dump();

@@ -6,10 +6,10 @@
 
 #include "core/lru_cache.h"
 #include "grade/reference_cache.h"
-#include "render/presets.h"
 #include "scene/mesh.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
+#include "support/test_support.h"
 
 using nlohmann::json;
 using namespace shadelab;
@@ -25,7 +25,7 @@ class GradeTest : public ::testing::Test {
   // A submission: a preset's shaders with one edit applied to the fragment (or vertex) shader.
   static json submission(const std::string& preset, const std::string& from = "", const std::string& to = "",
                          bool vertex = false) {
-    auto p = *render::find_preset(preset);
+    auto p = *testkit::course().preset(preset);
     auto& file = vertex ? p.vertex.text : p.fragment.text;
     if (!from.empty()) {
       const auto at = file.find(from);
@@ -50,8 +50,9 @@ class GradeTest : public ::testing::Test {
 testkit::RunningService* GradeTest::server_ = nullptr;
 
 TEST_F(GradeTest, EachCheckpointGradedAgainstItselfScoresFullMarks) {
-  for (const std::string c : {"smooth", "gouraud", "diffuse", "specular"}) {
-    const json r = grade(submission(c), c);
+  for (const auto& checkpoint : testkit::course().checkpoints) {
+    const std::string c = checkpoint.name;
+    const json r = grade(submission(checkpoint.reference), c);
     EXPECT_TRUE(r["pass"]) << c << ": " << r.dump();
     EXPECT_EQ(r["score"], 1.0) << c;
     EXPECT_EQ(r["frames"].size(), c == "specular" ? 18u : 9u);  // specular adds the back-light probe
@@ -61,8 +62,8 @@ TEST_F(GradeTest, EachCheckpointGradedAgainstItselfScoresFullMarks) {
   }
 }
 
-TEST_F(GradeTest, FlatInsteadOfSmoothIsRecognised) {
-  const json r = grade(submission("starter"), "smooth");
+TEST_F(GradeTest, TheFlatStarterHandedInAsNormalsIsRecognised) {
+  const json r = grade(submission("starter"), "normals");
   EXPECT_FALSE(r["pass"]);
   EXPECT_EQ(r["diagnosis"], "flat_shading") << r.dump();
   EXPECT_NE(r["messages"][0].get<std::string>().find("flat"), std::string::npos);
@@ -90,8 +91,98 @@ TEST_F(GradeTest, SwappedChannelsAreRecognised) {
   EXPECT_NE(r["messages"][0].get<std::string>().find("(B, G, R)"), std::string::npos);
 }
 
+// A pair written the way a student of the course writes it: the starters as distributed (vec3
+// varyings, `specularAlpha = 6.0`, the TODOs done in their own words), not the presets' text.
+json student_pair(const std::string& alpha, bool specular) {
+  const std::string vertex = R"(export default `#version 300 es
+precision highp float;
+
+in vec4 aVertexPosition;
+in vec4 aVertexNormal;
+
+uniform mat4 uMeshToWorldMatrix;
+uniform mat4 uMeshToWorldRotMatrix;
+uniform mat4 uWorldToClipSpaceMatrix;
+
+out vec3 vPosition;
+out vec3 vNormal;
+
+void main(void) {
+    vPosition = (uMeshToWorldMatrix * aVertexPosition).xyz;
+    vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;
+    gl_Position = uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition;
+}
+`;
+)";
+  const std::string fragment = R"(export default `#version 300 es
+precision highp float;
+
+uniform vec4 uAmbientColor;
+uniform vec4 uDiffuseColor;
+uniform vec4 uSpecularColor;
+uniform vec4 uLightColor;
+uniform vec3 uLightPosition;
+
+in vec3 vPosition;
+in vec3 vNormal;
+out vec4 fragColor;
+
+void main(void) {
+    float specularAlpha = )" + alpha + R"(;
+
+    // TODO: diffuse
+    vec3 n = normalize(vNormal);
+    vec3 toLight = normalize(uLightPosition - vPosition);
+    float lambert = dot(n, toLight);
+    vec4 diffuse = uDiffuseColor * uLightColor * max(0.0, lambert);
+
+    // TODO: specular, only on the lit side
+    vec4 specular = vec4(0.0);
+    if ()" + std::string(specular ? "lambert > 0.0" : "false") + R"() {
+        vec3 toEye = normalize(-vPosition);
+        vec3 mirrored = reflect(-toLight, n);
+        specular = uSpecularColor * uLightColor * pow(max(0.0, dot(toEye, mirrored)), specularAlpha);
+    }
+    fragColor = uAmbientColor + diffuse + specular;
+}
+`;
+)";
+  return {{"vertex", vertex}, {"fragment", fragment}, {"vertexName", "phong_vert.js"}, {"fragmentName", "phong_frag.js"},
+          {"width", 160}, {"height", 160}};
+}
+
+TEST_F(GradeTest, APairWrittenOnTheCoursesStarterPassesEachDeliverable) {
+  const json normals = grade(submission("normals"), "normals");
+  EXPECT_TRUE(normals["pass"]) << normals.dump();
+  const json diffuse = grade(student_pair("6.0", false), "diffuse");
+  EXPECT_TRUE(diffuse["pass"]) << diffuse.dump();
+  const json specular = grade(student_pair("6.0", true), "specular");
+  EXPECT_TRUE(specular["pass"]) << specular.dump();
+}
+
+TEST_F(GradeTest, TheHandoutsExponentIsNamedAndSoIsAnyOther) {
+  const json handout = grade(student_pair("0.6", true), "specular");
+  EXPECT_FALSE(handout["pass"]);
+  EXPECT_EQ(handout["diagnosis"], "handout_exponent") << handout.dump();
+  EXPECT_NE(handout["messages"][0].get<std::string>().find("your shader's exponent is 0.6; the course's starter uses 6.0"),
+            std::string::npos) << handout.dump();
+  // An exponent the catalogue does not hold is read from the source.
+  const json other = grade(student_pair("20.0", true), "specular");
+  EXPECT_FALSE(other["pass"]);
+  EXPECT_EQ(other["diagnosis"], "changed_specularAlpha") << other.dump();
+  EXPECT_EQ(other["messages"][0], "your shader's exponent is 20.0; the course's starter uses 6.0 (specularAlpha)") << other.dump();
+}
+
+TEST_F(GradeTest, AnOldCheckpointNameIsGradedAsWhatItNowMeansAndSaysSo) {
+  const json r = grade(submission("normals"), "gouraud");
+  EXPECT_TRUE(r["pass"]) << r.dump();
+  EXPECT_EQ(r["checkpoint"], "normals");
+  ASSERT_FALSE(r["warnings"].empty()) << r.dump();
+  EXPECT_NE(r["warnings"].back().get<std::string>().find("'gouraud' is now 'normals'"), std::string::npos) << r.dump();
+}
+
 TEST_F(GradeTest, UnnormalizedNormalsAreRecognised) {
-  const json r = grade(submission("diffuse", "vec3 N = normalize(vNormal.xyz);", "vec3 N = vNormal.xyz;"), "diffuse");
+  const json r = grade(submission("diffuse", "vec3 N = normalize(vNormal);", "vec3 N = vNormal;"), "diffuse");
   EXPECT_FALSE(r["pass"]) << r.dump();
   EXPECT_EQ(r["diagnosis"], "unnormalized_normals") << r.dump();
 }
@@ -144,8 +235,8 @@ TEST_F(GradeTest, GradescopeOutputHasEveryRequiredField) {
 }
 
 TEST_F(GradeTest, MultipartUploadAndACustomReferencePairWork) {
-  const auto diffuse = *render::find_preset("diffuse");
-  const auto smooth = *render::find_preset("smooth");
+  const auto diffuse = *testkit::course().preset("diffuse");
+  const auto smooth = *testkit::course().preset("smooth");
   httplib::MultipartFormDataItems items = {
       {"vertex", diffuse.vertex.text, "phong_vert.js", ""},
       {"fragment", diffuse.fragment.text, "phong_frag.js", ""},
@@ -218,7 +309,7 @@ TEST_F(GradeTest, MetricsReportWhatEachWorkerKeeps) {
   EXPECT_LE(std::max(programs[0], programs[1]), 32.0);
   const auto mesh_bytes = values("shadelab_worker_cached_mesh_bytes");
   ASSERT_EQ(mesh_bytes.size(), 2u);
-  const double bunny = double(scene::bytes_of(*scene::builtin_mesh("bunny")));
+  const double bunny = double(scene::bytes_of(testkit::builtin("bunny")));
   EXPECT_GT(std::max(mesh_bytes[0], mesh_bytes[1]), bunny) << "the parsed bunny and its buffers";
   EXPECT_LE(std::max(mesh_bytes[0], mesh_bytes[1]), double((384u + 256u) << 20) + 2 * bunny);
 }

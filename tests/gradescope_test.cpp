@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/files.h"
+#include "support/test_support.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -63,33 +64,38 @@ class GradescopeTest : public ::testing::Test {
       if (t["name"].get<std::string>().starts_with(prefix)) return &t;
     return nullptr;
   }
+  // What Gradescope shows for a checkpoint's test: the course's title for it.
+  static std::string title(const std::string& checkpoint) { return shadelab::testkit::course().checkpoint(checkpoint)->checkpoint->title; }
 
   fs::path root_;
 };
 
 }  // namespace
 
-// The student's HW2 folder as they zip it, macOS litter included: each checkpoint found by the
-// homework's file names (and a stage the student kept under its own name), each graded.
+// The student's HW2 folder as they zip it (the course's layout: src/shaders/), macOS litter
+// included: each checkpoint found by the course's file names (and the diffuse stage the student
+// kept under its own name), each graded and worth the course's points.
 TEST_F(GradescopeTest, TheHomeworkFolderIsGradedCheckpointByCheckpoint) {
-  submit_preset("HW2/shaders/starter_vert.js", "gouraud", "vert");
-  submit_preset("HW2/shaders/starter_frag.js", "gouraud", "frag");
-  submit_preset("HW2/shaders/phong_vert.js", "specular", "vert");
-  submit_preset("HW2/shaders/phong_frag.js", "specular", "frag");
-  submit_preset("HW2/shaders/smooth_vert.js", "smooth", "vert");
-  submit_preset("HW2/shaders/smooth_frag.js", "smooth", "frag");
-  submit("HW2/hw2.js", "// the page's script\n");
-  submit("__MACOSX/HW2/shaders/._phong_vert.js", "\x00\x05\x16\x07 resource fork");
+  submit_preset("HW2/src/shaders/starter_vert.js", "normals", "vert");
+  submit_preset("HW2/src/shaders/starter_frag.js", "normals", "frag");
+  submit_preset("HW2/src/shaders/phong_vert.js", "specular", "vert");
+  submit_preset("HW2/src/shaders/phong_frag.js", "specular", "frag");
+  submit_preset("HW2/src/shaders/diffuse_vert.js", "diffuse", "vert");
+  submit_preset("HW2/src/shaders/diffuse_frag.js", "diffuse", "frag");
+  submit("HW2/src/hw2.js", "// the page's script\n");
+  submit("__MACOSX/HW2/src/shaders/._phong_vert.js", "\x00\x05\x16\x07 resource fork");
   const json results = autograde();
   ASSERT_EQ(results["tests"].size(), 3u) << results.dump(2);
-  EXPECT_EQ(results["score"], 3.0) << results.dump(2);
-  const json* gouraud = test_named(results, "checkpoint: gouraud");
-  ASSERT_TRUE(gouraud);
-  EXPECT_EQ((*gouraud)["name"], "checkpoint: gouraud (HW2/shaders/starter_vert.js, starter_frag.js)");
-  EXPECT_EQ((*gouraud)["status"], "passed");
-  EXPECT_EQ((*gouraud)["visibility"], "visible");
-  ASSERT_TRUE(test_named(results, "checkpoint: smooth (HW2/shaders/smooth_vert.js"));
-  ASSERT_TRUE(test_named(results, "checkpoint: specular (HW2/shaders/phong_vert.js"));
+  double points = 0;
+  for (const auto& c : shadelab::testkit::course().checkpoints) points += c.points;
+  EXPECT_EQ(results["score"], points) << results.dump(2);
+  const json* normals = test_named(results, title("normals"));
+  ASSERT_TRUE(normals);
+  EXPECT_EQ((*normals)["name"], title("normals") + " (HW2/src/shaders/starter_vert.js, starter_frag.js)");
+  EXPECT_EQ((*normals)["status"], "passed");
+  EXPECT_EQ((*normals)["visibility"], "visible");
+  ASSERT_TRUE(test_named(results, title("diffuse") + " (HW2/src/shaders/diffuse_vert.js"));
+  ASSERT_TRUE(test_named(results, title("specular") + " (HW2/src/shaders/phong_vert.js"));
   EXPECT_FALSE(fs::exists(root_ / "results/heatmaps")) << "no checkpoint failed";
 }
 
@@ -100,13 +106,13 @@ TEST_F(GradescopeTest, AMissingAndAWrongCheckpointSayWhy) {
   submit_preset("phong_frag.js", "diffuse", "frag");
   const json results = autograde();
   EXPECT_EQ(results["score"], 0.0) << results.dump(2);
-  const json* gouraud = test_named(results, "checkpoint: gouraud");
-  ASSERT_TRUE(gouraud) << results.dump(2);
-  EXPECT_EQ((*gouraud)["score"], 0.0);
-  EXPECT_NE((*gouraud)["output"].get<std::string>().find("expected starter_vert.js and starter_frag.js"), std::string::npos);
-  EXPECT_NE((*gouraud)["output"].get<std::string>().find("the submission has phong_frag.js, phong_vert.js"), std::string::npos)
-      << (*gouraud)["output"];
-  const json* specular = test_named(results, "checkpoint: specular (phong_vert.js, phong_frag.js)");
+  const json* normals = test_named(results, title("normals"));
+  ASSERT_TRUE(normals) << results.dump(2);
+  EXPECT_EQ((*normals)["score"], 0.0);
+  EXPECT_NE((*normals)["output"].get<std::string>().find("expected starter_vert.js and starter_frag.js"), std::string::npos);
+  EXPECT_NE((*normals)["output"].get<std::string>().find("the submission has phong_frag.js, phong_vert.js"), std::string::npos)
+      << (*normals)["output"];
+  const json* specular = test_named(results, title("specular") + " (phong_vert.js, phong_frag.js)");
   ASSERT_TRUE(specular) << results.dump(2);
   EXPECT_EQ((*specular)["status"], "failed");
   const std::string output = (*specular)["output"];
@@ -119,34 +125,34 @@ TEST_F(GradescopeTest, AMissingAndAWrongCheckpointSayWhy) {
 }
 
 TEST_F(GradescopeTest, ASubmissionThatDoesNotCompileScoresZeroWithItsError) {
-  std::string broken = shadelab::testkit::read_text(kSource / "shaders/gouraud_vert.js");
+  std::string broken = shadelab::testkit::read_text(kSource / "shaders/normals_vert.js");
   const size_t at = broken.find("void main");
   broken.replace(at, 9, "void main(");  // a syntax error inside main's signature
   const long main_line = 1 + std::count(broken.begin(), broken.begin() + static_cast<long>(at), '\n');
   submit("starter_vert.js", broken);
-  submit_preset("starter_frag.js", "gouraud", "frag");
+  submit_preset("starter_frag.js", "normals", "frag");
   const json results = autograde();
-  const json* gouraud = test_named(results, "checkpoint: gouraud");
-  ASSERT_TRUE(gouraud) << results.dump(2);
-  EXPECT_EQ((*gouraud)["score"], 0.0);
-  EXPECT_EQ((*gouraud)["status"], "failed");
-  EXPECT_NE((*gouraud)["output"].get<std::string>().find("compile error at starter_vert.js line " + std::to_string(main_line)), std::string::npos)
-      << "the error at the student's file and line: " << (*gouraud)["output"];
+  const json* normals = test_named(results, title("normals"));
+  ASSERT_TRUE(normals) << results.dump(2);
+  EXPECT_EQ((*normals)["score"], 0.0);
+  EXPECT_EQ((*normals)["status"], "failed");
+  EXPECT_NE((*normals)["output"].get<std::string>().find("compile error at starter_vert.js line " + std::to_string(main_line)), std::string::npos)
+      << "the error at the student's file and line: " << (*normals)["output"];
 }
 
 // A link in the submission is not followed: the grader would read (and quote in its diagnostics)
 // a file of the autograder's image.
 TEST_F(GradescopeTest, ALinkInTheSubmissionIsNotFollowed) {
   const fs::path outside = root_ / "outside_vert.js";
-  std::ofstream(outside) << shadelab::testkit::read_text(kSource / "shaders/gouraud_vert.js");
+  std::ofstream(outside) << shadelab::testkit::read_text(kSource / "shaders/normals_vert.js");
   fs::create_symlink(outside, root_ / "submission/starter_vert.js");
-  submit_preset("starter_frag.js", "gouraud", "frag");
+  submit_preset("starter_frag.js", "normals", "frag");
   const json results = autograde();
-  const json* gouraud = test_named(results, "checkpoint: gouraud");
-  ASSERT_TRUE(gouraud) << results.dump(2);
-  EXPECT_EQ((*gouraud)["score"], 0.0) << "graded through the link";
-  EXPECT_NE((*gouraud)["output"].get<std::string>().find("the submission has starter_frag.js\n"), std::string::npos)
-      << (*gouraud)["output"];
+  const json* normals = test_named(results, title("normals"));
+  ASSERT_TRUE(normals) << results.dump(2);
+  EXPECT_EQ((*normals)["score"], 0.0) << "graded through the link";
+  EXPECT_NE((*normals)["output"].get<std::string>().find("the submission has starter_frag.js\n"), std::string::npos)
+      << (*normals)["output"];
 }
 
 TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
@@ -181,6 +187,7 @@ TEST_F(GradescopeTest, TheAutograderZipHasGradescopesLayout) {
   std::set<std::string> names;
   for (zip_int64_t i = 0; i < zip_get_num_entries(zip, 0); ++i) names.insert(zip_get_name(zip, i, 0));
   zip_close(zip);
-  for (const char* expected : {"setup.sh", "run_autograder", "CMakeLists.txt", "tools/setup.sh", "server/cli/main.cpp", "assets/bunny.obj"})
+  for (const char* expected : {"setup.sh", "run_autograder", "CMakeLists.txt", "tools/setup.sh", "server/cli/main.cpp", "assets/bunny.obj",
+                               "courses/cs148-summer2022.json"})
     EXPECT_TRUE(names.count(expected)) << expected;
 }

@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "render/presets.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
 #include "support/test_support.h"
@@ -79,7 +78,7 @@ TEST_F(HttpTest, RenderJsonBodyReturnsTheGridPng) {
 }
 
 TEST_F(HttpTest, RenderMultipartWithShaderFilesAsCurlSendsThem) {
-  const auto preset = render::find_preset("diffuse");
+  const auto* preset = testkit::course().preset("diffuse");
   httplib::MultipartFormDataItems items = {
       {"vertex", preset->vertex.text, "phong_vert.js", "application/javascript"},
       {"fragment", preset->fragment.text, "phong_frag.js", "application/javascript"},
@@ -173,7 +172,7 @@ TEST_F(HttpTest, ConstantFramesAreFlagged) {
 }
 
 TEST_F(HttpTest, CompileReturnsReflectionWithoutRendering) {
-  auto p = render::find_preset("specular");
+  const auto* p = testkit::course().preset("specular");
   auto r = post_json("/api/compile", {{"vertex", p->vertex.text}, {"fragment", p->fragment.text}});
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
@@ -219,7 +218,7 @@ TEST_F(HttpTest, MeshUploadGivesAContentAddressedIdToRenderWith) {
 TEST_F(HttpTest, PresetsHealthMetricsAndOpenApiAreServed) {
   auto presets = client().Get("/api/presets");
   ASSERT_TRUE(presets);
-  EXPECT_EQ(body_json(presets).size(), 5u);
+  EXPECT_EQ(body_json(presets).size(), testkit::course().presets.size());
   testkit::expect_conforms(*presets, "/api/presets", "get");
   for (const char* path : {"/livez", "/readyz"}) {
     auto r = client().Get(path);

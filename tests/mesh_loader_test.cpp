@@ -3,6 +3,9 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "core/embedded_files.h"
+#include "core/hash.h"
+#include "course/course_reader.h"
 #include "scene/mesh.h"
 
 using namespace shadelab;
@@ -18,20 +21,35 @@ bool all_finite(const scene::Mesh& m) {
 }
 }  // namespace
 
-TEST(MeshLoaderTest, BuiltinsLoadWithNormalsFromTheFileAndTheHomeworkFraming) {
-  for (const std::string name : {"bunny", "teapot"}) {
-    auto m = scene::builtin_mesh(name);
-    ASSERT_TRUE(m) << m.error().format();
-    EXPECT_TRUE(m->normals_from_file);
-    EXPECT_GT(m->triangle_count(), 900u);
-    const auto b = scene::bounds(*m);
-    EXPECT_NEAR(b.min.y, 0.0f, 1e-5);
-    EXPECT_NEAR(b.max.y, scene::kHomeworkHeight, 1e-5);
-    EXPECT_NEAR(b.min.x + b.max.x, 0.0f, 1e-5);
-    EXPECT_NEAR(b.min.z + b.max.z, 0.0f, 1e-5);
-    for (const auto& n : m->normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-3);
+// The course's two meshes as its HW2 folder hands them out (docs/homework-contract.md's table):
+// the same bytes, every triangle with the file's own normals, drawn in the file's units.
+TEST(MeshLoaderTest, TheCoursesMeshesAreTheFilesItHandsOutInTheirOwnUnits) {
+  struct Expected {
+    const char* name;
+    const char* sha256;
+    size_t triangles;
+    glm::vec3 min, max;  // the contract's bounds, to two decimals
+  };
+  const Expected meshes[] = {
+      {"bunny", "549a9a95a61bdd4ee4caeda28331d936f082122353ff16d6861cd41c4c64c4c6", 27779, {-2.02f, -0.01f, -1.61f}, {2.03f, 4.00f, 1.53f}},
+      {"teapot", "41b957ba8282b79f9a1ab8ff52cc6534253bdab742dbaffc4b8360e36f39b3f1", 6192, {-2.31f, 0.01f, -1.55f}, {2.67f, 2.45f, 1.55f}}};
+  for (const auto& e : meshes) {
+    const course::CourseMesh* m = course::builtin_course().mesh(e.name);
+    ASSERT_NE(m, nullptr) << e.name;
+    EXPECT_TRUE(m->embedded);
+    EXPECT_EQ(sha256_hex(std::string(*embedded_file(m->id))), e.sha256) << e.name;
+    auto mesh = course::load_course_mesh(*m);
+    ASSERT_TRUE(mesh) << mesh.error().format();
+    EXPECT_TRUE(mesh->normals_from_file);
+    EXPECT_EQ(mesh->triangle_count(), e.triangles);
+    const auto b = scene::bounds(*mesh);
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_NEAR(b.min[axis], e.min[axis], 0.006) << e.name << " axis " << axis;
+      EXPECT_NEAR(b.max[axis], e.max[axis], 0.006) << e.name << " axis " << axis;
+    }
+    for (const auto& n : mesh->normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-3);
   }
-  EXPECT_EQ(scene::builtin_mesh("dragon").error().code, ErrorCode::mesh_not_found);
+  EXPECT_EQ(scene::embedded_mesh("assets/dragon.obj", "dragon").error().code, ErrorCode::mesh_not_found);
 }
 
 TEST(MeshLoaderTest, FacesKeepTheFilesOrderAndCorners) {
@@ -126,15 +144,17 @@ TEST(MeshLoaderTest, PlyStlAndGltfLoad) {
   EXPECT_EQ(g->positions[0], glm::vec3(0, 2, 0));  // the node's translation is applied
 }
 
-TEST(MeshLoaderTest, FitToHomeworkFramesAnyMesh) {
+TEST(MeshLoaderTest, FitToStandsAnyMeshWhereTheTargetStands) {
   auto m = load("v 10 10 10\nv 30 10 10\nv 10 50 14\nf 1 2 3\n", "obj");
   ASSERT_TRUE(m);
-  scene::fit_to_homework(*m);
+  const scene::Bounds target{{-2, -0.5f, -1}, {4, 3.5f, 3}};  // height 4, centred on (1, 1) in x and z
+  scene::fit_to(*m, target);
   const auto b = scene::bounds(*m);
-  EXPECT_NEAR(b.min.y, 0.0f, 1e-6);
+  EXPECT_NEAR(b.min.y, -0.5f, 1e-6);
   EXPECT_NEAR(b.max.y, 3.5f, 1e-6);
-  EXPECT_NEAR(b.min.x, -b.max.x, 1e-6);
-  EXPECT_NEAR(b.min.z, -b.max.z, 1e-6);
+  EXPECT_NEAR((b.min.x + b.max.x) / 2, 1.0f, 1e-6);
+  EXPECT_NEAR((b.min.z + b.max.z) / 2, 1.0f, 1e-6);
+  EXPECT_NEAR((b.max.x - b.min.x) / (b.max.y - b.min.y), 20.0f / 40.0f, 1e-6) << "scaled uniformly";
 }
 
 TEST(MeshLoaderTest, TriangleCapIsEnforced) {

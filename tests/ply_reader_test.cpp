@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "scene/mesh.h"
+#include "support/test_support.h"
 
 using namespace shadelab;
 
@@ -80,8 +81,7 @@ const std::string kQuadAndTriangle =
 }  // namespace
 
 TEST(PlyReaderTest, TheBunnyReadsTheSameInAsciiLittleAndBigEndian) {
-  auto bunny = scene::builtin_mesh("bunny");
-  ASSERT_TRUE(bunny);
+  const scene::Mesh* bunny = &testkit::builtin("bunny");
   for (const Encoding e : {Encoding::ascii, Encoding::little, Encoding::big}) {
     auto m = load_ply(to_ply(*bunny, e));
     ASSERT_TRUE(m) << m.error().format();

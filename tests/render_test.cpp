@@ -67,7 +67,7 @@ std::string as_es100(std::string text, bool vertex) {
 // WebGL 2 compiles GLSL ES 1.00 pairs (attribute, varying, gl_FragColor): the homework's
 // attributes and uniforms reach them as they reach ES 3.00 ones, and the frames are the same.
 TEST(RenderTest, AGlslEs100PairRendersAsItsEs300Twin) {
-  for (const char* preset : {"gouraud", "specular"}) {
+  for (const char* preset : {"normals", "specular"}) {
     auto es300 = testkit::preset_request(preset);
     es300.width = 160;
     es300.height = 120;
@@ -122,7 +122,7 @@ TEST(RenderTest, VertexSyntaxErrorAndMissingMainAreCompileErrors) {
 }
 
 TEST(RenderTest, VaryingMismatchIsALinkError) {
-  auto request = testkit::preset_request("gouraud");
+  auto request = testkit::preset_request("normals");
   request.fragment.text = "#version 300 es\nprecision highp float;\nin vec4 vColour;\nout vec4 c;\nvoid main() { c = vColour; }\n";
   auto r = render_frames(request, bunny());
   ASSERT_FALSE(r);
@@ -248,8 +248,9 @@ TEST(RenderTest, FlatVaryingsTakeTheLastCornerOfEachTriangle) {
   request.msaa = 0;
   auto r = render_frames(request, tri);
   ASSERT_TRUE(r) << r.error().format();
-  // Placed at (0, -2, -7.5), the triangle spans rows ~240 to ~395 of the frame.
-  const auto p = pixel(r->frames[0], 320, 330);
+  // Moved by the page's (0, -2, -7.5) and seen at fovY 45 degrees, the triangle spans the frame's
+  // lower half from its middle row down to ~82% of its height; (1/2, 3/4) of the frame is inside.
+  const auto p = pixel(r->frames[0], request.width / 2, request.height * 3 / 4);
   EXPECT_EQ(p, (std::array<int, 4>{0, 0, 255, 255}));
 }
 
@@ -361,7 +362,7 @@ TEST(MeshBufferTest, IndexedCornersRebuildTheCornerListAndShareOnlyIdenticalVert
 }
 
 TEST(MeshBufferTest, AClosedMeshStoresEachVertexOnce) {
-  const auto bunny_corners = scene::builtin_mesh("bunny")->interleaved();
+  const auto bunny_corners = testkit::builtin("bunny").interleaved();
   const auto indexed = gl::index_corners(bunny_corners);
   EXPECT_EQ(indexed.indices.size(), bunny_corners.size() / 6);
   EXPECT_LT(indexed.vertices.size() * 3, bunny_corners.size()) << "the bunny shares most corners";

@@ -6,16 +6,20 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "core/base64.h"
+#include "image/encode.h"
 #include "sheet/sheet.h"
 #include "support/files.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
+#include "support/test_support.h"
 
 namespace fs = std::filesystem;
 using namespace shadelab;
@@ -37,23 +41,42 @@ Ran run(const std::string& command) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-// One student's folder, made once: Gouraud right, the specular stage with a compile error on
-// line 20, short answers; the sheet made twice.
+// A small PNG of one colour, for an image a student hands in.
+std::string solid_png(int width, int height, std::uint8_t red) {
+  auto img = image::Image::blank(width, height, image::PixelType::u8);
+  for (size_t i = 0; i < img.bytes.size(); i += 4) img.bytes[i] = red, img.bytes[i + 3] = 255;
+  const auto png = *image::encode_png(img);
+  return {png.begin(), png.end()};
+}
+
+// The line of `needle` in `text`, 1-based.
+int line_of(const std::string& text, const std::string& needle) {
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(text.find(needle)), '\n'));
+}
+
+// One student's folder laid out as the course's (src/shaders/, images/), made once: normals
+// right, diffuse handed in as its nine saved frames, the specular stage with a compile error, two
+// of the Blender images (camera_100.png missing), short answers; the sheet made twice.
 class SheetTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new fs::path(fs::temp_directory_path() / ("shadelab_sheet_" + std::to_string(::getpid())));
-    fs::create_directories(*dir_ / "HW2/shaders");
+    fs::create_directories(*dir_ / "HW2/src/shaders");
     const auto copy = [](const std::string& preset, const std::string& stage, const std::string& as) {
-      std::ofstream(*dir_ / "HW2/shaders" / as) << testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js"));
+      std::ofstream(*dir_ / "HW2/src/shaders" / as) << testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js"));
     };
-    copy("gouraud", "vert", "starter_vert.js");
-    copy("gouraud", "frag", "starter_frag.js");
+    copy("normals", "vert", "starter_vert.js");
+    copy("normals", "frag", "starter_frag.js");
     copy("specular", "vert", "phong_vert.js");
     std::string frag = testkit::read_text(kSource / "shaders/specular_frag.js");
     frag.replace(frag.find("fragColor = color;"), 18, "fragColor = color * undefinedThing;");
-    std::ofstream(*dir_ / "HW2/shaders/phong_frag.js") << frag;
-    std::ofstream(*dir_ / "answers.txt") << "Gouraud shading lights each vertex & interpolates <colours>.\n\nA longer lens flattens.\n";
+    std::ofstream(*dir_ / "HW2/src/shaders/phong_frag.js") << frag;
+    error_line_ = line_of(frag, "fragColor = color * undefinedThing;");
+    // The diffuse deliverable as the browser saved it: nine frames, no code.
+    made_.push_back(run(std::string(SHADELAB_CLI) + " render --preset diffuse --size 96x96 --frames-dir " + (*dir_ / "HW2/images").string()));
+    for (const auto& [name, red] : {std::pair{"camera_25.png", 200}, {"camera_50.png", 150}, {"eevee0001.png", 100}})
+      std::ofstream(*dir_ / "HW2/images" / name, std::ios::binary) << solid_png(64, 36, static_cast<std::uint8_t>(red));
+    std::ofstream(*dir_ / "answers.txt") << "The normal's z is blue, and +z faces the viewer & interpolates <colours>.\n\nA longer lens flattens.\n";
     for (const char* name : {"a", "b"})
       made_.push_back(run(std::string(SHADELAB_CLI) + " sheet " + (*dir_ / "HW2").string() + " -o " + (*dir_ / name).string() +
                           ".pdf --html " + (*dir_ / name).string() + ".html --answers " + (*dir_ / "answers.txt").string() +
@@ -72,22 +95,40 @@ class SheetTest : public ::testing::Test {
   }
   static fs::path* dir_;
   static std::vector<Ran> made_;
+  static int error_line_;
 };
 fs::path* SheetTest::dir_ = nullptr;
 std::vector<Ran> SheetTest::made_;
+int SheetTest::error_line_ = 0;
+
+std::string title(const std::string& checkpoint) { return testkit::course().checkpoint(checkpoint)->checkpoint->title; }
 
 }  // namespace
 
-TEST_F(SheetTest, ThePdfHasEveryCheckpointItsVerdictCodeAndTheAnswers) {
+// The notebook's order: the normals grid and the starter's code, the diffuse grid (its saved
+// frames), the specular grid and the phong code, the questions and answers, the Blender images.
+TEST_F(SheetTest, ThePdfFollowsTheNotebooksOrderWithEachVerdictCodeAndTheAnswers) {
   const std::string text = pdf_text();
-  for (const char* expected :
-       {"HW2: Ada Lovelace", "1. Gouraud shading (lighting in the vertex shader), with its code", "1 / 1: matches the reference exactly",
-        "shaders/starter_vert.js", "vColor = vec4(normalize(abs(normal.xyz)), 1.0);",
-        "2. Phong reflection: ambient + diffuse + specular, with its code", "0 / 1: compile error at phong_frag.js line",
-        "fragColor = color * undefinedThing;", "Short answers", "interpolates <colours>.", "A longer lens flattens.",
-        "Blender: two_objects.json (lens 50 mm, 640 x 480)", "both objects fully in the image",
-        "Suzanne: fully in the image, 100% of it in frame, covers", "Suzanne: base colour (0.80, 0.10, 0.10), metallic 1.00, roughness 0.20"})
-    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text.substr(0, 2000);
+  const auto& course = testkit::course();
+  std::vector<std::string> in_order = {"HW2: Ada Lovelace", "1. " + title("normals"), "1 / 1: matches the reference exactly",
+                                       "src/shaders/starter_vert.js", "vColor = vec4(normalize(abs(normal.xyz)), 1.0);",
+                                       "2. " + title("diffuse"), "handed in as images: 9 of 9 saved frames (hw2_diffuse_0.png, ...)",
+                                       "the frames the student saved", "3. " + title("specular"), "0 / 1: compile error at phong_frag.js line",
+                                       "fragColor = color * undefinedThing;", "Questions"};
+  for (const auto& q : course.questions) in_order.push_back(q.text.substr(0, 40));
+  for (const std::string s : {"Answers", "interpolates <colours>.", "A longer lens flattens."}) in_order.push_back(s);
+  for (const auto& image : course.images) in_order.push_back(image.title + " (" + image.file + ")");
+  in_order.push_back("Blender: two_objects.json (lens 50 mm, 640 x 480)");
+  size_t at = 0;
+  for (const auto& expected : in_order) {
+    const size_t found = text.find(expected, at);
+    ASSERT_NE(found, std::string::npos) << "'" << expected << "' missing or out of order\n" << text.substr(0, 3000);
+    at = found;
+  }
+  for (const char* expected : {"not in the submission", "both objects fully in the image", "Suzanne: fully in the image, 100% of it in frame, covers",
+                               "Suzanne: base colour (0.80, 0.10, 0.10), metallic 1.00, roughness 0.20"})
+    EXPECT_NE(text.find(expected), std::string::npos) << expected;
+  EXPECT_NE(text.find("Dolly zoom: 100 mm (images/camera_100.png)\nnot in the submission"), std::string::npos) << "the missing image, named";
   EXPECT_NE(run("pdfinfo " + (*dir_ / "a.pdf").string()).output.find("Title:           HW2: Ada Lovelace"), std::string::npos);
 }
 
@@ -95,8 +136,8 @@ TEST_F(SheetTest, ThePdfHasEveryCheckpointItsVerdictCodeAndTheAnswers) {
 // the first page, rasterised, has the bunnies' colours where the grid is.
 TEST_F(SheetTest, TheGridIsDrawnOnThePageOfItsCode) {
   const std::string page1 = pdf_text(1, 1);
-  EXPECT_NE(page1.find("1. Gouraud shading"), std::string::npos);
-  EXPECT_NE(page1.find("shaders/starter_vert.js"), std::string::npos) << page1;
+  EXPECT_NE(page1.find("1. " + title("normals")), std::string::npos);
+  EXPECT_NE(page1.find("src/shaders/starter_vert.js"), std::string::npos) << page1;
   ASSERT_EQ(run("pdftoppm -r 36 -f 1 -l 1 " + (*dir_ / "a.pdf").string() + " " + (*dir_ / "page").string()).status, 0);
   std::string ppm;
   for (const auto& e : fs::directory_iterator(*dir_))
@@ -125,10 +166,14 @@ TEST_F(SheetTest, TheSameFolderGivesTheSameBytes) {
 TEST_F(SheetTest, TheHtmlPageHasTheSameSectionsWithTheErrorLineMarked) {
   const std::string html = testkit::read_text(*dir_ / "a.html");
   EXPECT_NE(html.find("<title>HW2: Ada Lovelace</title>"), std::string::npos);
-  EXPECT_NE(html.find("<img alt=\"3x3 grid of gouraud\" src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);
+  EXPECT_NE(html.find("<img alt=\"3x3 grid of normals\" src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);
+  EXPECT_NE(html.find("<img alt=\"3x3 grid of diffuse\" src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos) << "the saved frames";
   EXPECT_NE(html.find("(no grid: the shaders did not render)"), std::string::npos);
-  EXPECT_NE(html.find("<span class=\"marked\"><span class=\"n\">32</span>    fragColor = color * undefinedThing;</span>"), std::string::npos)
+  EXPECT_NE(html.find("<span class=\"marked\"><span class=\"n\">" + std::to_string(error_line_) +
+                      "</span>    fragColor = color * undefinedThing;</span>"),
+            std::string::npos)
       << "the line the compile error names, marked";
+  EXPECT_NE(html.find("<img alt=\"Dolly zoom: 25 mm\" src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);
   EXPECT_NE(html.find("interpolates &lt;colours&gt;."), std::string::npos) << "the answers, escaped";
   EXPECT_NE(html.find("\">Suzanne</div>"), std::string::npos) << "Suzanne's framing box";
   EXPECT_NE(html.find("<div class=\"box in\""), std::string::npos);
@@ -155,9 +200,9 @@ class SheetApiTest : public ::testing::Test {
 
   static nlohmann::json files() {
     nlohmann::json f = nlohmann::json::object();
-    for (const auto& [preset, as] : {std::pair{"gouraud", "starter"}, std::pair{"specular", "phong"}})
+    for (const auto& [preset, as] : {std::pair{"normals", "starter"}, std::pair{"specular", "phong"}})
       for (const char* stage : {"vert", "frag"})
-        f[std::string("HW2/shaders/") + as + "_" + stage + ".js"] =
+        f[std::string("HW2/src/shaders/") + as + "_" + stage + ".js"] =
             testkit::read_text(kSource / "shaders" / (std::string(preset) + "_" + stage + ".js"));
     return f;
   }
@@ -179,7 +224,7 @@ TEST_F(SheetApiTest, AJsonBodyGivesThePdfAndTheHtmlPage) {
   std::ofstream(file, std::ios::binary) << pdf->body;
   const std::string text = run("pdftotext -layout " + file.string() + " -").output;
   fs::remove(file);
-  for (const char* expected : {"HW2: Grace Hopper", "HW2/shaders/starter_vert.js", "HW2/shaders/phong_frag.js", "Phong lights each fragment."})
+  for (const char* expected : {"HW2: Grace Hopper", "HW2/src/shaders/starter_vert.js", "HW2/src/shaders/phong_frag.js", "Phong lights each fragment."})
     EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text.substr(0, 1500);
   size_t verdicts = 0;
   for (size_t at = 0; (at = text.find("1 / 1: matches the reference exactly", at)) != std::string::npos; ++at) ++verdicts;
@@ -189,7 +234,11 @@ TEST_F(SheetApiTest, AJsonBodyGivesThePdfAndTheHtmlPage) {
   ASSERT_TRUE(html);
   ASSERT_EQ(html->status, 200) << html->body.substr(0, 400);
   EXPECT_EQ(html->get_header_value("Content-Type"), "text/html; charset=utf-8");
-  EXPECT_NE(html->body.find("<h2>2. Phong reflection: ambient + diffuse + specular, with its code</h2>"), std::string::npos);
+  EXPECT_NE(html->body.find("<h2>3. " + title("specular") + "</h2>"), std::string::npos);
+  auto with_image = post({{"files", files()}, {"format", "html"}, {"images", {{"HW2/images/camera_25.png", base64_encode(solid_png(8, 8, 90))}}}});
+  ASSERT_TRUE(with_image);
+  ASSERT_EQ(with_image->status, 200) << with_image->body.substr(0, 400);
+  EXPECT_NE(with_image->body.find("<img alt=\"Dolly zoom: 25 mm\" src=\"data:image/png;base64,iVBORw0KGgo"), std::string::npos);
   auto again = post({{"files", files()}, {"format", "html"}});
   ASSERT_TRUE(again);
   EXPECT_EQ(again->body, html->body) << "the same files give the same bytes";
@@ -220,7 +269,7 @@ TEST_F(SheetApiTest, MultipartPartsNamedByTheirPaths) {
   auto r = server_->client().Post("/api/sheet", items);
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body.substr(0, 400);
-  EXPECT_NE(r->body.find("<h3>HW2/shaders/starter_frag.js</h3>"), std::string::npos);
+  EXPECT_NE(r->body.find("<h3>HW2/src/shaders/starter_frag.js</h3>"), std::string::npos);
 }
 
 TEST_F(SheetApiTest, BadRequestsAreProblems) {
@@ -231,7 +280,8 @@ TEST_F(SheetApiTest, BadRequestsAreProblems) {
            {{{"files", outside}}, "'../../etc/passwd' is not a path inside the submission"},
            {{{"files", files()}, {"format", "docx"}}, "format: pdf or html"},
            {{{"files", {{"a.js", 3}}}}, "files.a.js: expected the file's text"},
-           {{{"files", files()}, {"scenes", {{{"name", "x"}}}}}, "scenes[0]: expected {"}}) {
+           {{{"files", files()}, {"scenes", {{{"name", "x"}}}}}, "scenes[0]: expected {"},
+           {{{"files", files()}, {"images", {{"images/a.png", "not base64!"}}}}, "images.images/a.png: expected the file's bytes in base64"}}) {
     auto r = post(body);
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 400) << r->body;

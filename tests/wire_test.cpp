@@ -6,6 +6,7 @@
 
 #include "core/embedded_files.h"
 #include "grade/grade_session.h"
+#include "course/course_reader.h"
 #include "worker/job.h"
 #include "worker/protocol.h"
 #include "worker/result.h"
@@ -37,7 +38,11 @@ TEST(WireTest, AGradeJobCarriesItsWholeSpec) {
   job.kind = worker::JobKind::grade;
   job.request.vertex = {"phong_vert.js", "export default `...`;"};
   job.request.uniforms = {{"uLightPosition", {1, 2, 3}}};
-  job.grade = *grade::checkpoint_spec("specular", {});
+  const auto& c = course::builtin_course();
+  job.request.page = c.page();
+  job.request.angles = {0.0, 19.75};
+  job.fit = scene::Bounds{{-1, 0, -1}, {1, 4, 1}};
+  job.grade = c.grade_spec(*c.checkpoint("specular")->checkpoint, {});
   job.grade.options.max_score = 7;
   auto back = worker::job_from_message(worker::to_message(job, "mesh bytes"));
   ASSERT_TRUE(back) << back.error().message;
@@ -47,6 +52,13 @@ TEST(WireTest, AGradeJobCarriesItsWholeSpec) {
   EXPECT_EQ(back->grade.probes.size(), job.grade.probes.size());
   EXPECT_EQ(back->grade.probes[0].light_position, job.grade.probes[0].light_position);
   EXPECT_EQ(back->grade.options.max_score, 7);
+  EXPECT_EQ(back->grade.light_position_uniforms, job.grade.light_position_uniforms);
+  EXPECT_EQ(back->grade.starter_constants.size(), 1u);
+  EXPECT_EQ(back->request.page.uniforms.size(), job.request.page.uniforms.size());
+  EXPECT_EQ(back->request.page.camera.mesh_translation, job.request.page.camera.mesh_translation);
+  EXPECT_EQ(back->request.angles, job.request.angles);
+  ASSERT_TRUE(back->fit);
+  EXPECT_EQ(back->fit->max, job.fit->max);
   EXPECT_EQ(worker::to_message(*back).header, worker::to_message(job).header);
 }
 

@@ -2,15 +2,17 @@
 // checkpoint through render workers, so a submission that hangs or crashes is scored 0 with the
 // reason while the batch goes on. With --server, the batch is graded by a ShadeLab server (or a
 // cluster behind nginx) instead; --shard splits it over a job array. Both resume (class_batch.h).
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "cli/class_batch.h"
 #include "cli/commands.h"
+#include "cli/course_option.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
 #include "cli/server_grader.h"
+#include "course/course_reader.h"
+#include "course/submission_files.h"
 #include "grade/report.h"
 
 namespace shadelab::cli {
@@ -20,9 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-int run_single(const GradeFlags& f) {
+int run_single(const course::Course& c, const GradeFlags& f) {
   worker::WorkerPool pool(pool_config(f, 1));
-  const Graded graded = grade_one(pool, f, f.vert, f.frag);
+  auto answered = grade_one(pool, c, f, f.vert, f.frag);
+  if (!answered) return fail(answered.error());
+  const Graded& graded = *answered;
   const auto& report = graded.result.report;
   const json out = f.format == "gradescope" ? grade::to_gradescope(report, graded.seconds) : grade::to_json(report);
   if (f.output.empty()) std::cout << out.dump(2) << "\n";
@@ -33,25 +37,35 @@ int run_single(const GradeFlags& f) {
   return 0;
 }
 
-// The POST /api/grade request for one submission, with the same options the in-process batch uses.
-nlohmann::json server_request(const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+// The POST /api/grade request for one submission, with the same options the in-process batch uses:
+// the server's copy of the course (by its id) supplies every fact the flags leave unset.
+nlohmann::json server_request(const course::Course& c, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+  json request = {{"course", c.id}, {"vertex", read_text(vert)}, {"vertexName", vert.filename().string()},
+                  {"fragment", read_text(frag)}, {"fragmentName", frag.filename().string()},
+                  {"reference", f.reference.empty() ? c.default_checkpoint : f.reference}, {"threshold", f.threshold},
+                  {"maxFailingFraction", f.max_failing}, {"spatialTolerance", f.spatial}, {"maxScore", f.max_score},
+                  {"format", "json"}};
+  if (!f.mesh.empty()) request["mesh"] = f.mesh;
+  if (f.frames) request["frames"] = *f.frames;
   int width = 0, height = 0;
-  std::sscanf(f.size.c_str(), "%dx%d", &width, &height);
-  return {{"vertex", read_text(vert)}, {"vertexName", vert.filename().string()}, {"fragment", read_text(frag)},
-          {"fragmentName", frag.filename().string()}, {"reference", f.reference}, {"mesh", f.mesh}, {"frames", f.frames},
-          {"width", width}, {"height", height}, {"threshold", f.threshold}, {"maxFailingFraction", f.max_failing},
-          {"spatialTolerance", f.spatial}, {"maxScore", f.max_score}, {"format", "json"}};
+  if (!f.size.empty() && parse_size(f.size, "--size", width, height)) request["width"] = width, request["height"] = height;
+  return request;
 }
 
 // A folder without a shader pair is graded 0 with the reason, wherever the batch runs.
-std::optional<StudentGrade> without_pair(const GradeFlags& f, const Student& s, std::optional<std::pair<fs::path, fs::path>>& pair) {
-  pair = find_pair(s.dir, f.reference);
+std::optional<StudentGrade> without_pair(const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f,
+                                         const Student& s, std::optional<std::pair<fs::path, fs::path>>& pair) {
+  pair = find_pair(c, s.dir, checkpoint);
   if (pair) return std::nullopt;
-  return StudentGrade{grade::failed_submission(make_error(ErrorCode::invalid_argument, "no shader pair found (expected *_vert.js and *_frag.js)"),
-                                               f.reference, f.max_score), 0};
+  const std::string why = "no shader pair found for " + checkpoint.name + ": expected " + course::wanted_files(c, checkpoint) +
+                          " in one folder, or a single *_vert.js and *_frag.js";
+  return StudentGrade{grade::failed_submission(make_error(ErrorCode::invalid_argument, why), checkpoint.name, f.max_score), 0};
 }
 
-int run_batch(const GradeFlags& f) {
+int run_batch(const course::Course& c, const GradeFlags& f) {
+  auto found = c.checkpoint(f.reference.empty() ? c.default_checkpoint : f.reference);
+  if (!found) return fail(found.error());
+  const course::Checkpoint& checkpoint = *found->checkpoint;
   auto shard = parse_shard(f.shard);
   if (!shard) return fail(shard.error());
   BatchOptions options{f.submissions, f.out, f.concurrency, *shard};
@@ -60,8 +74,8 @@ int run_batch(const GradeFlags& f) {
     if (options.concurrency <= 0) options.concurrency = 4;
     return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
       std::optional<std::pair<fs::path, fs::path>> pair;
-      if (auto zero = without_pair(f, s, pair)) return *zero;
-      auto graded = grade_on_server(server, server_request(f, pair->first, pair->second));
+      if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
+      auto graded = grade_on_server(server, server_request(c, f, pair->first, pair->second));
       if (!graded) return graded.take_error();
       return StudentGrade{std::move(graded->report), graded->seconds};
     });
@@ -74,9 +88,10 @@ int run_batch(const GradeFlags& f) {
   if (options.concurrency <= 0) options.concurrency = config.workers + 1;
   return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
     std::optional<std::pair<fs::path, fs::path>> pair;
-    if (auto zero = without_pair(f, s, pair)) return *zero;
-    Graded graded = grade_one(pool, f, pair->first, pair->second);
-    return StudentGrade{std::move(graded.result.report), graded.seconds};
+    if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
+    auto graded = grade_one(pool, c, f, pair->first, pair->second);
+    if (!graded) return graded.take_error();  // the batch stops, resumable: nobody is graded for the grader's failure
+    return StudentGrade{std::move(graded->result.report), graded->seconds};
   });
 }
 
@@ -88,10 +103,15 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--vert", f->vert, "Submission's vertex shader");
   cmd->add_option("--frag", f->frag, "Submission's fragment shader");
   cmd->add_option("--submissions", f->submissions, "A folder with one folder per student holding their shaders/*.js");
-  cmd->add_option("--reference", f->reference, "Checkpoint: smooth, gouraud, diffuse, specular")->capture_default_str();
-  cmd->add_option("--mesh", f->mesh, "Built-in mesh")->capture_default_str();
-  cmd->add_option("--frames", f->frames, "Frames")->capture_default_str();
-  cmd->add_option("--size", f->size, "Frame size")->capture_default_str();
+  const course::Course& builtin = course::builtin_course();
+  std::string checkpoints;
+  for (const auto& n : builtin.checkpoint_names()) checkpoints += (checkpoints.empty() ? "" : ", ") + n;
+  add_course_option(cmd, f->course);
+  cmd->add_option("--reference", f->reference, "A checkpoint of the course (built-in: " + checkpoints + "; default " +
+                                                    builtin.default_checkpoint + ")");
+  cmd->add_option("--mesh", f->mesh, "A mesh of the course (default: its default mesh, " + builtin.default_mesh + ")");
+  cmd->add_option("--frames", f->frames, "Frames (default: the course's)");
+  cmd->add_option("--size", f->size, "Frame size WIDTHxHEIGHT (default: the course's canvas)");
   cmd->add_option("--threshold", f->threshold, "Per-channel difference a pixel may have")->capture_default_str();
   cmd->add_option("--max-failing", f->max_failing, "Share of failing pixels a frame may have")->capture_default_str();
   cmd->add_flag("--spatial", f->spatial, "Accept a pixel matching the reference within one pixel");
@@ -112,12 +132,14 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission, in CPU time (a timeout is retried once)")->capture_default_str();
   cmd->add_flag("--software", f->software, "Force Mesa's software renderer");
   return [f] {
-    if (!f->submissions.empty()) return run_batch(*f);
+    auto loaded = load_course(f->course);
+    if (!loaded) return fail(loaded.error());
+    if (!f->submissions.empty()) return run_batch(**loaded, *f);
     if (f->vert.empty() || f->frag.empty()) {
       std::cerr << "error: give --vert and --frag, or --submissions DIR\n";
       return 2;
     }
-    return run_single(*f);
+    return run_single(**loaded, *f);
   };
 }
 

@@ -1,14 +1,16 @@
 #include "cli/grade_runner.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <thread>
 
-#include "grade/grade_session.h"
+#include "cli/course_option.h"
+#include "cli/submission_files.h"
+#include "course/submission_files.h"
 #include "grade/report.h"
 #include "render/render_request.h"
+#include "worker/course_job.h"
 
 namespace shadelab::cli {
 
@@ -19,57 +21,57 @@ std::string read_text(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-std::optional<std::pair<fs::path, fs::path>> find_pair(const fs::path& dir, const std::string& checkpoint) {
-  std::vector<fs::path> verts, frags;
-  for (const auto& e : fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied)) {
-    const std::string name = e.path().filename().string();
-    if (name.ends_with("_vert.js")) verts.push_back(e.path());
-    if (name.ends_with("_frag.js")) frags.push_back(e.path());
-  }
-  const std::string stem = checkpoint == "smooth" || checkpoint == "gouraud" ? "starter" : "phong";
-  for (const auto& v : verts)
-    for (const auto& f : frags)
-      if (v.filename() == stem + "_vert.js" && f.filename() == stem + "_frag.js") return std::pair{v, f};
-  if (verts.size() == 1 && frags.size() == 1) return std::pair{verts[0], frags[0]};
-  return std::nullopt;
+std::optional<std::pair<fs::path, fs::path>> find_pair(const course::Course& course, const fs::path& dir, const course::Checkpoint& checkpoint) {
+  auto pair = course::checkpoint_pair(course, checkpoint, submitted_files(dir));
+  if (!pair) return std::nullopt;
+  return std::pair{dir / pair->first, dir / pair->second};
 }
 
 namespace {
 
-// The grade job for one submission, built and checked as POST /api/grade builds it.
-Expected<worker::Job> grade_job(const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+// The grade job for one submission and its mesh's bytes, built and checked as POST /api/grade builds it.
+struct GradeJob {
+  worker::Job job;
+  std::string payload;
+};
+
+Expected<GradeJob> grade_job(const course::Course& c, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
   grade::GradeOptions options;
   options.compare.threshold = f.threshold;
   options.compare.spatial_tolerance = f.spatial;
   options.max_failing_fraction = f.max_failing;
   options.max_score = f.max_score;
-  auto spec = grade::checkpoint_spec(f.reference, options);
-  if (!spec) return spec.take_error();
-  worker::Job job;
-  job.kind = worker::JobKind::grade;
-  job.mesh = f.mesh;
-  job.grade = std::move(*spec);
+  auto checkpoint = c.checkpoint(f.reference.empty() ? c.default_checkpoint : f.reference);
+  if (!checkpoint) return checkpoint.take_error();
+  GradeJob out{worker::course_job(c, worker::JobKind::grade), {}};
+  worker::Job& job = out.job;
+  if (auto s = worker::attach_course_mesh(c, f.mesh.empty() ? c.default_mesh : f.mesh, job, out.payload); !s) return s.take_error();
+  job.grade = c.grade_spec(*checkpoint->checkpoint, options);
   auto& r = job.request;
-  if (std::sscanf(f.size.c_str(), "%dx%d", &r.width, &r.height) != 2)
-    return make_error(ErrorCode::invalid_argument, "--size takes WIDTHxHEIGHT, e.g. 640x480; got '" + f.size + "'");
-  r.frames = f.frames;
-  r.vertex = {vert.filename().string(), read_text(vert)};
-  r.fragment = {frag.filename().string(), read_text(frag)};
+  r = c.render_request({vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
+  if (!f.size.empty())
+    if (auto s = parse_size(f.size, "--size", r.width, r.height); !s) return s.take_error();
+  r.frames = f.frames.value_or(r.frames);
   const render::RenderLimits limits;
   if (auto valid = render::validate(r, limits); !valid) return valid.take_error();
   if (auto sources = render::check_sources(r, limits); !sources) return sources.take_error();
-  return job;
+  return out;
 }
 
 }  // namespace
 
-Graded grade_one(worker::WorkerPool& pool, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
-  const auto ungradable = [&](const Error& e) { return Graded{{grade::failed_submission(e, f.reference, f.max_score), {}}, 0}; };
-  auto job = grade_job(f, vert, frag);
-  if (!job) return ungradable(job.error());
-  auto answered = worker::grade(pool, *job, "");
-  if (!answered) return ungradable(answered.error());
-  return {std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
+Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, const fs::path& vert,
+                           const fs::path& frag) {
+  const std::string checkpoint = f.reference.empty() ? c.default_checkpoint : f.reference;
+  const auto ungradable = [&](Error e) -> Expected<Graded> {
+    if (!info(e.code).submission_caused) return e;
+    return Graded{{grade::failed_submission(e, checkpoint, f.max_score), {}}, 0};
+  };
+  auto job = grade_job(c, f, vert, frag);
+  if (!job) return ungradable(job.take_error());
+  auto answered = worker::grade(pool, job->job, std::move(job->payload));
+  if (!answered) return ungradable(answered.take_error());
+  return Graded{std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
 }
 
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {

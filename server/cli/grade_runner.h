@@ -8,14 +8,18 @@
 #include <utility>
 
 #include "cli/environment.h"
+#include "course/course.h"
 #include "worker/client.h"
 
 namespace shadelab::cli {
 
+// Unset facts (empty, nullopt) are the course's: its default checkpoint and mesh, its canvas and frames.
 struct GradeFlags {
-  std::string vert, frag, submissions, reference = "specular", mesh = "bunny", out = "grades", output, heatmap;
-  std::string format = "json", size = "640x480";
-  int frames = 9, workers = 0, concurrency = 0;
+  std::string course;
+  std::string vert, frag, submissions, reference, mesh, out = "grades", output, heatmap;
+  std::string format = "json", size;
+  std::optional<int> frames;
+  int workers = 0, concurrency = 0;
   std::string server, api_key, shard = "0/1";
   long retry_for_s = 300;
   double threshold = 0.016, max_failing = 0.01, max_score = 1.0;
@@ -26,18 +30,19 @@ struct GradeFlags {
 
 std::string read_text(const std::filesystem::path& p);
 
-// The submission's shader pair: the homework's file names for the checkpoint first (starter_* for
-// smooth and gouraud, phong_* for diffuse and specular), else the only *_vert.js / *_frag.js pair
-// in the folder.
-std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair(const std::filesystem::path& dir,
-                                                                                   const std::string& checkpoint);
+// The submission's shader pair for `checkpoint`: its files by the course's names for it
+// (course/submission_files.h), else the only *_vert.js / *_frag.js pair in the folder.
+std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair(const course::Course& course, const std::filesystem::path& dir,
+                                                                                   const course::Checkpoint& checkpoint);
 
-// One submission's grade, whatever goes wrong with it.
+// One submission's grade: whatever the submission causes (it does not compile, hangs, crashes the
+// driver) is its grade, 0 with the reason; what it does not cause (the grader's own work failed,
+// no worker could start, a bad flag) is an error, never a grade.
 struct Graded {
   worker::GradeResult result;
   double seconds = 0;
 };
-Graded grade_one(worker::WorkerPool& pool, const GradeFlags& f, const std::filesystem::path& vert,
+Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
                  const std::filesystem::path& frag);
 
 // Workers for `jobs` submissions: one per core at most, the cores shared among them.

@@ -4,26 +4,28 @@
 #include <iterator>
 
 #include "cli/commands.h"
+#include "cli/course_option.h"
+#include "course/course_reader.h"
+#include "cli/environment.h"
 #include "cli/file_output.h"
 #include "core/number_list.h"
-#include "cli/environment.h"
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
-#include "render/presets.h"
 #include "render/renderer.h"
 
 namespace shadelab::cli {
 
 namespace {
 
+// Unset facts (empty, nullopt) are the course's.
 struct RenderFlags {
-  std::string vert, frag, preset, mesh = "bunny";
+  std::string course;
+  std::string vert, frag, preset, mesh;
   bool fit = false;
-  int frames = 9;
-  double degrees = 20.0;
-  std::string size = "640x480";
-  int msaa = 4;
+  std::optional<int> frames, msaa;
+  std::optional<double> degrees;
+  std::string size;
   std::vector<std::string> uniforms;
   std::string grid, frames_dir, prefix, format = "png";
   bool software = software_from_environment();
@@ -51,43 +53,45 @@ Status write_file(const std::filesystem::path& path, const std::vector<std::uint
   return cli::write_file(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
-Expected<scene::Mesh> load_mesh_arg(const RenderFlags& f) {
-  const bool is_file = std::filesystem::exists(f.mesh) || f.mesh.find('.') != std::string::npos;
-  auto mesh = is_file ? scene::load_mesh_file(f.mesh) : scene::builtin_mesh(f.mesh);
-  if (mesh && f.fit) scene::fit_to_homework(*mesh);
-  return mesh;
+// The request's shaders (a preset, or the files given) and the frames' prefix.
+Status read_shaders(const RenderFlags& f, const course::Course& c, render::RenderRequest& request, std::string& prefix) {
+  if (!f.preset.empty() || (f.vert.empty() && f.frag.empty())) {
+    if (!f.vert.empty() || !f.frag.empty())
+      return make_error(ErrorCode::invalid_argument, "give either --preset or --vert and --frag, not both");
+    auto found = c.find_preset(f.preset.empty() ? c.default_preset : f.preset);
+    if (!found) return found.take_error();
+    if (found->alias) std::cerr << "note: " << found->alias->note << "\n";
+    request.vertex = found->preset->vertex;
+    request.fragment = found->preset->fragment;
+    // The frames of a deliverable's reference are named as the deliverable's are.
+    if (prefix.empty()) prefix = found->preset->name;
+    for (const auto& checkpoint : c.checkpoints)
+      if (prefix == found->preset->name && checkpoint.reference == found->preset->name) prefix = checkpoint.prefix;
+    return Ok{};
+  }
+  if (f.vert.empty() || f.frag.empty()) return make_error(ErrorCode::invalid_argument, "--vert and --frag must be given together");
+  auto v = read_shader(f.vert);
+  if (!v) return v.take_error();
+  auto fr = read_shader(f.frag);
+  if (!fr) return fr.take_error();
+  request.vertex = std::move(*v);
+  request.fragment = std::move(*fr);
+  if (prefix.empty()) prefix = "render";
+  return Ok{};
 }
 
 int run_render(const RenderFlags& f) {
-  render::RenderRequest request;
+  auto loaded = load_course(f.course);
+  if (!loaded) return fail(loaded.error());
+  const course::Course& c = **loaded;
+  render::RenderRequest request = c.render_request({}, {});
   std::string prefix = f.prefix;
-  if (!f.preset.empty() || (f.vert.empty() && f.frag.empty())) {
-    if (!f.vert.empty() || !f.frag.empty())
-      return fail(make_error(ErrorCode::invalid_argument, "give either --preset or --vert and --frag, not both"));
-    const std::string name = f.preset.empty() ? "specular" : f.preset;
-    const auto preset = render::find_preset(name);
-    if (!preset)
-      return fail(make_error(ErrorCode::unknown_preset,
-                             "no preset '" + name + "' (presets: starter, smooth, gouraud, diffuse, specular)"));
-    request.vertex = preset->vertex;
-    request.fragment = preset->fragment;
-    if (prefix.empty()) prefix = name;
-  } else {
-    if (f.vert.empty() || f.frag.empty())
-      return fail(make_error(ErrorCode::invalid_argument, "--vert and --frag must be given together"));
-    auto v = read_shader(f.vert);
-    if (!v) return fail(v.error());
-    auto fr = read_shader(f.frag);
-    if (!fr) return fail(fr.error());
-    request.vertex = std::move(*v);
-    request.fragment = std::move(*fr);
-    if (prefix.empty()) prefix = "render";
-  }
-  if (std::sscanf(f.size.c_str(), "%dx%d", &request.width, &request.height) != 2)
-    return fail(make_error(ErrorCode::invalid_argument, "--size takes WIDTHxHEIGHT, e.g. 640x480; got '" + f.size + "'"));
-  request.frames = f.frames;
-  request.degrees_per_frame = f.degrees;
-  request.msaa = f.msaa;
+  if (auto s = read_shaders(f, c, request, prefix); !s) return fail(s.error());
+  if (!f.size.empty())
+    if (auto s = parse_size(f.size, "--size", request.width, request.height); !s) return fail(s.error());
+  request.frames = f.frames.value_or(request.frames);
+  request.degrees_per_frame = f.degrees.value_or(request.degrees_per_frame);
+  request.msaa = f.msaa.value_or(request.msaa);
   const bool exr = f.format == "exr";
   request.pixel_type = exr ? image::PixelType::f32 : image::PixelType::u8;
   for (const auto& u : f.uniforms) {
@@ -97,7 +101,7 @@ int run_render(const RenderFlags& f) {
   }
   if (auto valid = render::validate(request, render::RenderLimits{}); !valid) return fail(valid.error());
 
-  auto mesh = load_mesh_arg(f);
+  auto mesh = load_mesh_argument(c, f.mesh.empty() ? c.default_mesh : f.mesh, f.fit);
   if (!mesh) return fail(mesh.error());
   auto renderer = render::Renderer::create({.force_software = f.software});
   if (!renderer) return fail(renderer.error());
@@ -128,11 +132,11 @@ int run_render(const RenderFlags& f) {
     for (size_t k = 0; k < frames.size(); ++k) {
       auto bytes = exr ? image::encode_exr(frames[k]) : image::encode_png(frames[k]);
       if (!bytes) return fail(bytes.error());
-      const auto path = std::filesystem::path(f.frames_dir) / ("hw2_" + prefix + "_" + std::to_string(k) + "." + f.format);
+      const auto path = std::filesystem::path(f.frames_dir) / c.frame_file(prefix, static_cast<int>(k), f.format);
       if (auto s = write_file(path, *bytes); !s) return fail(s.error());
     }
-    std::cerr << "wrote " << frames.size() << " frames to " << f.frames_dir << "/hw2_" << prefix << "_{0.." << frames.size() - 1
-              << "}." << f.format << "\n";
+    std::cerr << "wrote " << frames.size() << " frames to " << f.frames_dir << "/" << c.frame_file(prefix, 0, f.format) << " ... "
+              << c.frame_file(prefix, static_cast<int>(frames.size()) - 1, f.format) << "\n";
   }
   if (f.timings) {
     const auto& t = report->times;
@@ -151,18 +155,27 @@ Command add_render_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render the spinning-mesh frames and the 3x3 grid");
   cmd->add_option("--vert", flags->vert, "Vertex shader: GLSL or the homework's JS module (phong_vert.js)");
   cmd->add_option("--frag", flags->frag, "Fragment shader: GLSL or JS module");
-  cmd->add_option("--preset", flags->preset, "Reference shaders: starter, smooth, gouraud, diffuse, specular (default)");
-  cmd->add_option("--mesh", flags->mesh, "Built-in mesh (bunny, teapot) or a mesh file (OBJ, PLY, STL, glTF/GLB)")
-      ->capture_default_str();
-  cmd->add_flag("--fit", flags->fit, "Scale and place the mesh like the built-ins (height 3.5, base at y = 0, centred)");
-  cmd->add_option("--frames", flags->frames, "Number of frames")->capture_default_str();
-  cmd->add_option("--degrees", flags->degrees, "Rotation per frame about +Y, in degrees")->capture_default_str();
-  cmd->add_option("--size", flags->size, "Frame size WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_option("--msaa", flags->msaa, "Samples per pixel (the browser canvas: 4; 0 = off)")->capture_default_str();
+  const course::Course& builtin = course::builtin_course();
+  const auto names = [](const std::vector<std::string>& list) {
+    std::string out;
+    for (const auto& n : list) out += (out.empty() ? "" : ", ") + n;
+    return out;
+  };
+  add_course_option(cmd, flags->course);
+  cmd->add_option("--preset", flags->preset, "Reference shaders of the course (built-in: " + names(builtin.preset_names()) +
+                                                 "; default " + builtin.default_preset + ")");
+  cmd->add_option("--mesh", flags->mesh, "A mesh of the course (built-in: " + names(builtin.mesh_names()) + "; default " +
+                                             builtin.default_mesh + ") or a mesh file (OBJ, PLY, STL, glTF/GLB)");
+  cmd->add_flag("--fit", flags->fit, "Scale and place the mesh as the course's default mesh stands (its height, base and centre)");
+  cmd->add_option("--frames", flags->frames, "Number of frames (default: the course's, " + std::to_string(builtin.frames) + ")");
+  cmd->add_option("--degrees", flags->degrees, "Rotation per frame about +Y, in degrees (default: the course's)");
+  cmd->add_option("--size", flags->size, "Frame size WIDTHxHEIGHT (default: the course's canvas, " + std::to_string(builtin.width) +
+                                             "x" + std::to_string(builtin.height) + ")");
+  cmd->add_option("--msaa", flags->msaa, "Samples per pixel (default: the course's canvas, " + std::to_string(builtin.msaa) + "; 0 = off)");
   cmd->add_option("--uniform", flags->uniforms, "Set a uniform: NAME=v1,v2,... (repeatable)");
   cmd->add_option("--grid", flags->grid, "Write the grid image here (default grid.png when no other output is given)");
-  cmd->add_option("--frames-dir", flags->frames_dir, "Write each frame as DIR/hw2_{prefix}_{k}.png");
-  cmd->add_option("--prefix", flags->prefix, "IMAGE_PREFIX for frame names (default: the preset's name)");
+  cmd->add_option("--frames-dir", flags->frames_dir, "Write each frame as DIR/" + builtin.frame_name + ".png (the course's names)");
+  cmd->add_option("--prefix", flags->prefix, "IMAGE_PREFIX for frame names (default: the preset's checkpoint prefix, or its name)");
   cmd->add_option("--format", flags->format, "png (as the browser saves) or exr (float, exact)")
       ->check(CLI::IsMember({"png", "exr"}))
       ->capture_default_str();

@@ -4,7 +4,9 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/course_option.h"
 #include "cli/environment.h"
+#include "course/course_reader.h"
 #include "http/service.h"
 #include "worker/fork_server.h"
 #include "worker/worker_main.h"
@@ -32,6 +34,9 @@ void add_worker_flags(CLI::App* cmd, http::ServiceConfig& config, int& lp_thread
                    "SHADELAB_COMPILE_TIMEOUT_MS");
   add_milliseconds(cmd, "--render-timeout-ms", config.pool.render_deadline, "CPU-time deadline for rendering and encoding a job",
                    "SHADELAB_RENDER_TIMEOUT_MS");
+  add_milliseconds(cmd, "--grader-timeout-ms", config.pool.grader_deadline,
+                   "CPU-time budget for a grade's own work (the reference and the known mistakes), never charged to the submission",
+                   "SHADELAB_GRADER_TIMEOUT_MS");
   cmd->add_option("--wall-clock-factor", config.pool.wall_clock_factor,
                   "Wall-clock cap on a compile or render, in deadlines (the backstop for a worker that stops using the CPU)")
       ->envname("SHADELAB_WALL_CLOCK_FACTOR")->capture_default_str();
@@ -123,8 +128,13 @@ Command add_serve_command(CLI::App& app) {
   auto cache_mb = std::make_shared<size_t>(config->cache_bytes >> 20);
   auto body_mb = std::make_shared<size_t>(config->limits.max_body_bytes >> 20);
   auto lp_threads = std::make_shared<int>(0);
+  auto course_files = std::make_shared<std::vector<std::string>>();
 
   auto* cmd = app.add_subcommand("serve", "Serve the render API and the web page over HTTP");
+  cmd->add_option("--course", *course_files,
+                  "Course profile (JSON, docs/course-profile.md) to serve; repeat for several (requests name one by its id, "
+                  "the first is the default). Default: the built-in " + course::builtin_course().id)
+      ->envname("SHADELAB_COURSE");
   cmd->add_option("--host", config->host, "Address to listen on")->envname("SHADELAB_HOST")->capture_default_str();
   cmd->add_option("--port", config->port, "Port (0: any free port)")->envname("SHADELAB_PORT")->capture_default_str();
   add_worker_flags(cmd, *config, *lp_threads, *memory_mb);
@@ -140,6 +150,17 @@ Command add_serve_command(CLI::App& app) {
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
 
   return [=] {
+    if (!course_files->empty()) {
+      std::vector<std::shared_ptr<const course::Course>> courses;
+      for (const auto& file : *course_files) {
+        auto loaded = load_course(file);
+        if (!loaded) return fail(loaded.error());
+        courses.push_back(std::move(*loaded));
+      }
+      auto set = course::CourseSet::of(std::move(courses));
+      if (!set) return fail(set.error());
+      config->courses = std::move(*set);
+    }
     config->pool.memory_limit_bytes = *memory_mb << 20;
     config->cache_bytes = *cache_mb << 20;
     config->limits.max_body_bytes = *body_mb << 20;
@@ -149,6 +170,8 @@ Command add_serve_command(CLI::App& app) {
     // and when all workers are busy the oversubscription measured no loss (docs/performance.md:
     // 1 client p50 169 -> 150 ms, 8 clients 10.5 -> 11.3 jobs/s on the 2-core machine).
     config->pool.llvmpipe_threads = *lp_threads > 0 ? *lp_threads : static_cast<int>(cores);
+    // Parsed here, so workers forked from this process find the built-in course (their warm-up's) ready.
+    (void)course::builtin_course();
     // Now, while this process has one thread: workers are forked from it from here on.
     if (auto forks = worker::ForkServer::start(); forks) config->pool.fork_server = *forks;
     else std::cerr << "shadelab: " << forks.error().message << "; workers start with fork + exec\n";

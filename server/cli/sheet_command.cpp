@@ -1,5 +1,5 @@
 // shadelab sheet HW2_DIR -o sheet.pdf: the submission sheet the homework's checklist asks for,
-// made from the student's folder. Each checkpoint found (grade/submission_files.h) is rendered
+// made from the student's folder. Each checkpoint found (course/submission_files.h) is rendered
 // (the 3x3 grid) and graded through render workers (sheet/assemble.h), then laid out with its
 // code: a PDF (cairo) and, with --html, the same as one HTML page. The same folder gives the
 // same bytes.
@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/course_option.h"
+#include "course/course_reader.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
 #include "cli/submission_files.h"
@@ -47,6 +49,8 @@ Expected<sheet::SceneInput> scene_input(const fs::path& file) {
 }
 
 int run_sheet(const SheetFlags& f) {
+  auto loaded = load_course(f.grade.course);
+  if (!loaded) return fail(loaded.error());
   sheet::SheetInput input{f.title, "", {}};
   if (!f.answers.empty()) {
     if (!fs::is_regular_file(f.answers)) {
@@ -55,15 +59,17 @@ int run_sheet(const SheetFlags& f) {
     }
     input.answers = read_text(f.answers);
   }
-  for (const auto& path : submitted_files(f.folder))
+  for (const auto& path : submitted_files(f.folder)) {
     if (path.extension() == ".js") input.files.push_back({path, read_text(fs::path(f.folder) / path)});
+    if (path.extension() == ".png") input.images.push_back({path, read_text(fs::path(f.folder) / path)});
+  }
   for (const auto& file : f.scenes) {
     auto scene = scene_input(file);
     if (!scene) return fail(scene.error());
     input.scenes.push_back(std::move(*scene));
   }
   worker::WorkerPool pool(pool_config(f.grade, 16));  // every section's jobs queued at once (sheet/assemble.h)
-  auto assembled = sheet::assemble(pool, std::move(input));
+  auto assembled = sheet::assemble(pool, **loaded, std::move(input));
   if (!assembled) return fail(assembled.error());
   const sheet::Sheet& sheet = *assembled;
   auto pdf = sheet::render_pdf(sheet);
@@ -80,7 +86,7 @@ int run_sheet(const SheetFlags& f) {
 Command add_sheet_command(CLI::App& app) {
   auto f = std::make_shared<SheetFlags>();
   auto* cmd = app.add_subcommand("sheet", "The submission sheet from a student's HW2 folder: grids, grades and code, as PDF (and HTML)");
-  cmd->add_option("folder", f->folder, "The student's HW2 folder (shaders/*_vert.js, *_frag.js), or the shader modules alone")
+  cmd->add_option("folder", f->folder, "The student's HW2 folder (src/shaders/*.js, images/*.png), or the shader modules alone")
       ->required()
       ->check(CLI::ExistingDirectory);
   cmd->add_option("-o,--output", f->pdf, "Where the PDF goes")->required();
@@ -89,6 +95,7 @@ Command add_sheet_command(CLI::App& app) {
   cmd->add_option("--scene", f->scenes, "A Blender-half scene (JSON, docs/scenes.md) to render with its framing report; repeat for more")
       ->check(CLI::ExistingFile);
   cmd->add_option("--title", f->title, "The sheet's title (e.g. the student's name)")->capture_default_str();
+  add_course_option(cmd, f->grade.course);
   cmd->add_flag("--software", f->grade.software, "Force Mesa's software renderer");
   return [f] { return run_sheet(*f); };
 }

@@ -18,7 +18,7 @@ std::vector<fs::path> submitted_files(const fs::path& root) {
     // the grader read, and quote in its diagnostics, a file of the image.
     if (it->is_regular_file() && !it->is_symlink()) files.push_back(fs::relative(it->path(), root));
   }
-  grade::sort_submission(files);
+  course::sort_submission(files);
   return files;
 }
 

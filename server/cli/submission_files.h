@@ -4,11 +4,11 @@
 #include <filesystem>
 #include <vector>
 
-#include "grade/submission_files.h"
+#include "course/submission_files.h"
 
 namespace shadelab::cli {
 
-// Every file under `root`, relative to it, in grade::sort_submission's order; macOS archive litter
+// Every file under `root`, relative to it, in course::sort_submission's order; macOS archive litter
 // (__MACOSX/, ._name), hidden files and symbolic links are not the student's (a link could make
 // the grader read a file of the image).
 std::vector<std::filesystem::path> submitted_files(const std::filesystem::path& root);

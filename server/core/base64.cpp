@@ -28,4 +28,17 @@ std::string base64_encode(std::string_view bytes) { return encode(reinterpret_ca
 
 std::string base64_encode(const std::vector<std::uint8_t>& bytes) { return encode(bytes.data(), bytes.size()); }
 
+std::optional<std::string> base64_decode(std::string_view text) {
+  constexpr size_t kMax = size_t{1} << 30;  // EVP_DecodeBlock takes an int length
+  if (text.size() % 4 != 0 || text.size() > kMax) return std::nullopt;
+  std::string out(text.size() / 4 * 3, '\0');
+  const int n = EVP_DecodeBlock(reinterpret_cast<unsigned char*>(out.data()), reinterpret_cast<const unsigned char*>(text.data()),
+                                static_cast<int>(text.size()));
+  if (n < 0) return std::nullopt;
+  // EVP_DecodeBlock counts the padding's zero bytes in; the '=' at the end say how many.
+  const size_t padding = text.ends_with("==") ? 2 : text.ends_with("=") ? 1 : 0;
+  out.resize(static_cast<size_t>(n) - padding);
+  return out;
+}
+
 }  // namespace shadelab

@@ -47,6 +47,9 @@ constexpr ErrorCodeInfo kCodes[] = {
     {ErrorCode::unauthorized,               "unauthorized",               401, "A valid API key is required",                           false, false},
     {ErrorCode::store_unavailable,          "store_unavailable",          503, "The shared store is unavailable",                       false, true},
     {ErrorCode::worker_lost,                "worker_lost",                503, "A render worker was lost",                              false, true},
+    {ErrorCode::course_invalid,             "course_invalid",             422, "The course profile is not valid",                       false, false},
+    {ErrorCode::unknown_course,             "unknown_course",             404, "No such course",                                        false, false},
+    {ErrorCode::grader_failed,              "grader_failed",              500, "The grader's own work failed",                          false, false},
 };
 }  // namespace
 

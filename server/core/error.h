@@ -51,6 +51,12 @@ enum class ErrorCode {
   store_unavailable,       // an uploaded mesh is on another replica and Redis cannot be reached
   // What the pool answers when a worker stops answering for a reason that is not the shader's.
   worker_lost,             // the worker was stopped (SIGSTOP) or dropped its socket without exiting
+  // What loading a course profile (server/course/) and naming a course in a request can answer.
+  course_invalid,          // the profile's field named in the message is missing or wrong
+  unknown_course,          // a request names a course this server does not hold
+  // What grading answers when its own work (the reference, the known mistakes) fails: never the
+  // submission's doing, so never its grade.
+  grader_failed,           // the grader's renders ran over their CPU budget, crashed or ran out of memory
 };
 
 // Everything known about a code, in one row of the table in error.cpp.

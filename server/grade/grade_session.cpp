@@ -1,40 +1,14 @@
 #include "grade/grade_session.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <memory>
 
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/metrics.h"
+#include "grade/starter_constants.h"
 
 namespace shadelab::grade {
-
-namespace {
-
-// Exactly: two different values must never share a key.
-std::string exact(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g,", v);
-  return buf;
-}
-
-// The cache key of a render: everything that changes its pixels, and nothing else (file names
-// do not).
-std::string render_key(const render::RenderRequest& r, const std::string& mesh_key) {
-  std::string key = r.vertex.text + '\0' + r.fragment.text + '\0' + mesh_key + '\0';
-  for (const double v : {double(r.width), double(r.height), double(r.frames), r.degrees_per_frame, double(r.msaa),
-                         double(r.pixel_type == image::PixelType::f32)})
-    key += exact(v);
-  for (const auto& u : r.uniforms) {
-    key += u.name + '=';
-    for (const double v : u.values) key += exact(v);
-    key += ';';
-  }
-  return key;
-}
-
-}  // namespace
 
 Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
   SharedFrames out;
@@ -44,7 +18,7 @@ Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, c
 }
 
 Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
-  std::string key = render_key(r, mesh_key);
+  std::string key = render::pixel_identity(r) + '\0' + mesh_key;
   if (const SharedFrames* hit = references_.find(key)) return *hit;
   auto frames = frames_of(r, m);
   if (frames) references_.insert(std::move(key), *frames);
@@ -53,11 +27,12 @@ Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& 
 
 // `base` with the light moved, for the names the program declares as the page does (vec3); a name
 // declared otherwise stays as the homework sets it, as in the browser.
-Expected<render::RenderRequest> GradeSession::with_light(const render::RenderRequest& base, const std::array<float, 3>& position) {
+Expected<render::RenderRequest> GradeSession::with_light(const GradeSpec& spec, const render::RenderRequest& base,
+                                                         const std::array<float, 3>& position) {
   auto program = renderer_.compile(base.vertex, base.fragment);
   if (!program) return program.take_error();
   render::RenderRequest lit = base;
-  for (const char* name : {"uLightPosition", "lightPosition"}) {
+  for (const std::string& name : spec.light_position_uniforms) {
     const bool declared = std::any_of(program->uniforms.begin(), program->uniforms.end(),
                                       [&](const auto& u) { return u.name == name && u.type == "vec3" && u.array_size == 1; });
     const bool set = std::any_of(lit.uniforms.begin(), lit.uniforms.end(), [&](const auto& u) { return u.name == name; });
@@ -70,7 +45,7 @@ Status GradeSession::for_each_light(const GradeSpec& spec, const render::RenderR
                                     const std::function<Status(const render::RenderRequest&)>& each) {
   if (auto s = each(base); !s) return s;
   for (const auto& probe : spec.probes) {
-    auto lit = with_light(base, probe.light_position);
+    auto lit = with_light(spec, base, probe.light_position);
     if (!lit) return lit.take_error();
     if (auto s = each(*lit); !s) return s;
   }
@@ -92,7 +67,7 @@ Expected<SharedFrames> GradeSession::render_under_lights(const GradeSpec& spec, 
 }
 
 // NaN and infinities counted in each float frame as it is rendered; the frames themselves are not
-// kept (4 floats a pixel: 44 MB a light at 640 x 480).
+// kept (4 floats a pixel: 38 MB a light for 9 frames at 512 x 512).
 Expected<std::vector<image::NonFinite>> GradeSession::non_finite_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
                                                                               const scene::Mesh& mesh, render::FloatSemantics semantics) {
   std::vector<image::NonFinite> counts;
@@ -121,11 +96,11 @@ Expected<std::vector<image::NonFinite>> GradeSession::float_check(const GradeSpe
 }
 
 Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
-                                          const std::string& mesh_key, const RenderPhaseHook& on_compiled) {
+                                          const std::string& mesh_key, const PhaseHooks& phases) {
   const auto ungradable = [&](const Error& e) { return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}}; };
   auto compiled = renderer_.compile(submission.vertex, submission.fragment);
   if (!compiled) return ungradable(compiled.error());
-  if (auto s = on_compiled(); !s) return s.take_error();
+  if (auto s = phases.compiled(); !s) return s.take_error();
   auto mesh = mesh_source();
   if (!mesh) return mesh.take_error();
 
@@ -135,6 +110,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   if (!student) return ungradable(student.error());
   auto student_non_finite = float_check(spec, r, **mesh);
   if (!student_non_finite) return ungradable(student_non_finite.error());
+  if (auto s = phases.submission_rendered(); !s) return s.take_error();
 
   // The reference gets the same uniform values as the submission: a grader that changes the
   // colours grades against the reference with those colours.
@@ -157,6 +133,12 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
                          static_cast<size_t>(r.frames)),
                   {}};
   out.report.warnings = compiled->warnings;
+  // A catalogued mistake says what went wrong already; otherwise a changed starter constant may.
+  if (!out.report.pass && out.report.diagnosis.empty())
+    for (const auto& found : changed_starter_constants(spec.starter_constants, submission.fragment.text)) {
+      if (out.report.diagnosis.empty()) out.report.diagnosis = "changed_" + found.variable;
+      out.report.messages.insert(out.report.messages.begin(), found.message);
+    }
   std::vector<image::Image> heat;  // the homework light's frames
   for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap(*(*student)[k], *(*reference)[k]));
   if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat)))

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/expected.h"
-#include "grade/checkpoints.h"
+#include "grade/grade_spec.h"
 #include "grade/reference_cache.h"
 #include "grade/report.h"
 #include "render/renderer.h"
@@ -23,8 +23,15 @@ struct GradeOutput {
 
 // The job's mesh, loaded once the submission has compiled.
 using MeshSource = std::function<Expected<const scene::Mesh*>()>;
-// Called once the submission has compiled: from then on a hang or a crash is the render's.
-using RenderPhaseHook = std::function<Status()>;
+
+// Where a grade's work changes hands, for the worker to tell its pool (worker/pool.h's phases):
+// once the submission has compiled, a hang or a crash is its render's; once its frames are
+// rendered, the rest (the reference, the known mistakes, the comparisons) is the grader's own,
+// bounded separately and never charged to the submission.
+struct PhaseHooks {
+  std::function<Status()> compiled;
+  std::function<Status()> submission_rendered;
+};
 
 class GradeSession {
  public:
@@ -34,7 +41,7 @@ class GradeSession {
   // is the grader's own problem (the reference does not render, the mesh does not load).
   // `mesh_key` names the mesh for the reference cache (the same key must mean the same mesh).
   Expected<GradeOutput> grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh,
-                              const std::string& mesh_key, const RenderPhaseHook& on_compiled);
+                              const std::string& mesh_key, const PhaseHooks& phases);
 
   std::size_t reference_cache_bytes() const { return references_.bytes(); }
 
@@ -50,7 +57,8 @@ class GradeSession {
                                                       const scene::Mesh& mesh);
   Expected<std::vector<image::NonFinite>> non_finite_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
                                                                   const scene::Mesh& mesh, render::FloatSemantics semantics);
-  Expected<render::RenderRequest> with_light(const render::RenderRequest& base, const std::array<float, 3>& position);
+  Expected<render::RenderRequest> with_light(const GradeSpec& spec, const render::RenderRequest& base,
+                                             const std::array<float, 3>& position);
 
   render::Renderer& renderer_;
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch

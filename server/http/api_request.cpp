@@ -5,9 +5,8 @@
 #include <set>
 
 #include "core/hash.h"
-#include "grade/checkpoints.h"
-#include "render/presets.h"
 #include "scene/mesh.h"
+#include "worker/course_job.h"
 
 namespace shadelab::http {
 
@@ -70,7 +69,7 @@ Expected<std::vector<render::UniformSetting>> uniforms(const json& fields) {
   return out;
 }
 
-const std::set<std::string> kKnownFields = {"vertex",  "fragment", "vertexName", "fragmentName", "preset",
+const std::set<std::string> kKnownFields = {"course", "vertex",  "fragment", "vertexName", "fragmentName", "preset",
                                             "mesh",    "fit",      "width",      "height",       "frames",
                                             "degreesPerFrame", "msaa", "uniforms", "prefix",     "output",
                                             "format", "reference", "referenceVertex", "referenceFragment",
@@ -93,8 +92,8 @@ RawRequest from_form(const std::multimap<std::string, std::string>& fields, std:
   RawRequest raw;
   for (const auto& [k, v] : fields) {
     // Shader sources and names stay strings whatever they look like.
-    const bool verbatim = k == "vertex" || k == "fragment" || k == "preset" || k == "mesh" || k == "prefix" ||
-                          k == "vertexName" || k == "fragmentName" || k == "output" || k == "format";
+    const bool verbatim = k == "vertex" || k == "fragment" || k == "preset" || k == "mesh" || k == "prefix" || k == "course" ||
+                          k == "vertexName" || k == "fragmentName" || k == "output" || k == "format" || k == "reference";
     raw.fields[k] = verbatim ? json(v) : form_value(v);
   }
   raw.files = std::move(files);
@@ -103,8 +102,17 @@ RawRequest from_form(const std::multimap<std::string, std::string>& fields, std:
 
 namespace {
 
-// Shaders: uploaded files, inline sources, or a preset (which also names the frames).
-Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& limits, worker::Job& job) {
+// The frames of a checkpoint's reference are named as the checkpoint's (hw2_normals_*), any other
+// preset's by its name.
+std::string prefix_of(const course::Course& c, const course::Preset& p) {
+  for (const auto& checkpoint : c.checkpoints)
+    if (checkpoint.reference == p.name) return checkpoint.prefix;
+  return p.name;
+}
+
+// Shaders: uploaded files, inline sources, or a preset of the course (which also names the frames).
+Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& limits, const course::Course& course, ParsedJob& out) {
+  worker::Job& job = out.job;
   const json& f = raw.fields;
   auto preset = text(f, "preset", "");
   if (!preset) return preset.take_error();
@@ -125,11 +133,12 @@ Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& l
                            raw.files.count("fragment") || f.contains("vertex") || f.contains("fragment");
   if (!preset->empty()) {
     if (has_sources) return bad("give either 'preset' or 'vertex' and 'fragment', not both");
-    const auto p = render::find_preset(*preset);
-    if (!p) return make_error(ErrorCode::unknown_preset, "no preset '" + *preset + "' (presets: starter, smooth, gouraud, diffuse, specular)");
-    job.request.vertex = p->vertex;
-    job.request.fragment = p->fragment;
-    job.prefix = *preset;
+    auto found = course.find_preset(*preset);
+    if (!found) return found.take_error();
+    if (found->alias) out.warnings.push_back(found->alias->note);
+    job.request.vertex = found->preset->vertex;
+    job.request.fragment = found->preset->fragment;
+    job.prefix = prefix_of(course, *found->preset);
     return Ok{};
   }
   if (kind == worker::JobKind::mesh_check) return Ok{};
@@ -165,9 +174,13 @@ Status read_render_settings(const json& f, render::RenderRequest& r) {
 }
 
 // What comes back and how: fit, prefix, output and format.
-Status read_output(const json& f, worker::Job& job) {
+Status read_output(const json& f, const course::Course& course, worker::Job& job) {
   if (f.contains("fit") && !f["fit"].is_boolean()) return bad("'fit' must be true or false");
-  job.fit = f.value("fit", false);
+  if (f.value("fit", false)) {
+    auto target = course::fit_bounds(course);
+    if (!target) return target.take_error();
+    job.fit = *target;
+  }
   auto prefix = text(f, "prefix", job.prefix);
   if (!prefix) return prefix.take_error();
   static const std::regex safe_prefix("[A-Za-z0-9_-]{1,64}");
@@ -185,8 +198,9 @@ Status read_output(const json& f, worker::Job& job) {
   return Ok{};
 }
 
-// Mesh: a file in this request, or a name (built-in or uploaded id, resolved by the caller).
-Status read_mesh(const RawRequest& raw, const Limits& limits, ParsedJob& out) {
+// Mesh: a file in this request, one of the course's meshes by name, or an uploaded id (resolved by
+// the caller).
+Status read_mesh(const RawRequest& raw, const Limits& limits, const course::Course& course, ParsedJob& out) {
   if (auto it = raw.files.find("mesh"); it != raw.files.end()) {
     if (it->second.content.size() > limits.max_mesh_bytes)
       return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
@@ -195,23 +209,30 @@ Status read_mesh(const RawRequest& raw, const Limits& limits, ParsedJob& out) {
     out.job.mesh_format = scene::mesh_format_of(it->second.filename);
     return Ok{};
   }
-  auto mesh = text(raw.fields, "mesh", "bunny");
+  auto mesh = text(raw.fields, "mesh", course.default_mesh);
   if (!mesh) return mesh.take_error();
+  if (course.mesh(*mesh)) return worker::attach_course_mesh(course, *mesh, out.job, out.course_mesh_bytes);
   out.job.mesh = *mesh;
   return Ok{};
 }
 
 }  // namespace
 
-Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits) {
+Expected<const course::Course*> course_of(const RawRequest& raw, const course::CourseSet& courses) {
+  auto id = text(raw.fields, "course", "");
+  if (!id) return id.take_error();
+  return courses.named(*id);
+}
+
+Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits, const course::Course& course) {
   ParsedJob out;
-  out.job.kind = kind;
+  out.job = worker::course_job(course, kind);
   for (const auto& [k, v] : raw.fields.items())
     if (!kKnownFields.count(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
-  if (auto s = read_shaders(raw, kind, limits, out.job); !s) return s.take_error();
+  if (auto s = read_shaders(raw, kind, limits, course, out); !s) return s.take_error();
   if (auto s = read_render_settings(raw.fields, out.job.request); !s) return s.take_error();
-  if (auto s = read_output(raw.fields, out.job); !s) return s.take_error();
-  if (auto s = read_mesh(raw, limits, out); !s) return s.take_error();
+  if (auto s = read_output(raw.fields, course, out.job); !s) return s.take_error();
+  if (auto s = read_mesh(raw, limits, course, out); !s) return s.take_error();
   if (kind != worker::JobKind::mesh_check) {
     if (auto valid = render::validate(out.job.request, limits.render); !valid) return valid.take_error();
     if (auto sources = render::check_sources(out.job.request, limits.render); !sources) return sources.take_error();
@@ -223,7 +244,7 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
 
 namespace shadelab::http {
 
-Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits) {
+Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, const course::Course& course) {
   ParsedGrade out;
   auto format = text(raw.fields, "format", "json");
   if (!format) return format.take_error();
@@ -231,7 +252,7 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits) {
   out.result_format = *format;
   raw.fields.erase("format");
   const json f = raw.fields;
-  auto parsed = parse_job(raw, worker::JobKind::grade, limits);
+  auto parsed = parse_job(raw, worker::JobKind::grade, limits, course);
   if (!parsed) return parsed.take_error();
   out.parsed = std::move(*parsed);
   auto& spec = out.parsed.job.grade;
@@ -239,7 +260,11 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits) {
   auto reference = text(f, "reference", "");
   if (!reference) return reference.take_error();
   const bool custom = raw.files.count("referenceVertex") || f.contains("referenceVertex");
-  if (!reference->empty() == custom) return bad("give either 'reference' (smooth, gouraud, diffuse, specular) or 'referenceVertex' and 'referenceFragment'");
+  if (!reference->empty() == custom) {
+    std::string names;
+    for (const auto& n : course.checkpoint_names()) names += (names.empty() ? "" : ", ") + n;
+    return bad("give either 'reference' (a checkpoint: " + names + ") or 'referenceVertex' and 'referenceFragment'");
+  }
   if (custom) {
     const auto source = [&](const char* field) -> Expected<shader::ShaderFile> {
       if (auto it = raw.files.find(field); it != raw.files.end()) return shader::ShaderFile{it->second.filename, it->second.content};
@@ -254,10 +279,12 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits) {
     spec.reference_name = "custom";
     spec.reference_vertex = std::move(*v);
     spec.reference_fragment = std::move(*fr);
+    spec.light_position_uniforms = course.light_position_names();
   } else {
-    auto checkpoint = grade::checkpoint_spec(*reference, spec.options);
-    if (!checkpoint) return checkpoint.take_error();
-    spec = std::move(*checkpoint);
+    auto found = course.checkpoint(*reference);
+    if (!found) return found.take_error();
+    if (found->alias) out.parsed.warnings.push_back(found->alias->note);
+    spec = course.grade_spec(*found->checkpoint, grade::GradeOptions{.max_score = found->checkpoint->points});
   }
   auto threshold = number(f, "threshold", spec.options.compare.threshold);
   auto failing = number(f, "maxFailingFraction", spec.options.max_failing_fraction);

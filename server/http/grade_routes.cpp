@@ -24,7 +24,9 @@ void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res)
   const std::string checkpoint = field_or<std::string>(raw->fields, "reference", "custom");
   const std::string format = field_or<std::string>(raw->fields, "format", "json");
   const double max_score = field_or<double>(raw->fields, "maxScore", 1.0);
-  auto parsed = parse_grade_job(*raw, c.config.limits);
+  auto course = course_of(*raw, c.courses);
+  if (!course) return send_problem(res, course.error(), req.path);
+  auto parsed = parse_grade_job(*raw, c.config.limits, **course);
   worker::GradeResult graded;
   double seconds = 0;
   if (!parsed) {

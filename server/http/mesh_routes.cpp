@@ -42,28 +42,33 @@ void upload(RouteContext& c, const httplib::Request& req, httplib::Response& res
   send_json(res, 201, {{"id", job.mesh}, {"filename", file->filename}, {"format", job.mesh_format}, {"info", info}});
 }
 
-void list(httplib::Response& res) {
+void list(const RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+  const course::Course* course = c.course_param(req, res);
+  if (!course) return;
   json builtin = json::array(), scene_builtin = json::array();
-  for (const auto& n : scene::builtin_mesh_names()) builtin.push_back({{"id", n}, {"builtin", true}});
+  for (const auto& n : course->mesh_names()) builtin.push_back({{"id", n}, {"builtin", true}});
   for (const auto& n : scene::builtin_scene_mesh_names()) scene_builtin.push_back(n);
   // Uploads are not listed: an upload's id is the capability to use it, known to its uploader only.
-  send_json(res, 200, {{"builtin", builtin}, {"sceneBuiltin", scene_builtin}});
+  send_json(res, 200, {{"course", course->id}, {"builtin", builtin}, {"sceneBuiltin", scene_builtin}});
 }
 
-void builtin_obj(const httplib::Request& req, httplib::Response& res) {
+// A course's mesh as the page loads it: the OBJ file's bytes, as the course hands them out.
+void course_obj(const RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+  const course::Course* course = c.course_param(req, res);
+  if (!course) return;
   const std::string name = req.matches[1];
-  const auto obj = embedded_file("assets/" + name + ".obj");
-  if (!obj) return send_problem(res, make_error(ErrorCode::mesh_not_found, "no built-in mesh '" + name + "'"), req.path);
+  const course::CourseMesh* mesh = course->mesh(name);
+  if (!mesh) return send_problem(res, make_error(ErrorCode::mesh_not_found, "no mesh '" + name + "' in " + course->id), req.path);
   res.set_header("Cache-Control", "public, max-age=3600");
-  res.set_content(std::string(*obj), "text/plain; charset=utf-8");
+  res.set_content(mesh->embedded ? std::string(*embedded_file(mesh->id)) : mesh->bytes, "text/plain; charset=utf-8");
 }
 
 }  // namespace
 
 void add_mesh_routes(httplib::Server& server, RouteContext& c) {
   server.Post("/api/meshes", [&c](const httplib::Request& req, httplib::Response& res) { upload(c, req, res); });
-  server.Get("/api/meshes", [](const httplib::Request&, httplib::Response& res) { list(res); });
-  server.Get(R"(/api/meshes/([a-z]+)\.obj)", builtin_obj);
+  server.Get("/api/meshes", [&c](const httplib::Request& req, httplib::Response& res) { list(c, req, res); });
+  server.Get(R"(/api/meshes/([a-z0-9_-]+)\.obj)", [&c](const httplib::Request& req, httplib::Response& res) { course_obj(c, req, res); });
 }
 
 }  // namespace shadelab::http

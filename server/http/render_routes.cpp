@@ -53,7 +53,9 @@ std::string json_body(const worker::RenderResult& r, const std::vector<std::stri
 void render(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
-  auto parsed = parse_job(*raw, worker::JobKind::render, c.config.limits);
+  auto course = course_of(*raw, c.courses);
+  if (!course) return send_problem(res, course.error(), req.path);
+  auto parsed = parse_job(*raw, worker::JobKind::render, c.config.limits, **course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
   auto mesh = c.mesh_bytes(*parsed);
   if (!mesh) return send_problem(res, mesh.error(), req.path);
@@ -74,7 +76,8 @@ void render(RouteContext& c, const httplib::Request& req, httplib::Response& res
   response.headers["X-ShadeLab-Warnings"] = std::to_string(warnings.size());
   if (!constant.empty()) response.headers["X-ShadeLab-Constant-Frames"] = constant;
   if (parsed->job.output == worker::Output::frames)
-    response.headers["Content-Disposition"] = "attachment; filename=\"hw2_" + parsed->job.prefix + "_frames.zip\"";
+    response.headers["Content-Disposition"] =
+        "attachment; filename=\"" + render::frame_file_name(parsed->job.frame_name, parsed->job.prefix, "frames", "zip") + "\"";
   if (parsed->job.output == worker::Output::json) {
     response.content_type = "application/json";
     response.body = json_body(r, warnings, c.pool.renderer(), answered->queue_ms);
@@ -88,7 +91,9 @@ void render(RouteContext& c, const httplib::Request& req, httplib::Response& res
 void compile(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
-  auto parsed = parse_job(*raw, worker::JobKind::compile, c.config.limits);
+  auto course = course_of(*raw, c.courses);
+  if (!course) return send_problem(res, course.error(), req.path);
+  auto parsed = parse_job(*raw, worker::JobKind::compile, c.config.limits, **course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
   auto answered = c.run<worker::CompileResult>(worker::to_message(parsed->job));
   if (!answered) return send_problem(res, answered.error(), req.path);

@@ -23,14 +23,24 @@ void send_json(httplib::Response& res, int status, const json& body) {
 
 Expected<std::string> RouteContext::mesh_bytes(ParsedJob& parsed) const {
   if (!parsed.mesh_upload.content.empty()) return parsed.mesh_upload.content;
-  const auto& names = scene::builtin_mesh_names();
-  if (std::find(names.begin(), names.end(), parsed.job.mesh) != names.end()) return std::string();
+  if (!parsed.job.mesh_embedded.empty()) return std::string();
+  if (!parsed.course_mesh_bytes.empty()) return std::move(parsed.course_mesh_bytes);
   auto stored = meshes.get(parsed.job.mesh);
   if (!stored) return stored.take_error();
   if (!*stored)
-    return make_error(ErrorCode::mesh_not_found, "no mesh '" + parsed.job.mesh + "': use bunny, teapot, or the id POST /api/meshes returned");
+    return make_error(ErrorCode::mesh_not_found, "no mesh '" + parsed.job.mesh +
+                                                     "': use one of the course's meshes (GET /api/course), or the id POST /api/meshes returned");
   parsed.job.mesh_format = (*stored)->format;
   return (*stored)->bytes;
+}
+
+const course::Course* RouteContext::course_param(const httplib::Request& req, httplib::Response& res) const {
+  auto found = courses.named(req.has_param("course") ? req.get_param_value("course") : "");
+  if (!found) {
+    send_problem(res, found.error(), req.path);
+    return nullptr;
+  }
+  return *found;
 }
 
 std::string RouteContext::etag_of(const worker::Message& job, const std::string& form) const {

@@ -22,6 +22,7 @@ namespace shadelab::http {
 
 struct RouteContext {
   const ServiceConfig& config;
+  const course::CourseSet& courses;
   worker::WorkerPool& pool;
   MeshStore& meshes;
   ResponseCache& cache;
@@ -43,9 +44,12 @@ struct RouteContext {
     return answered;
   }
 
-  // The bytes of the job's mesh: a file in this request, an uploaded id (its format set on the
-  // job), or none for a built-in.
+  // The bytes of the job's mesh: a file in this request, a course's own mesh, an uploaded id (its
+  // format set on the job), or none for a mesh compiled into the binary.
   Expected<std::string> mesh_bytes(ParsedJob& parsed) const;
+
+  // The course `?course=ID` names, or the default one; null, with the problem answered, otherwise.
+  const course::Course* course_param(const httplib::Request& req, httplib::Response& res) const;
 
   // Same job, same mesh bytes, same renderer, same response form: same bytes out. That makes a
   // strong ETag.

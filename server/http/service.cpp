@@ -118,7 +118,7 @@ struct Service::Impl {
         cache(config.cache_bytes, shared.get()) {}
 
   void routes() {
-    context.emplace(RouteContext{config, *pool, meshes, cache, metrics, connections, *tenants, shared.get()});
+    context.emplace(RouteContext{config, config.courses, *pool, meshes, cache, metrics, connections, *tenants, shared.get()});
     add_render_routes(server, *context);
     add_grade_routes(server, *context);
     add_sheet_routes(server, *context);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/expected.h"
+#include "course/course_set.h"
 #include "http/connection_server.h"
 #include "http/limits.h"
 #include "http/tenants.h"
@@ -23,6 +24,7 @@ struct ServiceConfig {
   size_t cache_bytes = 64u << 20;
   store::SharedStoreConfig shared_store;  // Redis shared by the replicas; empty url: none
   std::string web_root;  // served at /; empty: no static files
+  course::CourseSet courses;  // what requests name by `course`; the first is the default (built-in unless given)
 };
 
 class Service {

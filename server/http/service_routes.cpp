@@ -1,7 +1,7 @@
-// What the service says about itself: presets, the OpenAPI document, health and metrics.
+// What the service says about itself: its courses and their presets, the OpenAPI document,
+// health and metrics.
 #include "core/embedded_files.h"
 #include "http/route_context.h"
-#include "render/presets.h"
 
 namespace shadelab::http {
 
@@ -9,14 +9,49 @@ namespace {
 
 using nlohmann::json;
 
-void presets(const httplib::Request&, httplib::Response& res) {
+json presets_json(const course::Course& c) {
   json out = json::array();
-  for (const auto& p : render::presets())
+  for (const auto& p : c.presets)
     out.push_back({{"name", p.name},
                    {"description", p.description},
                    {"vertex", {{"name", p.vertex.name}, {"source", p.vertex.text}}},
                    {"fragment", {{"name", p.fragment.name}, {"source", p.fragment.text}}}});
-  send_json(res, 200, out);
+  return out;
+}
+
+// A course as the page and API clients see it: every fact they need to draw and name frames as
+// the course's page does, and nothing of where the server keeps its files.
+json course_json(const course::Course& c) {
+  json uniforms = json::array();
+  for (const auto& u : c.uniforms) uniforms.push_back({{"names", u.names}, {"type", u.type}, {"value", u.value}, {"role", u.role}});
+  json meshes = json::array();
+  for (const auto& m : c.meshes) meshes.push_back({{"name", m.name}, {"url", "/api/meshes/" + m.name + ".obj?course=" + c.id}});
+  json checkpoints = json::array();
+  for (const auto& k : c.checkpoints) {
+    json probes = json::array();
+    for (const auto& p : k.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
+    checkpoints.push_back({{"name", k.name}, {"title", k.title}, {"prefix", k.prefix}, {"reference", k.reference}, {"code", k.code},
+                           {"points", k.points}, {"frames", c.frame_file(k.prefix, 0, "png")}, {"probes", probes}});
+  }
+  json aliases = json::array();
+  for (const auto& a : c.aliases) aliases.push_back({{"name", a.name}, {"checkpoint", a.checkpoint}, {"note", a.note}});
+  const auto& cam = c.camera;
+  return {{"id", c.id},
+          {"title", c.title},
+          {"canvas", {{"width", c.width}, {"height", c.height}}},
+          {"frames", {{"count", c.frames}, {"degreesPerFrame", c.degrees_per_frame}, {"fileName", c.frame_name}}},
+          {"msaa", c.msaa},
+          {"camera", {{"fovYDegrees", cam.fov_y_degrees}, {"near", cam.near}, {"far", cam.far},
+                      {"meshTranslation", {cam.mesh_translation.x, cam.mesh_translation.y, cam.mesh_translation.z}}}},
+          {"uniforms", uniforms},
+          {"specularExponent", c.specular_exponent()},
+          {"meshes", meshes},
+          {"defaultMesh", c.default_mesh},
+          {"presets", presets_json(c)},
+          {"defaultPreset", c.default_preset},
+          {"checkpoints", checkpoints},
+          {"defaultCheckpoint", c.default_checkpoint},
+          {"aliases", aliases}};
 }
 
 void openapi(const httplib::Request&, httplib::Response& res) {
@@ -26,7 +61,17 @@ void openapi(const httplib::Request&, httplib::Response& res) {
 }  // namespace
 
 void add_service_routes(httplib::Server& server, RouteContext& c) {
-  server.Get("/api/presets", presets);
+  server.Get("/api/presets", [&c](const httplib::Request& req, httplib::Response& res) {
+    if (const auto* course = c.course_param(req, res)) send_json(res, 200, presets_json(*course));
+  });
+  server.Get("/api/course", [&c](const httplib::Request& req, httplib::Response& res) {
+    if (const auto* course = c.course_param(req, res)) send_json(res, 200, course_json(*course));
+  });
+  server.Get("/api/courses", [&c](const httplib::Request&, httplib::Response& res) {
+    json out = json::array();
+    for (const auto& course : c.courses.all()) out.push_back({{"id", course->id}, {"title", course->title}});
+    send_json(res, 200, {{"default", c.courses.default_course().id}, {"courses", out}});
+  });
   server.Get("/api/openapi.json", openapi);
   server.Get("/livez", [](const httplib::Request&, httplib::Response& res) { send_json(res, 200, {{"status", "ok"}}); });
   server.Get("/readyz", [&c](const httplib::Request&, httplib::Response& res) {

@@ -1,17 +1,19 @@
 // POST /api/sheet: the submission sheet (server/sheet/) from a student's files, as a PDF or one
 // HTML page. The body names each file by its path in the student's folder:
 //
-// | form      | files                                              | other fields               |
-// |-----------|----------------------------------------------------|----------------------------|
-// | JSON      | "files": {"shaders/starter_vert.js": "<source>"}   | answers, title, format,    |
-// |           |                                                    | scenes                     |
-// | multipart | a file part per file, the part's name its path     | answers, title, format     |
+// | form      | files                                                 | other fields               |
+// |-----------|-------------------------------------------------------|----------------------------|
+// | JSON      | "files": {"src/shaders/starter_vert.js": "<source>"}, | answers, title, format,    |
+// |           | "images": {"images/camera_25.png": "<base64>"}        | scenes, course             |
+// | multipart | a file part per file, the part's name its path        | answers, title, format,    |
+// |           | (.png parts are images)                               | course                     |
 //
 // format: pdf (default) or html. scenes: [{"name": "two_objects", "scene": {...}}], Blender-half
 // scenes on built-in meshes, each rendered with its framing report. Each checkpoint found is
 // graded and rendered by the workers.
 #include <algorithm>
 
+#include "core/base64.h"
 #include "http/route_context.h"
 #include "sheet/assemble.h"
 #include "sheet/sheet_html.h"
@@ -24,6 +26,8 @@ namespace {
 using nlohmann::json;
 
 constexpr size_t kMaxFiles = 16, kMaxPath = 200, kMaxTitle = 200, kMaxAnswers = 64 * 1024, kMaxScenes = 4;
+// Three deliverables' saved frames and the Blender half's four renders, with room to spare.
+constexpr size_t kMaxImages = 40, kMaxImageBytes = 16u << 20;
 
 // A path inside the student's folder: relative, no "..", no empty part.
 bool safe_path(const std::string& path) {
@@ -46,7 +50,18 @@ Expected<std::string> text_field(const RawRequest& raw, const char* name, size_t
   return v.get<std::string>();
 }
 
+Status add_image(sheet::SheetInput& input, const std::string& path, std::string bytes) {
+  if (!safe_path(path))
+    return make_error(ErrorCode::invalid_argument, "images: '" + path.substr(0, kMaxPath) + "' is not a path inside the submission");
+  if (bytes.size() > kMaxImageBytes)
+    return make_error(ErrorCode::payload_too_large, "images: '" + path + "' is over " + std::to_string(kMaxImageBytes) + " bytes");
+  if (input.images.size() == kMaxImages) return make_error(ErrorCode::invalid_argument, "images: more than " + std::to_string(kMaxImages));
+  input.images.push_back({path, std::move(bytes)});
+  return Ok{};
+}
+
 Status add_file(sheet::SheetInput& input, const std::string& path, const std::string& text, const Limits& limits) {
+  if (path.ends_with(".png")) return add_image(input, path, text);
   if (!safe_path(path))
     return make_error(ErrorCode::invalid_argument, "files: '" + path.substr(0, kMaxPath) + "' is not a path inside the submission");
   if (text.size() > limits.render.max_source_bytes)
@@ -92,6 +107,15 @@ Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& lim
       if (auto s = add_file(input, path, text.get<std::string>(), limits); !s) return s.error();
     }
   }
+  if (raw.fields.contains("images")) {
+    const json& images = raw.fields["images"];
+    if (!images.is_object()) return make_error(ErrorCode::invalid_argument, "images: expected an object of path -> base64 PNG");
+    for (const auto& [path, data] : images.items()) {
+      auto bytes = data.is_string() ? base64_decode(data.get<std::string>()) : std::nullopt;
+      if (!bytes) return make_error(ErrorCode::invalid_argument, "images." + path + ": expected the file's bytes in base64");
+      if (auto s = add_image(input, path, std::move(*bytes)); !s) return s.error();
+    }
+  }
   for (const auto& [name, file] : raw.files)
     if (auto s = add_file(input, name, file.content, limits); !s) return s.error();
   if (auto s = add_scenes(input, raw); !s) return s.error();
@@ -107,9 +131,11 @@ void sheet(RouteContext& c, const httplib::Request& req, httplib::Response& res)
   if (!format) return send_problem(res, format.error(), req.path);
   if (*format != "pdf" && *format != "html")
     return send_problem(res, make_error(ErrorCode::invalid_argument, "format: pdf or html, not '" + *format + "'"), req.path);
+  auto course = course_of(*raw, c.courses);
+  if (!course) return send_problem(res, course.error(), req.path);
   auto input = parse_sheet(*raw, c.config.limits);
   if (!input) return send_problem(res, input.error(), req.path);
-  auto assembled = sheet::assemble(c.pool, std::move(*input));
+  auto assembled = sheet::assemble(c.pool, **course, std::move(*input));
   if (!assembled) return send_problem(res, assembled.error(), req.path);
   if (*format == "html") return res.set_content(sheet::render_html(*assembled), "text/html; charset=utf-8");
   auto pdf = sheet::render_pdf(*assembled);

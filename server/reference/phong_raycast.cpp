@@ -9,21 +9,21 @@ namespace shadelab::reference {
 glm::dvec3 phong(const PhongSphere& s, const glm::dvec3& p, const glm::dvec3& n) {
   const glm::dvec3 l = glm::normalize(s.light - p);
   const double ndotl = glm::dot(n, l);
-  glm::dvec3 c = s.ambient + s.diffuse * std::max(0.0, ndotl);
+  glm::dvec3 c = s.ambient + s.diffuse * s.light_color * std::max(0.0, ndotl);
   if (ndotl > 0.0) {
     const glm::dvec3 v = glm::normalize(-p);
     const glm::dvec3 r = glm::reflect(-l, n);
-    c += s.specular * std::pow(std::max(0.0, glm::dot(v, r)), s.specular_alpha);
+    c += s.specular * s.light_color * std::pow(std::max(0.0, glm::dot(v, r)), s.specular_alpha);
   }
   return c;
 }
 
 image::Image raycast(const PhongSphere& s, int width, int height, int n) {
   image::Image out = image::Image::blank(width, height, image::PixelType::f32);
-  // The homework camera: eye at the origin looking down -Z, fovY 45 degrees; the mesh moved to
-  // (0, -2, -7.5) (its rotation about Y leaves a sphere on the axis unchanged).
-  const glm::dvec3 center = s.center + glm::dvec3(0.0, -2.0, -7.5);
-  const double tan_half = std::tan(45.0 * M_PI / 360.0), aspect = static_cast<double>(width) / height;
+  // The page's camera: the eye at the origin looking down -Z; the mesh moved by the camera's
+  // translation (its rotation about Y leaves a sphere on the axis unchanged).
+  const glm::dvec3 center = s.center + s.camera.mesh_translation;
+  const double tan_half = std::tan(s.camera.fov_y_degrees * M_PI / 360.0), aspect = static_cast<double>(width) / height;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       glm::dvec3 sum(0.0);

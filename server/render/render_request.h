@@ -1,11 +1,14 @@
 #pragma once
-// A render job as plain data with the homework's defaults, validated completely before any GL call.
+// A render job as plain data, validated completely before any GL call. The homework's facts (size,
+// frames, rotation, samples, camera, uniform values) are not defaults here: a course profile fills
+// them (course::Course::render_request), so one offering's numbers live in one place.
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "core/expected.h"
 #include "image/image.h"
+#include "render/homework_contract.h"
 #include "render/uniform_plan.h"
 #include "shader/shader_source.h"
 
@@ -14,12 +17,14 @@ namespace shadelab::render {
 struct RenderRequest {
   shader::ShaderFile vertex;
   shader::ShaderFile fragment;
-  int width = 640;
-  int height = 480;
-  int frames = 9;
-  double degrees_per_frame = 20.0;  // frame k is rotated exactly k * degrees_per_frame about +Y
-  int msaa = 4;                     // the browser canvas's antialias: true; 0 turns it off
-  std::vector<UniformSetting> uniforms;
+  int width = 0;
+  int height = 0;
+  int frames = 1;
+  double degrees_per_frame = 0;  // frame k is rotated exactly k * degrees_per_frame about +Y...
+  std::vector<double> angles;    // ...unless this lists each frame's rotation in degrees (its size is `frames`)
+  int msaa = 0;                  // the browser canvas's antialias: true is 4; 0 turns it off
+  PageSetup page;                // the camera and the constant uniforms the page sets
+  std::vector<UniformSetting> uniforms;  // the caller's values, over the page's
   image::PixelType pixel_type = image::PixelType::u8;  // f32: float target, for EXR
 };
 
@@ -31,6 +36,11 @@ struct RenderLimits {
 };
 
 Status validate(const RenderRequest& request, const RenderLimits& limits);
+// Everything in a request that changes its pixels, exactly, and nothing else (file names do not):
+// two requests with the same identity render the same frames on the same mesh and driver.
+std::string pixel_identity(const RenderRequest& request);
+// Frame k's rotation about +Y, in degrees.
+double frame_angle(const RenderRequest& request, int k);
 // The source checks that need no GL (size, UTF-8, NUL bytes, the JS module's syntax, #version) on
 // both stages. Callers answer these before a job leaves for a worker: the JSON that carries a job
 // cannot hold invalid UTF-8, and a student should not wait for a worker to hear about a typo.

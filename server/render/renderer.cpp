@@ -224,7 +224,7 @@ Expected<RenderReport> Renderer::render(const RenderRequest& request, const scen
   report.attributes = describe(program.attributes());
   report.uniforms = describe(program.uniforms());
 
-  auto plan = plan_uniforms(program.uniforms(), request.uniforms);
+  auto plan = plan_uniforms(program.uniforms(), request.page.uniforms, request.uniforms);
   if (!plan) return plan.take_error();
   report.warnings.insert(report.warnings.end(), plan->warnings.begin(), plan->warnings.end());
 
@@ -278,7 +278,7 @@ Expected<RenderReport> Renderer::render(const RenderRequest& request, const scen
   for (int k = 0; k < request.frames; ++k) {
     const auto submit_start = Clock::now();
     gl::RenderTarget& rt = *(*targets)[static_cast<size_t>(k % 2)];
-    const FrameTransforms t = homework_transforms(request.width, request.height, k * request.degrees_per_frame);
+    const FrameTransforms t = homework_transforms(request.page.camera, request.width, request.height, frame_angle(request, k));
     if (plan->world_to_clip) program.set_uniform(*plan->world_to_clip, {glm::value_ptr(t.world_to_clip), 16});
     if (plan->mesh_to_world) program.set_uniform(*plan->mesh_to_world, {glm::value_ptr(t.mesh_to_world), 16});
     if (plan->mesh_to_world_rot) program.set_uniform(*plan->mesh_to_world_rot, {glm::value_ptr(t.mesh_to_world_rot), 16});

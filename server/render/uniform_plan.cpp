@@ -63,7 +63,7 @@ Expected<std::vector<float>> check_values(const gl::ActiveVariable& u, const Uni
 
 }  // namespace
 
-Expected<UniformPlan> plan_uniforms(const std::vector<gl::ActiveVariable>& active,
+Expected<UniformPlan> plan_uniforms(const std::vector<gl::ActiveVariable>& active, const std::vector<ConstantUniform>& page,
                                     const std::vector<UniformSetting>& settings) {
   UniformPlan plan;
   std::vector<const gl::ActiveVariable*> set_by_request;
@@ -85,12 +85,12 @@ Expected<UniformPlan> plan_uniforms(const std::vector<gl::ActiveVariable>& activ
     return false;
   };
 
-  for (const auto& d : homework_constant_uniforms()) {
-    const gl::ActiveVariable* u = find_active(active, std::string(d.name));
+  for (const auto& d : page) {
+    const gl::ActiveVariable* u = find_active(active, d.name);
     if (!u || requested(u)) continue;
     if (u->type.name != d.glsl_type || u->array_size != 1) {
-      plan.warnings.push_back("uniform '" + std::string(d.name) + "' is declared " + describe_type(*u) +
-                              ", but the homework page sets it as a " + std::string(d.glsl_type) +
+      plan.warnings.push_back("uniform '" + d.name + "' is declared " + describe_type(*u) +
+                              ", but the homework page sets it as a " + d.glsl_type +
                               "; the browser leaves it at zero, and so does this render");
       continue;
     }

@@ -1,12 +1,13 @@
 #pragma once
 // Which value each active uniform of a linked program gets, decided before anything is drawn:
-// the homework's defaults, overridden by the request's values, each type-checked against the
+// the page's constants (the course's values), overridden by the request's values, each type-checked against the
 // program's reflection. A value for a uniform the program does not use is a warning.
 #include <string>
 #include <vector>
 
 #include "core/expected.h"
 #include "gl/program.h"
+#include "render/homework_contract.h"
 
 namespace shadelab::render {
 
@@ -29,8 +30,8 @@ struct UniformPlan {
   std::vector<std::string> warnings;
 };
 
-// `active` must outlive the plan (it points into it).
-Expected<UniformPlan> plan_uniforms(const std::vector<gl::ActiveVariable>& active,
+// `active` must outlive the plan (it points into it). `page`: what the page sets every program.
+Expected<UniformPlan> plan_uniforms(const std::vector<gl::ActiveVariable>& active, const std::vector<ConstantUniform>& page,
                                     const std::vector<UniformSetting>& settings);
 
 }  // namespace shadelab::render

@@ -28,13 +28,14 @@ Bounds bounds(const Mesh& mesh) {
   return b;
 }
 
-void fit_to_homework(Mesh& mesh) {
+void fit_to(Mesh& mesh, const Bounds& target) {
   const Bounds b = bounds(mesh);
   const float height = b.max.y - b.min.y;
   // A flat mesh (height 0) keeps its size: there is no height to fit.
-  const float scale = height > 0.f ? kHomeworkHeight / height : 1.f;
+  const float scale = height > 0.f ? (target.max.y - target.min.y) / height : 1.f;
   const glm::vec3 anchor{(b.min.x + b.max.x) / 2, b.min.y, (b.min.z + b.max.z) / 2};
-  for (auto& p : mesh.positions) p = (p - anchor) * scale;
+  const glm::vec3 place{(target.min.x + target.max.x) / 2, target.min.y, (target.min.z + target.max.z) / 2};
+  for (auto& p : mesh.positions) p = (p - anchor) * scale + place;
 }
 
 }  // namespace shadelab::scene

@@ -39,10 +39,10 @@ Bounds bounds(const Mesh& mesh);
 // which rasterise nothing. Never NaN.
 void compute_smooth_normals(Mesh& mesh);
 
-// The homework framing the built-in meshes have: height 3.5, base at y = 0, bounding box centred
-// in x and z; uMeshToWorldMatrix then stands it at y in [-2, 1.5], 7.5 units in front of the eye.
-void fit_to_homework(Mesh& mesh);
-inline constexpr float kHomeworkHeight = 3.5f;
+// Scales and moves `mesh` into the framing of `target` (a course's default mesh, which the page
+// draws in its own units): the same height, its base at the target's lowest y, its bounding box
+// centred on the target's in x and z. A flat mesh (height 0) keeps its size.
+void fit_to(Mesh& mesh, const Bounds& target);
 
 struct MeshLimits {
   size_t max_triangles = 2'000'000;
@@ -57,8 +57,7 @@ Expected<Mesh> load_mesh_file(const std::string& path, const MeshLimits& limits 
 // The format hint of a file name or path: its extension ("glb"), or "obj" when it has none.
 std::string mesh_format_of(std::string_view filename);
 
-// "teapot" or "bunny", compiled into the binary from assets/.
-Expected<Mesh> builtin_mesh(const std::string& name);
-std::vector<std::string> builtin_mesh_names();
+// A mesh file compiled into the binary ("assets/suzanne.obj"), named `name`.
+Expected<Mesh> embedded_mesh(const std::string& path, const std::string& name);
 
 }  // namespace shadelab::scene

@@ -221,14 +221,11 @@ std::string mesh_format_of(std::string_view filename) {
   return dot == std::string_view::npos || dot + 1 == filename.size() ? "obj" : std::string(filename.substr(dot + 1));
 }
 
-std::vector<std::string> builtin_mesh_names() { return {"bunny", "teapot"}; }
-
-Expected<Mesh> builtin_mesh(const std::string& name) {
-  const auto bytes = embedded_file("assets/" + name + ".obj");
-  if (!bytes)
-    return make_error(ErrorCode::mesh_not_found, "there is no built-in mesh '" + name + "' (built-ins: bunny, teapot)");
+Expected<Mesh> embedded_mesh(const std::string& path, const std::string& name) {
+  const auto bytes = embedded_file(path);
+  if (!bytes) return make_error(ErrorCode::mesh_not_found, "the mesh '" + name + "' (" + path + ") is not compiled into this binary");
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes->data());
-  return load_mesh({data, bytes->size()}, "obj", name);
+  return load_mesh({data, bytes->size()}, mesh_format_of(path), name);
 }
 
 }  // namespace shadelab::scene

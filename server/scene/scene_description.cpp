@@ -3,109 +3,15 @@
 #include <cmath>
 #include <set>
 
+#include "core/json_reader.h"
+
 namespace shadelab::scene {
 
 namespace {
 
 using nlohmann::json;
 
-// Reads fields off one JSON object, keeping the first problem (with its path) and carrying on
-// with defaults, so the parser reads straight through without an error check per field.
-class Reader {
- public:
-  Reader(const json& j, std::string path, std::string* error) : j_(j), path_(std::move(path)), error_(error) {
-    if (!j_.is_object()) fail(path_.empty() ? "the scene must be a JSON object" : path_ + ": expected an object");
-  }
-
-  std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  bool has(const std::string& key) const { return j_.is_object() && j_.contains(key) && !j_.at(key).is_null(); }
-  const json& get(const std::string& key) const { return j_.at(key); }
-
-  void fail(const std::string& message) const {
-    if (error_->empty()) *error_ = message;
-  }
-
-  double number(const std::string& key, double fallback, double lo, double hi) const {
-    if (!has(key)) return fallback;
-    const json& v = get(key);
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < lo || v.get<double>() > hi) {
-      fail(at(key) + ": expected a number in [" + fmt(lo) + ", " + fmt(hi) + "]");
-      return fallback;
-    }
-    return v.get<double>();
-  }
-
-  int integer(const std::string& key, int fallback, int lo, int hi) const {
-    if (!has(key)) return fallback;
-    const json& v = get(key);
-    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi) {
-      fail(at(key) + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-      return fallback;
-    }
-    return v.get<int>();
-  }
-
-  bool boolean(const std::string& key, bool fallback) const {
-    if (!has(key)) return fallback;
-    if (!get(key).is_boolean()) {
-      fail(at(key) + ": expected true or false");
-      return fallback;
-    }
-    return get(key).get<bool>();
-  }
-
-  std::string text(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed = {}) const {
-    if (!has(key)) return fallback;
-    const json& v = get(key);
-    if (!v.is_string() || (!allowed.empty() && !allowed.count(v.get<std::string>()))) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(at(key) + (allowed.empty() ? ": expected a string" : ": expected one of " + list));
-      return fallback;
-    }
-    return v.get<std::string>();
-  }
-
-  // [x, y, z]; `scalar_ok` also takes one number for all three (scale).
-  glm::dvec3 vec3(const std::string& key, glm::dvec3 fallback, double lo, double hi, bool scalar_ok = false) const {
-    if (!has(key)) return fallback;
-    const json& v = get(key);
-    if (scalar_ok && v.is_number()) {
-      const double s = number(key, fallback.x, lo, hi);
-      return {s, s, s};
-    }
-    if (!v.is_array() || v.size() != 3) {
-      fail(at(key) + ": expected [x, y, z]" + (scalar_ok ? " or a number" : ""));
-      return fallback;
-    }
-    glm::dvec3 out;
-    for (int i = 0; i < 3; ++i) {
-      if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || v[i].get<double>() < lo || v[i].get<double>() > hi) {
-        fail(at(key) + "[" + std::to_string(i) + "]: expected a number in [" + fmt(lo) + ", " + fmt(hi) + "]");
-        return fallback;
-      }
-      out[i] = v[i].get<double>();
-    }
-    return out;
-  }
-
-  // Keys the scene format does not know are typos, not extensions: say so.
-  void only(const std::set<std::string>& known) const {
-    if (!j_.is_object()) return;
-    for (auto it = j_.begin(); it != j_.end(); ++it)
-      if (!known.count(it.key())) fail(at(it.key()) + ": unknown field");
-  }
-
- private:
-  static std::string fmt(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-  }
-  const json& j_;
-  std::string path_;
-  std::string* error_;
-};
+using Reader = JsonReader;
 
 constexpr double kCoordinate = 1e7;  // metres; beyond this a float32 vertex has no precision left
 
@@ -214,7 +120,7 @@ RenderSettings read_render(const Reader& r, const SceneLimits& limits) {
 
 Expected<SceneDescription> parse_scene(const json& j, const SceneLimits& limits) {
   std::string error;
-  Reader root(j, "", &error);
+  Reader root(j, "", &error, "the scene");
   root.only({"objects", "ground", "camera", "lights", "world", "render"});
   SceneDescription scene;
 

@@ -75,7 +75,7 @@ Expected<Mesh> builtin_scene_mesh(const std::string& name) {
   if (name == "cube") return blender_cube();
   if (name == "plane") return blender_plane();
   if (name == "suzanne" || name == "teapot" || name == "bunny") {
-    auto m = builtin_mesh(name);
+    auto m = embedded_mesh("assets/" + name + ".obj", name);
     if (!m) return m;
     to_scene_space(*m, "obj");
     return m;

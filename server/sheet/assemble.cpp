@@ -4,17 +4,22 @@
 #include <future>
 #include <optional>
 
-#include "grade/checkpoints.h"
-#include "grade/submission_files.h"
+#include "course/submission_files.h"
+#include "image/png_info.h"
 #include "render/render_request.h"
+#include "sheet/saved_grid.h"
 #include "scene/scene_description.h"
 #include "worker/client.h"
+#include "worker/course_job.h"
 
 namespace shadelab::sheet {
 
 namespace {
 
 namespace fs = std::filesystem;
+
+// A Blender render handed in is 1920 x 1080 (Blender's default output); a sheet takes up to this.
+constexpr unsigned kMaxHandInSide = 8192;
 
 const std::string& text_of(const SheetInput& input, const fs::path& path) {
   static const std::string none;
@@ -23,57 +28,105 @@ const std::string& text_of(const SheetInput& input, const fs::path& path) {
   return none;
 }
 
-render::RenderRequest request_for(const SheetInput& input, const fs::path& vert, const fs::path& frag) {
-  render::RenderRequest r;
-  r.vertex = {vert.filename().string(), text_of(input, vert)};
-  r.fragment = {frag.filename().string(), text_of(input, frag)};
-  return r;
+// A job of the course on its default mesh, with the student's shaders.
+struct CourseJob {
+  worker::Job job;
+  std::string payload;
+};
+CourseJob job_for(const course::Course& course, worker::JobKind kind, const SheetInput& input, const fs::path& vert, const fs::path& frag) {
+  CourseJob out{worker::course_job(course, kind), {}};
+  (void)worker::attach_course_mesh(course, course.default_mesh, out.job, out.payload);  // the default mesh is the course's own
+  out.job.request.vertex = {vert.filename().string(), text_of(input, vert)};
+  out.job.request.fragment = {frag.filename().string(), text_of(input, frag)};
+  return out;
 }
 
 // The grid the student's shaders render, as the page would save it; empty when they do not.
-Expected<std::string> grid(worker::WorkerPool& pool, const render::RenderRequest& request) {
-  if (!render::check_sources(request, render::RenderLimits{})) return std::string();
-  worker::Job job;
-  job.kind = worker::JobKind::render;
-  job.request = request;
-  auto rendered = worker::run<worker::RenderResult>(pool, worker::to_message(job));
+Expected<std::string> grid(worker::WorkerPool& pool, CourseJob job) {
+  if (!render::check_sources(job.job.request, render::RenderLimits{})) return std::string();
+  auto rendered = worker::run<worker::RenderResult>(pool, worker::to_message(job.job, std::move(job.payload)));
   if (rendered) return std::move(rendered->result.body);
   if (info(rendered.error().code).submission_caused) return std::string();
   return rendered.take_error();
 }
 
-Expected<grade::Report> graded(worker::WorkerPool& pool, const std::string& checkpoint, const render::RenderRequest& request) {
-  auto spec = grade::checkpoint_spec(checkpoint, grade::GradeOptions{});
-  if (!spec) return spec.take_error();
-  if (auto sources = render::check_sources(request, render::RenderLimits{}); !sources)
-    return grade::failed_submission(sources.error(), checkpoint, spec->options.max_score);
-  worker::Job job;
-  job.kind = worker::JobKind::grade;
-  job.request = request;
-  job.grade = std::move(*spec);
-  auto answered = worker::grade(pool, job, "");
+Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, CourseJob job) {
+  job.job.grade = course.grade_spec(checkpoint, grade::GradeOptions{.max_score = checkpoint.points});
+  if (auto sources = render::check_sources(job.job.request, render::RenderLimits{}); !sources)
+    return grade::failed_submission(sources.error(), checkpoint.name, checkpoint.points);
+  auto answered = worker::grade(pool, job.job, std::move(job.payload));
   if (!answered) return answered.take_error();
   return std::move(answered->result.report);
 }
 
-Expected<CheckpointSection> section(worker::WorkerPool& pool, const SheetInput& input, const grade::CheckpointFiles& c) {
-  CheckpointSection s;
-  s.checkpoint = c.checkpoint;
-  if (!c.pair) {
-    s.report.checkpoint = c.checkpoint;
-    s.report.messages = {"not in the submission: no " + *c.homework_stem + "_vert.js and " + *c.homework_stem + "_frag.js in one folder"};
+// The file `input` holds at `name` (a file name, or a path ending in it), the shallowest first.
+const SubmittedFile* image_named(const SheetInput& input, const std::string& name) {
+  const SubmittedFile* found = nullptr;
+  for (const auto& f : input.images) {
+    const std::string path = f.path.generic_string();
+    const bool match = path == name || path.ends_with("/" + name);
+    if (match && (!found || std::distance(f.path.begin(), f.path.end()) < std::distance(found->path.begin(), found->path.end()))) found = &f;
+  }
+  return found;
+}
+
+// A checkpoint without code: the frames the student saved under its prefix, when they did.
+CheckpointSection from_saved_frames(const course::Course& course, const course::Checkpoint& checkpoint, const SheetInput& input) {
+  CheckpointSection s{checkpoint.name, checkpoint.title};
+  s.report.checkpoint = checkpoint.name;
+  s.report.max_score = checkpoint.points;
+  std::vector<std::pair<std::string, std::string>> frames;
+  for (int k = 0; k < course.frames; ++k)
+    if (const SubmittedFile* f = image_named(input, course.frame_file(checkpoint.prefix, k, "png"))) frames.emplace_back(f->path.string(), f->text);
+  const std::string first = course.frame_file(checkpoint.prefix, 0, "png");
+  if (frames.empty()) {
+    s.report.messages = {"not in the submission: no " + course::wanted_files(course, checkpoint) + " in one folder, and no saved frames (" +
+                         first + ", ...)"};
     return s;
   }
-  const auto request = request_for(input, c.pair->first, c.pair->second);
-  auto report = graded(pool, c.checkpoint, request);
+  auto grid_png = saved_frames_grid(frames);
+  if (!grid_png) {
+    s.report.messages = {"the saved frames cannot be shown: " + grid_png.error().message};
+    return s;
+  }
+  s.grid_png = std::move(*grid_png);
+  s.grid_caption = "the frames the student saved";
+  s.report.messages = {"handed in as images: " + std::to_string(frames.size()) + " of " + std::to_string(course.frames) +
+                       " saved frames (" + first + ", ...); no code to grade"};
+  return s;
+}
+
+Expected<CheckpointSection> section(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input,
+                                    const course::Checkpoint& checkpoint, const std::optional<course::CheckpointFiles>& c) {
+  if (!c || !c->pair) return from_saved_frames(course, checkpoint, input);
+  CheckpointSection s{checkpoint.name, checkpoint.title};
+  s.graded = true;
+  auto report = graded(pool, course, checkpoint, job_for(course, worker::JobKind::grade, input, c->pair->first, c->pair->second));
   if (!report) return report.take_error();
   s.report = std::move(*report);
-  auto png = grid(pool, request);
+  auto png = grid(pool, job_for(course, worker::JobKind::render, input, c->pair->first, c->pair->second));
   if (!png) return png.take_error();
   s.grid_png = std::move(*png);
-  for (const auto& path : {c.pair->first, c.pair->second})
+  s.grid_caption = "rendered from the student's code";
+  for (const auto& path : {c->pair->first, c->pair->second})
     s.code.push_back({path.string(), text_of(input, path), lines_pointed_at(s.report, path.string())});
   return s;
+}
+
+// The course's hand-in images, each found in the submission or said to be missing.
+std::vector<ImageSection> images(const course::Course& course, const SheetInput& input) {
+  std::vector<ImageSection> out;
+  for (const auto& wanted : course.images) {
+    ImageSection s{wanted.title, wanted.file, {}, {}};
+    const SubmittedFile* f = image_named(input, wanted.file);
+    const auto info = f ? image::png_info(f->text) : std::nullopt;
+    if (!f) s.problem = "not in the submission";
+    else if (!info) s.problem = f->path.string() + " is not a PNG file";
+    else if (info->width > kMaxHandInSide || info->height > kMaxHandInSide) s.problem = f->path.string() + " is larger than 8192 pixels a side";
+    else s.png = f->text;
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 // A scene rendered by a worker; what the scene itself gets wrong is its section's error.
@@ -105,16 +158,25 @@ Expected<SceneSection> scene_section(worker::WorkerPool& pool, SceneInput input)
 
 // Every section's jobs are in the pool at once (its workers take them in parallel); the sections
 // are collected in the sheet's order, so the result does not depend on which finishes first.
-Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input) {
+Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input) {
   Sheet sheet;
   sheet.title = input.title;
   sheet.answers = input.answers;
+  for (const auto& q : course.questions) sheet.questions.push_back(q.text);
+  sheet.images = images(course, input);
   std::vector<fs::path> paths;
   for (const auto& f : input.files) paths.push_back(f.path);
-  grade::sort_submission(paths);
+  course::sort_submission(paths);
+  const auto plan = course::plan_checkpoints(course, paths);
   std::vector<std::future<Expected<CheckpointSection>>> checkpoints;
-  for (const auto& c : grade::plan_checkpoints(paths))
-    checkpoints.push_back(std::async(std::launch::async, [&pool, &input, c] { return section(pool, input, c); }));
+  for (const auto& checkpoint : course.checkpoints) {
+    std::optional<course::CheckpointFiles> files;
+    for (const auto& p : plan)
+      if (p.checkpoint == checkpoint.name) files = p;
+    checkpoints.push_back(std::async(std::launch::async, [&pool, &course, &input, &checkpoint, files] {
+      return section(pool, course, input, checkpoint, files);
+    }));
+  }
   std::vector<std::future<Expected<SceneSection>>> scenes;
   for (auto& scene : input.scenes)
     scenes.push_back(std::async(std::launch::async, [&pool, s = std::move(scene)]() mutable { return scene_section(pool, std::move(s)); }));

@@ -1,6 +1,8 @@
 #pragma once
-// A student's files to a Sheet: each checkpoint the files hold (grade/submission_files.h) graded
-// and rendered through render workers, so a hostile shader only ever runs in a killable worker.
+// A student's files to a Sheet: each of the course's checkpoints graded and rendered from the code
+// the files hold (course/submission_files.h) through render workers, so a hostile shader only ever
+// runs in a killable worker; a checkpoint handed in as images shown from the frames the student
+// saved; the course's questions and hand-in images after them, in the notebook's order.
 // What `shadelab sheet` and POST /api/sheet share; the layouts (sheet_pdf.h, sheet_html.h) take
 // the result.
 #include <filesystem>
@@ -10,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "course/course.h"
 #include "sheet/sheet.h"
 #include "worker/job.h"
 #include "worker/pool.h"
@@ -31,12 +34,13 @@ struct SceneInput {
 struct SheetInput {
   std::string title = "HW2 submission";
   std::string answers;
-  std::vector<SubmittedFile> files;
+  std::vector<SubmittedFile> files;   // the shader modules (text)
+  std::vector<SubmittedFile> images;  // the PNG files: saved frames, the Blender half's renders
   std::vector<SceneInput> scenes;
 };
 
 // Errors: only what the service could not do (the pool full, no worker): whatever the shaders
 // cause is their section's grade, and a scene that does not render has its error in its section.
-Expected<Sheet> assemble(worker::WorkerPool& pool, SheetInput input);
+Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input);
 
 }  // namespace shadelab::sheet

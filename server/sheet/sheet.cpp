@@ -4,19 +4,16 @@
 
 namespace shadelab::sheet {
 
-std::string section_title(const std::string& checkpoint) {
-  if (checkpoint == "smooth") return "Smooth shading";
-  if (checkpoint == "gouraud") return "Gouraud shading (lighting in the vertex shader), with its code";
-  if (checkpoint == "diffuse") return "Phong reflection: ambient + diffuse";
-  if (checkpoint == "specular") return "Phong reflection: ambient + diffuse + specular, with its code";
-  return checkpoint;
-}
-
 std::string verdict(const grade::Report& report) {
   char score[64];
   std::snprintf(score, sizeof score, "%g / %g", report.score, report.max_score);
   const std::string why = report.messages.empty() ? (report.pass ? "passes" : "does not pass") : report.messages.front();
   return std::string(score) + ": " + why;
+}
+
+std::string section_verdict(const CheckpointSection& s) {
+  if (s.graded || s.report.messages.empty()) return verdict(s.report);
+  return s.report.messages.front();
 }
 
 std::set<int> lines_pointed_at(const grade::Report& report, const std::string& file_name) {

@@ -1,15 +1,18 @@
 #pragma once
-// The homework's submission sheet, as data: what the checklist asks a student to hand in, laid
-// out by sheet_pdf.h (cairo) and sheet_html.h. No GL, no workers: the CLI (and later the HTTP
-// route) fills it from graded renders.
+// The homework's submission sheet, as data, in the notebook's order: each deliverable's grid
+// (with the code handed in with it), the notebook's questions with the student's answers, the
+// images of the Blender half, then any scene ShadeLab rendered. Laid out by sheet_pdf.h (cairo)
+// and sheet_html.h. No GL, no workers: sheet/assemble.h fills it from graded renders.
 //
 // | section            | holds                                                                 |
 // |--------------------|-----------------------------------------------------------------------|
-// | CheckpointSection  | the 3x3 grid the student's shaders render, its grade and diagnosis,   |
+// | CheckpointSection  | the 3x3 grid the student's shaders render (or, for a deliverable      |
+// |                    | handed in as images, the frames they saved), its grade and diagnosis, |
 // |                    | and the shader code (line numbers; lines the grader points at marked) |
+// | questions, answers | the notebook's questions, then the student's answers as written       |
+// | ImageSection       | an image the student hands in (camera_25.png, eevee0001.png)          |
 // | SceneSection       | a Blender-half render (the two objects, a dolly-zoom lens): the image |
 // |                    | with each object's framing box, the framing verdicts, the materials   |
-// | answers            | the short answers, as the student wrote them                          |
 #include <set>
 #include <string>
 #include <vector>
@@ -27,10 +30,21 @@ struct CodeListing {
 };
 
 struct CheckpointSection {
-  std::string checkpoint;       // smooth, gouraud, diffuse, specular
-  std::string grid_png;         // empty when the shaders did not render
-  grade::Report report;
+  std::string checkpoint;       // the course's name for it: normals
+  std::string title;            // and its words: "Normals: the normal colour computed in the vertex shader"
+  bool graded = false;          // its code was graded; false: no code (saved frames, or nothing)
+  std::string grid_png;         // the student's code's render, or their saved frames; empty: neither
+  std::string grid_caption;     // which of the two it is
+  grade::Report report;         // when not graded, messages[0] says what was handed in
   std::vector<CodeListing> code;  // vertex, then fragment
+};
+
+// An image the course asks for beside the frames, as the student handed it in.
+struct ImageSection {
+  std::string title;    // "Dolly zoom: 25 mm"
+  std::string file;     // where it was looked for: images/camera_25.png
+  std::string png;      // empty when missing or unreadable
+  std::string problem;  // why, then
 };
 
 struct SceneSection {
@@ -45,15 +59,17 @@ struct SceneSection {
 
 struct Sheet {
   std::string title = "HW2 submission";
-  std::vector<CheckpointSection> checkpoints;  // in the homework's order
+  std::vector<CheckpointSection> checkpoints;  // in the course's (the notebook's) order
+  std::vector<std::string> questions;          // the notebook's
+  std::string answers;                         // as the student wrote them; may be empty
+  std::vector<ImageSection> images;            // the course's hand-in images, in its order
   std::vector<SceneSection> scenes;
-  std::string answers;                          // may be empty
 };
 
-// The checklist's words for a checkpoint's section.
-std::string section_title(const std::string& checkpoint);
 // The grader's verdict in one line: "1 / 1: matches the reference exactly".
 std::string verdict(const grade::Report& report);
+// A section's line: the verdict when its code was graded, else what was handed in.
+std::string section_verdict(const CheckpointSection& section);
 // The lines a report's diagnostics point at in `file_name` (its errors and warnings).
 std::set<int> lines_pointed_at(const grade::Report& report, const std::string& file_name);
 // "both objects fully in the image", or which are not: the checklist's framing requirement.

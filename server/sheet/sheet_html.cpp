@@ -45,14 +45,22 @@ void code(std::ostringstream& out, const CodeListing& listing) {
 }
 
 void checkpoint(std::ostringstream& out, const CheckpointSection& s, size_t index) {
-  out << "<section id=\"" << escape(s.checkpoint) << "\">\n<h2>" << index << ". " << escape(section_title(s.checkpoint))
-      << "</h2>\n<p class=\"" << (s.report.pass ? "pass" : "fail") << "\">" << escape(verdict(s.report)) << "</p>\n";
+  out << "<section id=\"" << escape(s.checkpoint) << "\">\n<h2>" << index << ". " << escape(s.title)
+      << "</h2>\n<p class=\"" << (s.report.pass ? "pass" : s.graded ? "fail" : "note") << "\">" << escape(section_verdict(s)) << "</p>\n";
   for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) out << "<p class=\"note\">" << escape(s.report.messages[k]) << "</p>\n";
   if (s.grid_png.empty())
-    out << "<p class=\"note\">(no grid: the shaders did not render)</p>\n";
+    out << "<p class=\"note\">" << (s.graded ? "(no grid: the shaders did not render)" : "(no grid)") << "</p>\n";
   else
-    out << "<img alt=\"3x3 grid of " << escape(s.checkpoint) << "\" src=\"data:image/png;base64," << base64_encode(s.grid_png) << "\">\n";
+    out << "<p class=\"note\">" << escape(s.grid_caption) << "</p>\n<img alt=\"3x3 grid of " << escape(s.checkpoint)
+        << "\" src=\"data:image/png;base64," << base64_encode(s.grid_png) << "\">\n";
   for (const auto& listing : s.code) code(out, listing);
+  out << "</section>\n";
+}
+
+void handed_in(std::ostringstream& out, const ImageSection& s) {
+  out << "<section class=\"image\">\n<h2>" << escape(s.title) << " <span class=\"note\">(" << escape(s.file) << ")</span></h2>\n";
+  if (!s.problem.empty()) out << "<p class=\"fail\">" << escape(s.problem) << "</p>\n";
+  else out << "<img alt=\"" << escape(s.title) << "\" src=\"data:image/png;base64," << base64_encode(s.png) << "\">\n";
   out << "</section>\n";
 }
 
@@ -87,14 +95,18 @@ std::string render_html(const Sheet& sheet) {
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escape(sheet.title)
       << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n<h1>" << escape(sheet.title) << "</h1>\n";
   for (size_t i = 0; i < sheet.checkpoints.size(); ++i) checkpoint(out, sheet.checkpoints[i], i + 1);
-  for (const auto& s : sheet.scenes) scene(out, s);
-  if (!sheet.answers.empty()) {
-    out << "<section id=\"answers\">\n<h2>Short answers</h2>\n";
+  if (!sheet.questions.empty() || !sheet.answers.empty()) {
+    out << "<section id=\"questions\">\n<h2>Questions</h2>\n<ol>\n";
+    for (const auto& q : sheet.questions) out << "<li>" << escape(q) << "</li>\n";
+    out << "</ol>\n<h3>Answers</h3>\n";
+    if (sheet.answers.empty()) out << "<p class=\"note\">(no answers given)</p>\n";
     std::istringstream paragraphs(sheet.answers);
     for (std::string p; std::getline(paragraphs, p);)
       if (!p.empty()) out << "<p>" << escape(p) << "</p>\n";
     out << "</section>\n";
   }
+  for (const auto& s : sheet.images) handed_in(out, s);
+  for (const auto& s : sheet.scenes) scene(out, s);
   out << "</body>\n</html>\n";
   return out.str();
 }

@@ -8,6 +8,8 @@
 #include <memory>
 #include <sstream>
 
+#include "sheet/cairo_png.h"
+
 namespace shadelab::sheet {
 
 namespace {
@@ -22,23 +24,6 @@ struct Colour {
 };
 constexpr Colour kInk{0.1, 0.1, 0.1}, kGrey{0.45, 0.45, 0.45}, kPass{0.05, 0.45, 0.15}, kFail{0.7, 0.1, 0.1},
     kMarked{1.0, 0.93, 0.6};
-
-cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
-  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-  return CAIRO_STATUS_SUCCESS;
-}
-
-struct PngReader {
-  const std::string& bytes;
-  size_t at = 0;
-};
-cairo_status_t read_png(void* closure, unsigned char* data, unsigned int length) {
-  auto& r = *static_cast<PngReader*>(closure);
-  if (r.bytes.size() - r.at < length) return CAIRO_STATUS_READ_ERROR;
-  std::copy_n(r.bytes.data() + r.at, length, data);
-  r.at += length;
-  return CAIRO_STATUS_SUCCESS;
-}
 
 // An image wider than `width` pixels halved until it is not (box filter: every source pixel
 // counts): a 1920-pixel grid drawn 7 inches wide needs no more than ~137 dpi, and embedding it
@@ -105,15 +90,14 @@ class PageWriter {
   }
 
   // The PNG at the page's width; `boxes` (in the image's pixels) stroked over it, each labelled.
-  void image(const std::string& png, const std::vector<scene_render::ObjectFraming>& boxes = {}) {
-    PngReader reader{png};
-    cairo_surface_t* img = cairo_image_surface_create_from_png_stream(read_png, &reader);
-    if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
-      cairo_surface_destroy(img);
-      text("(no image: it did not render)", kSans, 9, kGrey);
+  void image(const std::string& png, const std::vector<scene_render::ObjectFraming>& boxes = {},
+             const char* missing = "(no image: it did not render)") {
+    Surface decoded = decode_png(png);
+    if (!decoded) {
+      text(missing, kSans, 9, kGrey);
       return;
     }
-    img = at_most(img, kMaxImageWidth);
+    cairo_surface_t* img = at_most(decoded.release(), kMaxImageWidth);
     const double scale = kWidth / cairo_image_surface_get_width(img);
     const double height = cairo_image_surface_get_height(img) * scale;
     room_for(height);
@@ -216,11 +200,12 @@ class PageWriter {
 };
 
 void checkpoint(PageWriter& w, const CheckpointSection& s, size_t index) {
-  w.text(std::to_string(index) + ". " + section_title(s.checkpoint), kSans, 13, kInk, true);
-  w.text(verdict(s.report), kSans, 9.5, s.report.pass ? kPass : kFail);
+  w.text(std::to_string(index) + ". " + s.title, kSans, 13, kInk, true);
+  w.text(section_verdict(s), kSans, 9.5, s.report.pass ? kPass : s.graded ? kFail : kGrey);
   for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) w.text(s.report.messages[k], kSans, 8.5, kGrey);
   w.gap(4);
-  w.image(s.grid_png);
+  if (!s.grid_caption.empty()) w.text(s.grid_caption, kSans, 8.5, kGrey);
+  w.image(s.grid_png, {}, s.graded ? "(no image: it did not render)" : "(no grid)");
   w.gap(10);
   for (const auto& listing : s.code) {
     w.code(listing);
@@ -246,7 +231,29 @@ void scene(PageWriter& w, const SceneSection& s) {
   for (const auto& [name, material] : s.materials) w.paragraph(printable(name) + ": " + material_line(material), 8.5, kGrey);
 }
 
-// Title, a page per checkpoint, a page per scene, the answers.
+// The notebook's questions, then the student's answers as they wrote them.
+void questions(PageWriter& w, const Sheet& sheet) {
+  w.text("Questions", kSans, 13, kInk, true);
+  w.gap(4);
+  for (size_t i = 0; i < sheet.questions.size(); ++i) w.paragraph(std::to_string(i + 1) + ". " + printable(sheet.questions[i]), 9.5, kGrey);
+  w.gap(6);
+  w.text("Answers", kSans, 11, kInk, true);
+  w.gap(2);
+  w.paragraph(sheet.answers.empty() ? "(no answers given)" : printable(sheet.answers), 10, sheet.answers.empty() ? kGrey : kInk);
+}
+
+void handed_in(PageWriter& w, const ImageSection& s) {
+  w.text(printable(s.title) + " (" + printable(s.file) + ")", kSans, 13, kInk, true);
+  if (!s.problem.empty()) {
+    w.text(printable(s.problem), kSans, 9.5, kFail);
+    return;
+  }
+  w.gap(4);
+  w.image(s.png, {}, "(no image: it cannot be read)");
+}
+
+// The notebook's order: a page per deliverable, the questions and answers, a page per hand-in
+// image, then a page per scene ShadeLab rendered.
 void draw_sheet(PageWriter& w, const Sheet& sheet) {
   w.text(printable(sheet.title), kSans, 18, kInk, true);
   w.gap(6);
@@ -254,15 +261,17 @@ void draw_sheet(PageWriter& w, const Sheet& sheet) {
     if (i > 0) w.new_page();
     checkpoint(w, sheet.checkpoints[i], i + 1);
   }
+  if (!sheet.questions.empty() || !sheet.answers.empty()) {
+    w.new_page();
+    questions(w, sheet);
+  }
+  for (const auto& s : sheet.images) {
+    w.new_page();
+    handed_in(w, s);
+  }
   for (const auto& s : sheet.scenes) {
     w.new_page();
     scene(w, s);
-  }
-  if (!sheet.answers.empty()) {
-    w.new_page();
-    w.text("Short answers", kSans, 13, kInk, true);
-    w.gap(4);
-    w.paragraph(printable(sheet.answers), 10, kInk);
   }
 }
 
@@ -271,7 +280,7 @@ void draw_sheet(PageWriter& w, const Sheet& sheet) {
 Expected<std::string> render_pdf(const Sheet& sheet) {
   std::string out;
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-      cairo_pdf_surface_create_for_stream(append, &out, kPageWidth, kPageHeight), cairo_surface_destroy);
+      cairo_pdf_surface_create_for_stream(append_to_string, &out, kPageWidth, kPageHeight), cairo_surface_destroy);
   cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, printable(sheet.title).c_str());
   // A fixed date: the same sheet is the same bytes (cairo would write the current time).
   cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");

@@ -62,9 +62,12 @@ json grade_json(const grade::GradeSpec& g) {
   for (const auto& m : g.mistakes)
     mistakes.push_back({{"id", m.id}, {"message", m.message}, {"vertex", file_json(m.vertex)}, {"fragment", file_json(m.fragment)}});
   for (const auto& p : g.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
+  json constants = json::array();
+  for (const auto& k : g.starter_constants) constants.push_back({{"variable", k.variable}, {"meaning", k.meaning}, {"value", k.value}});
   const auto& o = g.options;
   return {{"referenceName", g.reference_name}, {"referenceVertex", file_json(g.reference_vertex)},
           {"referenceFragment", file_json(g.reference_fragment)}, {"mistakes", mistakes}, {"probes", probes},
+          {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants},
           {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
           {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}};
 }
@@ -77,6 +80,8 @@ grade::GradeSpec grade_from(const json& g) {
   for (const auto& m : g.at("mistakes"))
     spec.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
   for (const auto& p : g.at("probes")) spec.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>()});
+  spec.light_position_uniforms = g.at("lightPositionUniforms").get<std::vector<std::string>>();
+  for (const auto& k : g.at("starterConstants")) spec.starter_constants.push_back({k.at("variable"), k.at("meaning"), k.at("value")});
   spec.options.compare.threshold = g.at("threshold");
   spec.options.compare.spatial_tolerance = g.at("spatialTolerance");
   spec.options.max_failing_fraction = g.at("maxFailingFraction");
@@ -84,12 +89,32 @@ grade::GradeSpec grade_from(const json& g) {
   return spec;
 }
 
+json page_json(const render::PageSetup& p) {
+  json uniforms = json::array();
+  for (const auto& u : p.uniforms)
+    uniforms.push_back({{"name", u.name}, {"type", u.glsl_type}, {"value", u.value}, {"components", u.components}});
+  const auto& c = p.camera;
+  return {{"fovYDegrees", c.fov_y_degrees}, {"near", c.near}, {"far", c.far},
+          {"meshTranslation", {c.mesh_translation.x, c.mesh_translation.y, c.mesh_translation.z}}, {"uniforms", uniforms}};
+}
+
+render::PageSetup page_from(const json& j) {
+  render::PageSetup p;
+  p.camera.fov_y_degrees = j.at("fovYDegrees");
+  p.camera.near = j.at("near");
+  p.camera.far = j.at("far");
+  p.camera.mesh_translation = j.at("meshTranslation").get<glm::dvec3>();
+  for (const auto& u : j.at("uniforms"))
+    p.uniforms.push_back({u.at("name"), u.at("type"), u.at("value").get<std::array<float, 4>>(), u.at("components")});
+  return p;
+}
+
 json request_json(const render::RenderRequest& r) {
   json uniforms = json::array();
   for (const auto& u : r.uniforms) uniforms.push_back({{"name", u.name}, {"values", u.values}});
   return {{"vertex", file_json(r.vertex)}, {"fragment", file_json(r.fragment)}, {"width", r.width}, {"height", r.height},
-          {"frames", r.frames}, {"degreesPerFrame", r.degrees_per_frame}, {"msaa", r.msaa}, {"uniforms", uniforms},
-          {"pixelType", r.pixel_type == image::PixelType::f32 ? "f32" : "u8"}};
+          {"frames", r.frames}, {"degreesPerFrame", r.degrees_per_frame}, {"angles", r.angles}, {"msaa", r.msaa},
+          {"page", page_json(r.page)}, {"uniforms", uniforms}, {"pixelType", r.pixel_type == image::PixelType::f32 ? "f32" : "u8"}};
 }
 
 render::RenderRequest request_from(const json& j) {
@@ -100,7 +125,9 @@ render::RenderRequest request_from(const json& j) {
   r.height = j.at("height");
   r.frames = j.at("frames");
   r.degrees_per_frame = j.at("degreesPerFrame");
+  r.angles = j.at("angles").get<std::vector<double>>();
   r.msaa = j.at("msaa");
+  r.page = page_from(j.at("page"));
   for (const auto& u : j.at("uniforms")) r.uniforms.push_back({u.at("name"), u.at("values").get<std::vector<double>>()});
   r.pixel_type = j.at("pixelType") == "f32" ? image::PixelType::f32 : image::PixelType::u8;
   return r;
@@ -130,9 +157,12 @@ std::string_view to_string(Output o) { return o == Output::grid ? "grid" : o == 
 std::string_view to_string(Format f) { return f == Format::png ? "png" : "exr"; }
 
 Message to_message(const Job& job, std::string mesh_bytes) {
-  json header = {{"kind", to_string(job.kind)},   {"request", request_json(job.request)}, {"mesh", job.mesh},
-                 {"meshFormat", job.mesh_format}, {"fit", job.fit},                       {"prefix", job.prefix},
-                 {"output", to_string(job.output)}, {"format", to_string(job.format)}};
+  json fit = nullptr;
+  if (job.fit) fit = {{"min", {job.fit->min.x, job.fit->min.y, job.fit->min.z}}, {"max", {job.fit->max.x, job.fit->max.y, job.fit->max.z}}};
+  json header = {{"kind", to_string(job.kind)},     {"request", request_json(job.request)}, {"mesh", job.mesh},
+                 {"meshEmbedded", job.mesh_embedded}, {"meshFormat", job.mesh_format},       {"fit", fit},
+                 {"frameName", job.frame_name},     {"prefix", job.prefix},                 {"output", to_string(job.output)},
+                 {"format", to_string(job.format)}};
   if (job.kind == JobKind::grade) header["grade"] = grade_json(job.grade);
   return {std::move(header), std::move(mesh_bytes)};
 }
@@ -165,8 +195,13 @@ Expected<Job> job_from_message(const Message& m) {
     job.kind = enum_named(j.at("kind"), kKinds);
     job.request = request_from(j.at("request"));
     job.mesh = j.at("mesh");
+    job.mesh_embedded = j.at("meshEmbedded");
     job.mesh_format = j.at("meshFormat");
-    job.fit = j.at("fit");
+    if (const json& fit = j.at("fit"); !fit.is_null()) {
+      const auto lo = fit.at("min").get<std::array<float, 3>>(), hi = fit.at("max").get<std::array<float, 3>>();
+      job.fit = scene::Bounds{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+    }
+    job.frame_name = j.at("frameName");
     job.prefix = j.at("prefix");
     job.output = enum_named(j.at("output"), {Output::grid, Output::frames, Output::json});
     job.format = enum_named(j.at("format"), {Format::png, Format::exr});

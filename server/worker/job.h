@@ -10,14 +10,16 @@
 // | mesh_check | Job      | the mesh file                  | MeshCheckResult                 |
 // | grade      | Job      | the uploaded mesh, if any      | GradeResult                     |
 // | scene      | SceneJob | each non-built-in mesh's bytes | SceneResult                     |
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
-#include "grade/checkpoints.h"
+#include "grade/grade_spec.h"
 #include "render/render_request.h"
+#include "scene/mesh.h"
 #include "scene/scene_description.h"
 #include "worker/protocol.h"
 
@@ -29,10 +31,15 @@ enum class Format { png, exr };
 
 struct Job {
   JobKind kind = JobKind::render;
-  render::RenderRequest request;  // shaders, size, frames, msaa, uniforms, pixel type
-  std::string mesh = "bunny";     // built-in name, or an uploaded mesh's id (its bytes in the payload)
-  std::string mesh_format;        // file extension of an uploaded mesh
-  bool fit = false;
+  render::RenderRequest request;  // shaders, size, frames, msaa, page setup, uniforms, pixel type
+  // The mesh by its id, the worker's cache key: a course mesh compiled into the binary is named by
+  // its file there ("assets/bunny.obj", `mesh_embedded` set); any other (a course's own, an
+  // upload) by its content address, its bytes in the payload.
+  std::string mesh;
+  std::string mesh_embedded;
+  std::string mesh_format;               // file extension: obj, glb, ...
+  std::optional<scene::Bounds> fit;      // fitted into these bounds (the course's default mesh's) when set
+  std::string frame_name = "frame_{k}";  // the course's file name pattern: hw2_{prefix}_{k}
   std::string prefix = "render";
   Output output = Output::grid;
   Format format = Format::png;

@@ -82,8 +82,13 @@ bool is_exiting(pid_t pid) {
   return (fields >> flags) && (flags & 0x4) != 0;
 }
 
+// What the worker was doing in a phase, in words.
+std::string doing(const std::string& phase) {
+  return phase == "compile" ? "compiling" : phase == "grader" ? "rendering the grader's references" : "rendering";
+}
+
 Error lost(const std::string& phase, const std::string& how) {
-  return worker_error(ErrorCode::worker_lost, "the render worker " + how + " while " + (phase == "compile" ? "compiling" : "rendering") +
+  return worker_error(ErrorCode::worker_lost, "the render worker " + how + " while " + doing(phase) +
                                                   " (not the shader's doing); it was replaced: send the request again");
 }
 
@@ -118,6 +123,11 @@ struct PhaseBudget {
   bool wall_spent() const { return Clock::now() >= wall_cap; }
 
   Error timeout(bool by_wall_clock, int wall_factor) const {
+    if (phase == "grader")
+      return worker_error(ErrorCode::grader_failed, "the grader's own renders (the reference and the known mistakes) " +
+                                                        std::string(by_wall_clock ? "stopped making progress" : "used more than " +
+                                                                    std::to_string(cpu.count()) + " ms of CPU time") +
+                                                        "; not the submission's doing: it was not graded, so grade it again");
     const bool compile = phase == "compile";
     const std::string verb = compile ? "compile" : "render";
     const std::string why = by_wall_clock ? "did not " + verb + " within " + std::to_string(cpu.count() * wall_factor) +
@@ -230,6 +240,12 @@ struct WorkerPool::Slot {
     // Under a cgroup cap the kernel's OOM killer ends the worker with SIGKILL (we only send
     // SIGKILL after reaping, so a SIGKILL we did not send is the cap's).
     const bool cgroup_oom = cgroup_capped && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+    if (phase == "grader") {
+      (over_memory || cgroup_oom ? pool.out_of_memory_ : pool.crashes_)++;
+      return worker_error(ErrorCode::grader_failed, std::string("the worker ") + (over_memory || cgroup_oom ? "ran out of memory" : "crashed") +
+                                                        " rendering the grader's references; not the submission's doing: "
+                                                        "it was not graded, so grade it again");
+    }
     if (over_memory || cgroup_oom) {
       pool.out_of_memory_++;
       return worker_error(ErrorCode::out_of_memory, "the " + phase + " used more than the worker's memory limit of " +
@@ -273,7 +289,8 @@ struct WorkerPool::Slot {
       if (status == ReadStatus::ok) {
         const std::string event = text_field(in.header, "event");
         if (event == "phase") {
-          budget = PhaseBudget(text_field(in.header, "phase", "render"), c.render_deadline, pid, c.wall_clock_factor);
+          const std::string phase = text_field(in.header, "phase", "render");
+          budget = PhaseBudget(phase, phase == "grader" ? c.grader_deadline : c.render_deadline, pid, c.wall_clock_factor);
           continue;
         }
         const auto& caches = in.header.is_object() && in.header.contains("caches") ? in.header["caches"] : nlohmann::json();

@@ -5,7 +5,10 @@
 // The HTTP process itself never makes an EGL or GL call.
 //
 // Deadlines count the worker's CPU time, not the clock on the wall: a job's verdict must not
-// depend on how busy the machine was or what else ran beside it. A wall-clock cap, a multiple
+// depend on how busy the machine was or what else ran beside it. A job moves through phases the
+// worker announces: compile (the submission's), render (the submission's frames), and for a grade
+// grader (the grader's own renders), each with its own budget; only the first two are the
+// submission's, so only they can time it out. A wall-clock cap, a multiple
 // of the deadline, is the backstop for a worker that stops using the CPU without answering
 // (stopped, or waiting on a hung GPU).
 #include <atomic>
@@ -31,6 +34,9 @@ struct PoolConfig {
   int workers = 2;
   std::chrono::milliseconds compile_deadline{10'000};  // CPU time
   std::chrono::milliseconds render_deadline{20'000};   // CPU time
+  // A grade's own work after the submission's frames are rendered (the reference, the known
+  // mistakes, the comparisons): bounded on its own, and never charged to the submission.
+  std::chrono::milliseconds grader_deadline{120'000};  // CPU time
   int wall_clock_factor = 4;                           // wall-clock cap: this many deadlines
   std::chrono::milliseconds start_deadline{15'000};
   size_t max_queue = 64;

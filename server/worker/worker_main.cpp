@@ -1,6 +1,7 @@
 #include "worker/worker_main.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <optional>
 
@@ -9,7 +10,7 @@
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
-#include "render/presets.h"
+#include "course/course_reader.h"
 #include "render/renderer.h"
 #include "scene/scene_mesh.h"
 #include "scene_render/scene_renderer.h"
@@ -42,7 +43,7 @@ Status encode_output(const Job& job, const std::vector<image::Image>& frames, st
   const bool png = job.format == Format::png;
   const auto layout = image::GridLayout::for_frames(r.frames, r.width, r.height);
   const auto encode = [&](const image::Image& img) { return png ? image::encode_png(img) : image::encode_exr(img); };
-  const auto name = [&](size_t k) { return "hw2_" + job.prefix + "_" + std::to_string(k) + (png ? ".png" : ".exr"); };
+  const auto name = [&](size_t k) { return render::frame_file_name(job.frame_name, job.prefix, static_cast<int>(k), png ? "png" : "exr"); };
   if (job.output == Output::frames) {
     std::vector<std::pair<std::string, std::vector<std::uint8_t>>> files;
     for (size_t k = 0; k < frames.size(); ++k) {
@@ -74,17 +75,24 @@ class Worker {
   Worker(int fd, render::Renderer renderer) : fd_(fd), renderer_(std::move(renderer)), grading_(renderer_) {}
 
   // The first job in a fresh process pays for what every later job finds ready: llvmpipe's
-  // draw and rasteriser setup, the built-in mesh parsed and uploaded, the multisampled target,
-  // the JIT of the class's shared vertex shader (~50 ms more on the 2-core machine). A worker
-  // pays it here, before it says it is ready, so no client does.
+  // draw and rasteriser setup, the course's default mesh parsed and uploaded, the multisampled
+  // target, the JIT of the class's shared vertex shader (~50 ms more on the 2-core machine). A
+  // worker pays it here, on the built-in course's default job, so no client does.
   Status warm_up() {
-    const auto preset = render::find_preset("specular");
-    if (!preset) return make_error(ErrorCode::io_error, "the specular preset is missing");
-    auto bunny = mesh(Job{}, {});
-    if (!bunny) return bunny.take_error();
+    const course::Course& c = course::builtin_course();
+    const course::CourseMesh& m = *c.mesh(c.default_mesh);
+    auto preset = c.find_preset(c.default_preset);
+    if (!preset) return preset.take_error();
+    Job job;
+    job.mesh = m.id;
+    job.mesh_embedded = m.id;
+    job.mesh_format = m.format;
+    auto warm_mesh = mesh(job, {});
+    if (!warm_mesh) return warm_mesh.take_error();
     // Two frames: the first JIT-compiles, the second runs as every later one does.
-    const render::RenderRequest request{.vertex = preset->vertex, .fragment = preset->fragment, .frames = 2};
-    auto rendered = renderer_.render(request, **bunny, [](int, const image::Image&, bool) {});
+    render::RenderRequest request = c.render_request(preset->preset->vertex, preset->preset->fragment);
+    request.frames = 2;
+    auto rendered = renderer_.render(request, **warm_mesh, [](int, const image::Image&, bool) {});
     if (!rendered) return rendered.take_error();
     return Ok{};
   }
@@ -130,35 +138,49 @@ class Worker {
     return answer(make_error(ErrorCode::worker_protocol, "a job of an unknown kind"));
   }
 
-  // Tells the server the compile is over: from here a hang or a crash is the render's.
-  Status enter_render_phase() {
-    if (write_message(fd_, {{{"event", "phase"}, {"phase", "render"}}, {}})) return Ok{};
+  // Tells the server which phase the job is in (worker/pool.h): "render" once the compile is
+  // over, "grader" once a grade's own work begins.
+  Status enter_phase(const char* phase) {
+    if (write_message(fd_, {{{"event", "phase"}, {"phase", phase}}, {}})) return Ok{};
     return make_error(ErrorCode::io_error, "lost the server");
   }
+  Status enter_render_phase() { return enter_phase("render"); }
 
   Expected<const scene::Mesh*> mesh(const Job& job, const std::string& payload) {
     if (const scene::Mesh* hit = meshes_.find(job.mesh)) return hit;
+    if (payload.empty() && job.mesh_embedded.empty())
+      return make_error(ErrorCode::worker_protocol, "the job names the mesh '" + job.mesh + "' but carries none of its bytes");
     Expected<scene::Mesh> loaded =
-        payload.empty() ? scene::builtin_mesh(job.mesh)
+        payload.empty() ? scene::embedded_mesh(job.mesh_embedded, job.mesh)
                         : scene::load_mesh({reinterpret_cast<const std::uint8_t*>(payload.data()), payload.size()}, job.mesh_format, job.mesh);
     if (!loaded) return loaded.take_error();
     const size_t bytes = scene::bytes_of(*loaded);
     return &meshes_.insert(job.mesh, std::move(*loaded), bytes);
   }
 
-  // The job's mesh, fitted to the homework framing when it asks for that. The last fitted mesh is
+  // The job's mesh, fitted to the course's framing when it asks for that. The last fitted mesh is
   // kept: a class rendering one uploaded mesh fits it once (a copy and a pass over a
-  // million-triangle mesh cost ~40 ms). A mesh's id names its bytes (built-in or content-addressed).
+  // million-triangle mesh cost ~40 ms). A mesh's id names its bytes (embedded or content-addressed).
   Expected<const scene::Mesh*> job_mesh(const Job& job, const std::string& payload) {
     auto m = mesh(job, payload);
     if (!m || !job.fit) return m;
-    if (fitted_of_ != job.mesh) {
+    const std::string key = fitted_key(job);
+    if (fitted_of_ != key) {
       fitted_of_.clear();
       fitted_ = **m;
-      scene::fit_to_homework(fitted_);
-      fitted_of_ = job.mesh;
+      scene::fit_to(fitted_, *job.fit);
+      fitted_of_ = key;
     }
     return &fitted_;
+  }
+
+  // The mesh's id and, when fitted, the box it was fitted into: what its frames depend on.
+  static std::string fitted_key(const Job& job) {
+    if (!job.fit) return job.mesh;
+    const auto& b = *job.fit;
+    char box[160];
+    std::snprintf(box, sizeof box, "|fit:%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
+    return job.mesh + box;
   }
 
   Expected<MeshCheckResult> check_mesh(const Job& job, const std::string& payload) {
@@ -212,7 +234,8 @@ class Worker {
 
   Expected<GradeResult> grade(const Job& job, const std::string& payload) {
     auto graded = grading_.grade(job.grade, job.request, [&] { return job_mesh(job, payload); },
-                                 job.mesh + (job.fit ? "|fit" : ""), [&] { return enter_render_phase(); });
+                                 fitted_key(job),
+                                 {[&] { return enter_render_phase(); }, [&] { return enter_phase("grader"); }});
     if (!graded) return graded.take_error();
     return GradeResult{std::move(graded->report), std::move(graded->heatmap_png)};
   }
@@ -252,7 +275,7 @@ class Worker {
   // parses to up to ~1M triangles, 72 MB: the budget keeps five of those, or the class's few.
   LruCache<scene::Mesh> meshes_{16, 384u << 20};
   scene::Mesh fitted_;
-  std::string fitted_of_;  // the id of the mesh fitted_ was made from; empty: none
+  std::string fitted_of_;  // fitted_key() of the job fitted_ was made for; empty: none
   std::optional<scene_render::SceneRenderer> scene_renderer_;  // made on the first scene job
 };
 

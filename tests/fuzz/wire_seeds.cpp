@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/embedded_files.h"
+#include "course/course_reader.h"
 #include "http/api_request.h"
 #include "worker/job.h"
 #include "worker/result.h"
@@ -18,7 +19,7 @@ void write(const std::filesystem::path& dir, const std::string& name, const work
 
 worker::Job job_for(const std::string& body, worker::JobKind kind) {
   auto raw = http::from_json_body(body);
-  auto parsed = http::parse_job(*raw, kind, http::Limits{});
+  auto parsed = http::parse_job(*raw, kind, http::Limits{}, course::builtin_course());
   if (!parsed) {
     std::fprintf(stderr, "%s\n", parsed.error().message.c_str());
     std::exit(1);

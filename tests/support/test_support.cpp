@@ -5,7 +5,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include "render/presets.h"
+#include "course/course_reader.h"
 
 namespace shadelab::testkit {
 
@@ -33,19 +33,24 @@ Expected<Rendered> render_frames(const render::RenderRequest& request, const sce
   return out;
 }
 
+const course::Course& course() { return course::builtin_course(); }
+
 render::RenderRequest preset_request(const std::string& name) {
-  const auto p = render::find_preset(name);
-  EXPECT_TRUE(p.has_value()) << name;
-  return render::RenderRequest{.vertex = p->vertex, .fragment = p->fragment};
+  const course::Preset* p = course().preset(name);
+  EXPECT_NE(p, nullptr) << name;
+  if (!p) return course().render_request({}, {});
+  return course().render_request(p->vertex, p->fragment);
 }
 
 const scene::Mesh& builtin(const std::string& name) {
   static std::map<std::string, scene::Mesh> cache;
   auto it = cache.find(name);
   if (it == cache.end()) {
-    auto m = scene::builtin_mesh(name);
+    const course::CourseMesh* m = course().mesh(name);
     if (!m) std::abort();
-    it = cache.emplace(name, std::move(*m)).first;
+    auto loaded = course::load_course_mesh(*m);
+    if (!loaded) std::abort();
+    it = cache.emplace(name, std::move(*loaded)).first;
   }
   return it->second;
 }
@@ -61,6 +66,7 @@ render::RenderRequest fullscreen_request(const std::string& body, const std::str
   r.height = 8;
   r.frames = 1;
   r.msaa = 0;
+  r.page = course().page();
   return r;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "course/course.h"
 #include "image/image.h"
 #include "render/renderer.h"
 
@@ -19,7 +20,11 @@ struct Rendered {
 // Renders `request` on `mesh`; fails the test (and returns no frames) on an error.
 Expected<Rendered> render_frames(const render::RenderRequest& request, const scene::Mesh& mesh);
 
+// The built-in course (courses/cs148-summer2022.json): its job, presets and meshes.
+const course::Course& course();
+// The course's job for one of its presets: its canvas, frames, samples and page setup.
 render::RenderRequest preset_request(const std::string& preset);
+// One of the course's meshes, parsed once per test binary.
 const scene::Mesh& builtin(const std::string& name);
 
 // A request whose vertex shader covers the viewport with one triangle and whose fragment shader

@@ -6,6 +6,7 @@
 
 #include "fuzz_check.h"
 #include "wire_round_trip.h"
+#include "course/course_reader.h"
 #include "http/api_request.h"
 
 namespace {
@@ -33,12 +34,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   }
   const http::Limits limits;
   if (selector % 3 == 2) {
-    auto grade = http::parse_grade_job(std::move(*raw), limits);
+    auto grade = http::parse_grade_job(std::move(*raw), limits, course::builtin_course());
     if (grade) check_job(grade->parsed.job, limits);
     else FUZZ_CHECK(!grade.error().message.empty());
     return 0;
   }
-  auto parsed = http::parse_job(*raw, selector % 3 == 0 ? worker::JobKind::render : worker::JobKind::compile, limits);
+  auto parsed = http::parse_job(*raw, selector % 3 == 0 ? worker::JobKind::render : worker::JobKind::compile, limits, course::builtin_course());
   if (parsed) check_job(parsed->job, limits);
   else FUZZ_CHECK(!parsed.error().message.empty());
   return 0;

@@ -13,6 +13,7 @@
 #include "http/memory_stream.h"
 #include "http/request_framing.h"
 #include "http/request_reader.h"
+#include "course/course_reader.h"
 
 namespace {
 
@@ -52,12 +53,12 @@ class ParsingServer : public httplib::Server {
     auto raw = http::read_request(req);
     if (!raw) return raw.take_error();
     if (kind == worker::JobKind::grade) {
-      auto grade = http::parse_grade_job(std::move(*raw), limits_);
+      auto grade = http::parse_grade_job(std::move(*raw), limits_, course::builtin_course());
       if (!grade) return grade.take_error();
       fuzz::check_job_crosses_the_wire(grade->parsed.job);
       return Ok{};
     }
-    auto parsed = http::parse_job(*raw, kind, limits_);
+    auto parsed = http::parse_job(*raw, kind, limits_, course::builtin_course());
     if (!parsed) return parsed.take_error();
     fuzz::check_job_crosses_the_wire(parsed->job);
     return Ok{};

@@ -13,11 +13,10 @@ uniform mat4 uWorldToClipSpaceMatrix;
 out vec4 vColor;
 
 void main(void) {
-    // the colour is computed once per vertex and interpolated across the triangle
+    // the normal colour, computed once per vertex and interpolated across each triangle
     vec4 normal = uMeshToWorldRotMatrix * aVertexNormal;
     vColor = vec4(normalize(abs(normal.xyz)), 1.0);
 
-    vec4 vPosition = uMeshToWorldMatrix * aVertexPosition;
-    gl_Position = uWorldToClipSpaceMatrix * vPosition;
+    gl_Position = uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition;
 }
 `;

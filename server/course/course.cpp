@@ -1,0 +1,145 @@
+#include "course/course.h"
+
+#include <algorithm>
+
+#include "core/embedded_files.h"
+
+namespace shadelab::course {
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+const Preset* Course::preset(std::string_view name) const {
+  for (const auto& p : presets)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+const CourseMesh* Course::mesh(std::string_view name) const {
+  for (const auto& m : meshes)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+const PageUniform* Course::uniform_with_role(std::string_view role) const {
+  for (const auto& u : uniforms)
+    if (u.role == role) return &u;
+  return nullptr;
+}
+
+std::vector<std::string> Course::preset_names() const {
+  std::vector<std::string> out;
+  for (const auto& p : presets) out.push_back(p.name);
+  return out;
+}
+
+std::vector<std::string> Course::checkpoint_names() const {
+  std::vector<std::string> out;
+  for (const auto& c : checkpoints) out.push_back(c.name);
+  return out;
+}
+
+std::vector<std::string> Course::mesh_names() const {
+  std::vector<std::string> out;
+  for (const auto& m : meshes) out.push_back(m.name);
+  return out;
+}
+
+Expected<Course::Found> Course::checkpoint(std::string_view name) const {
+  for (const auto& c : checkpoints)
+    if (c.name == name) return Found{&c, nullptr};
+  for (const auto& a : aliases)
+    if (a.name == name)
+      for (const auto& c : checkpoints)
+        if (c.name == a.checkpoint) return Found{&c, &a};
+  std::string message = "no checkpoint '" + std::string(name) + "' in " + id + " (checkpoints: " + joined(checkpoint_names()) + ")";
+  if (preset(name)) message += "; '" + std::string(name) + "' is a preset (a warm-up step), not a deliverable";
+  return make_error(ErrorCode::unknown_preset, message);
+}
+
+Expected<Course::FoundPreset> Course::find_preset(std::string_view name) const {
+  if (const Preset* p = preset(name)) return FoundPreset{p, nullptr};
+  for (const auto& a : aliases)
+    if (a.name == name)
+      for (const auto& c : checkpoints)
+        if (c.name == a.checkpoint) return FoundPreset{preset(c.reference), &a};
+  return make_error(ErrorCode::unknown_preset, "no preset '" + std::string(name) + "' in " + id + " (presets: " + joined(preset_names()) + ")");
+}
+
+render::PageSetup Course::page() const {
+  render::PageSetup setup{camera, {}};
+  for (const auto& u : uniforms)
+    for (const auto& name : u.names) {
+      render::ConstantUniform c{name, u.type, {}, static_cast<int>(u.value.size())};
+      std::copy(u.value.begin(), u.value.end(), c.value.begin());
+      setup.uniforms.push_back(std::move(c));
+    }
+  return setup;
+}
+
+render::RenderRequest Course::render_request(shader::ShaderFile vertex, shader::ShaderFile fragment) const {
+  render::RenderRequest r;
+  r.vertex = std::move(vertex);
+  r.fragment = std::move(fragment);
+  r.width = width;
+  r.height = height;
+  r.frames = frames;
+  r.degrees_per_frame = degrees_per_frame;
+  r.msaa = msaa;
+  r.page = page();
+  return r;
+}
+
+grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {
+  grade::GradeSpec spec;
+  spec.reference_name = c.name;
+  const Preset* reference = preset(c.reference);  // checked when the profile loaded
+  spec.reference_vertex = reference->vertex;
+  spec.reference_fragment = reference->fragment;
+  for (const auto& m : c.mistakes) spec.mistakes.push_back(m.shaders);
+  spec.probes = c.probes;
+  spec.light_position_uniforms = light_position_names();
+  spec.starter_constants = starter_constants;
+  spec.options = options;
+  return spec;
+}
+
+std::string Course::frame_file(std::string_view prefix, int k, std::string_view extension) const {
+  return render::frame_file_name(frame_name, prefix, k, extension);
+}
+
+std::vector<std::string> Course::light_position_names() const {
+  const PageUniform* light = uniform_with_role("lightPosition");
+  return light ? light->names : std::vector<std::string>{};
+}
+
+double Course::specular_exponent() const {
+  for (const auto& k : starter_constants)
+    if (k.meaning == "exponent") return k.value;
+  return 0;
+}
+
+Expected<scene::Mesh> load_course_mesh(const CourseMesh& m) {
+  if (!m.embedded) {
+    const auto* data = reinterpret_cast<const std::uint8_t*>(m.bytes.data());
+    return scene::load_mesh({data, m.bytes.size()}, m.format, m.name);
+  }
+  const auto bytes = embedded_file(m.id);
+  if (!bytes) return make_error(ErrorCode::mesh_not_found, "the mesh '" + m.name + "' (" + m.id + ") is not compiled into this binary");
+  return scene::load_mesh({reinterpret_cast<const std::uint8_t*>(bytes->data()), bytes->size()}, m.format, m.name);
+}
+
+Expected<scene::Bounds> fit_bounds(const Course& course) {
+  auto mesh = load_course_mesh(*course.mesh(course.default_mesh));
+  if (!mesh) return mesh.take_error();
+  return scene::bounds(*mesh);
+}
+
+}  // namespace shadelab::course

@@ -1,0 +1,163 @@
+#pragma once
+// A course profile: every fact of the homework an offering can change, in one place, for every
+// layer (docs/course-profile.md). The canvas, the frames and their rotation, the samples, the
+// page's camera and uniform values, the meshes, the reference shaders, the checkpoints with their
+// file prefixes, points, known mistakes and probe lights. The built-in profile
+// (courses/cs148-summer2022.json) is the offering the handout describes; `--course FILE` loads
+// another. Lower layers take these facts as arguments and hard-code none of them.
+//
+// A Course is immutable once loaded and checked (course_reader.h): every file it names has been
+// read, every mistake's edit applied to its reference and found to change it.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/expected.h"
+#include "grade/grade_spec.h"
+#include "render/render_request.h"
+#include "scene/mesh.h"
+#include "shader/shader_source.h"
+
+namespace shadelab::course {
+
+enum class Stage { vertex, fragment };
+
+// A reference pair: shaders/specular_vert.js and shaders/specular_frag.js.
+struct Preset {
+  std::string name;  // "specular"
+  std::string description;
+  std::string vertex_file, fragment_file;  // as the profile names them (relative to it)
+  shader::ShaderFile vertex, fragment;     // named by their file names, as a student's are
+};
+
+// One deliberate change to a reference shader, found by its text.
+struct Edit {
+  Stage stage = Stage::fragment;
+  std::string find, replace;
+};
+
+// A mistake students make on a checkpoint: the reference with edits, or another preset whole
+// ("missing_specular" is the diffuse preset). `shaders` is made when the profile loads.
+struct Mistake {
+  std::string id, message;
+  std::vector<Edit> edits;
+  std::string preset;  // instead of edits
+  grade::Mistake shaders;
+};
+
+// A deliverable: the frames `images/{frame name with prefix}` and, when `code` names a stem, the
+// shaders `{code}_vert.js` / `{code}_frag.js` handed in with it.
+struct Checkpoint {
+  std::string name;    // normals
+  std::string title;   // what the sheet and Gradescope call it
+  std::string prefix;  // IMAGE_PREFIX: hw2_{prefix}_{k}.png
+  std::string reference;  // a preset
+  std::string code;       // "starter", "phong", or empty: the deliverable is images alone
+  double points = 1;
+  std::vector<Mistake> mistakes;
+  std::vector<grade::Probe> probes;
+};
+
+// An old or other name for a checkpoint, and what it now means.
+struct Alias {
+  std::string name, checkpoint, note;
+};
+
+// A constant uniform the page sets, under every name it feeds it by; `role` says which
+// homework quantity it is (ambient, diffuse, specular, lightPosition, lightColor) when it is one.
+struct PageUniform {
+  std::vector<std::string> names;
+  std::string type;  // vec3, vec4, float
+  std::vector<double> value;
+  std::string role;
+};
+
+// A question of the notebook the sheet shows with the student's answer.
+struct Question {
+  std::string id;    // blue, purple, camera
+  std::string text;  // in the course's words, or a paraphrase of them
+};
+
+// An image the student hands in beside the page's frames (the Blender half's renders), by its
+// path in their folder.
+struct HandInImage {
+  std::string file;   // images/camera_25.png
+  std::string title;  // "Dolly zoom: 25 mm"
+};
+
+// A mesh the page offers. Embedded meshes are compiled into the binary and travel to workers by
+// their path; a profile's own meshes travel as bytes under a content address.
+struct CourseMesh {
+  std::string name;  // bunny
+  std::string file;  // as the profile names it
+  std::string format;  // obj, ply, ...
+  std::string id;      // the worker's cache key: "assets/bunny.obj" when embedded, "course:<sha256>" else
+  bool embedded = false;
+  std::string bytes;   // empty when embedded (embedded_file() has them)
+};
+
+struct Course {
+  std::string id;     // cs148-summer2022
+  std::string title;  // what pages and sheets are headed with
+  std::string source; // where its facts come from, in words
+  int width = 0, height = 0;
+  int frames = 0;
+  double degrees_per_frame = 0;
+  int msaa = 0;
+  std::string frame_name;  // "hw2_{prefix}_{k}": a frame's file name without its extension
+  render::PageCamera camera;
+  std::vector<PageUniform> uniforms;
+  std::vector<grade::StarterConstant> starter_constants;  // specularAlpha = 6.0
+  std::vector<CourseMesh> meshes;
+  std::string default_mesh;
+  std::vector<Preset> presets;
+  std::string default_preset;
+  std::vector<Checkpoint> checkpoints;  // in the homework's (and the notebook's) order
+  std::string default_checkpoint;
+  std::vector<Alias> aliases;
+  std::vector<Question> questions;    // the notebook's, in its order
+  std::vector<HandInImage> images;    // handed in after the questions, in the notebook's order
+  std::string origin;  // where it was read from: a path, or "built-in" (not part of the format)
+
+  const Preset* preset(std::string_view name) const;
+  const CourseMesh* mesh(std::string_view name) const;
+  const PageUniform* uniform_with_role(std::string_view role) const;
+  std::vector<std::string> preset_names() const;
+  std::vector<std::string> checkpoint_names() const;
+  std::vector<std::string> mesh_names() const;
+
+  // A checkpoint by its name or an alias; unknown_preset (naming the checkpoints) for another.
+  struct Found {
+    const Checkpoint* checkpoint = nullptr;
+    const Alias* alias = nullptr;  // set when `name` was an alias
+  };
+  Expected<Found> checkpoint(std::string_view name) const;
+  // A preset by name, or by a checkpoint's alias (its reference); unknown_preset naming the presets.
+  struct FoundPreset {
+    const Preset* preset = nullptr;
+    const Alias* alias = nullptr;
+  };
+  Expected<FoundPreset> find_preset(std::string_view name) const;
+
+  // What the page sets up before it draws, for every request of this course.
+  render::PageSetup page() const;
+  // A request of the course's job for these shaders: its canvas, frames, rotation, samples, page.
+  render::RenderRequest render_request(shader::ShaderFile vertex, shader::ShaderFile fragment) const;
+  // What a submission of `checkpoint` is graded against, with `options`' tolerance.
+  grade::GradeSpec grade_spec(const Checkpoint& checkpoint, const grade::GradeOptions& options) const;
+  // Frame k's file name under `prefix`, with `extension` ("png"): hw2_specular_3.png.
+  std::string frame_file(std::string_view prefix, int k, std::string_view extension) const;
+  // The names the page feeds the light's position by (what a probe light moves).
+  std::vector<std::string> light_position_names() const;
+  // The starter's specular exponent (the CPU reference's alpha); 0 when the profile sets none.
+  double specular_exponent() const;
+};
+
+// The bounds an uploaded mesh is fitted to (`--fit`, "fit": true): the default mesh's.
+Expected<scene::Bounds> fit_bounds(const Course& course);
+
+// A course mesh, parsed (embedded ones from the binary).
+Expected<scene::Mesh> load_course_mesh(const CourseMesh& mesh);
+
+}  // namespace shadelab::course

@@ -1,0 +1,50 @@
+#pragma once
+// What a submission is graded against, as plain data a worker receives whole: the reference
+// shaders, the known mistakes (each already a pair of shaders), the probe lights and the
+// tolerance. A course profile (course/course.h) builds it from its checkpoints; a request can
+// also bring its own reference ("custom").
+#include <array>
+#include <string>
+#include <vector>
+
+#include "grade/grader.h"
+#include "shader/shader_source.h"
+
+namespace shadelab::grade {
+
+// A known mistake: the reference with one deliberate change. A submission that matches a
+// mistake's render better than the reference's is told, in these words, what it got wrong.
+struct Mistake {
+  std::string id;       // "missing_specular"
+  std::string message;  // what the student reads
+  shader::ShaderFile vertex, fragment;
+};
+
+// Extra frames rendered under another light, for mistakes the homework's light cannot show: with
+// the light at the page's position the unlit side barely faces the camera, so a specular term
+// added where N.L <= 0 changes under 0.1% of the pixels. Behind the mesh, that side is in view.
+struct Probe {
+  std::string name;
+  std::array<float, 3> light_position;
+};
+
+// A number the starter shader sets that a student should keep ("float specularAlpha = 6.0;"): a
+// failing submission that sets it to something else is told so, read from its source.
+struct StarterConstant {
+  std::string variable;  // specularAlpha
+  std::string meaning;   // "exponent"
+  double value = 0;
+};
+
+struct GradeSpec {
+  std::string reference_name;  // a checkpoint, or "custom"
+  shader::ShaderFile reference_vertex, reference_fragment;
+  std::vector<Mistake> mistakes;
+  std::vector<Probe> probes;
+  // The uniforms a probe moves (the light position under each name the page feeds it by).
+  std::vector<std::string> light_position_uniforms;
+  std::vector<StarterConstant> starter_constants;
+  GradeOptions options;
+};
+
+}  // namespace shadelab::grade

@@ -1,0 +1,20 @@
+#pragma once
+// A worker job of a course: its canvas, frames, samples and page setup in the request, its frame
+// names, and one of its meshes attached the way workers take meshes (an embedded file by its
+// path, a profile's own mesh as bytes under its content address).
+#include <string>
+
+#include "core/expected.h"
+#include "course/course.h"
+#include "worker/job.h"
+
+namespace shadelab::worker {
+
+// A job of `kind` with the course's request (no shaders yet) and frame names.
+Job course_job(const course::Course& course, JobKind kind);
+
+// Sets the job's mesh to the course's mesh `name` and puts its bytes, if they travel, in
+// `payload`; mesh_not_found naming the course's meshes for another name.
+Status attach_course_mesh(const course::Course& course, const std::string& name, Job& job, std::string& payload);
+
+}  // namespace shadelab::worker
