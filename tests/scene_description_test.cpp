@@ -42,6 +42,25 @@ TEST(SceneDescriptionTest, DefaultsAreBlendersPrincipledAndEevee) {
   EXPECT_EQ(s.render.view_transform, scene::ViewTransform::filmic);
   EXPECT_EQ(s.camera.lens_mm, 50);
   EXPECT_FALSE(s.ground);
+  // Blender's default output, what students hand in.
+  EXPECT_EQ(s.render.width, 1920);
+  EXPECT_EQ(s.render.height, 1080);
+}
+
+// Resolution % scales the output as Blender does (rounded down), the framing unchanged.
+TEST(SceneDescriptionTest, ResolutionPercentageScalesTheOutputAsBlenderDoes) {
+  auto j = minimal();
+  j["render"] = {{"width", 1920}, {"height", 1080}, {"resolutionPercentage", 25}};
+  auto s = parsed(j);
+  EXPECT_EQ(s.render.width, 480);
+  EXPECT_EQ(s.render.height, 270);
+  EXPECT_EQ(s.render.percentage, 25);
+  j["render"] = {{"width", 641}, {"height", 3}, {"resolutionPercentage", 33}};
+  s = parsed(j);
+  EXPECT_EQ(s.render.width, 211);
+  EXPECT_EQ(s.render.height, 1) << "never below one pixel";
+  j["render"] = {{"resolutionPercentage", 0}};
+  EXPECT_FALSE(scene::parse_scene(j));
 }
 
 TEST(SceneDescriptionTest, ErrorsNameTheField) {

@@ -1,5 +1,6 @@
 #include "scene/scene_description.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -97,11 +98,14 @@ Light read_light(const Reader& r, size_t index) {
 }
 
 RenderSettings read_render(const Reader& r, const SceneLimits& limits) {
-  r.only({"width", "height", "engine", "viewTransform", "samples", "shadowMapSize", "shadowFilterTaps",
+  r.only({"width", "height", "resolutionPercentage", "engine", "viewTransform", "samples", "shadowMapSize", "shadowFilterTaps",
           "reflectionMapSize", "workbenchShadows", "framing"});
   RenderSettings s;
   s.width = r.integer("width", s.width, 1, limits.max_dimension);
   s.height = r.integer("height", s.height, 1, limits.max_dimension);
+  s.percentage = r.integer("resolutionPercentage", s.percentage, 1, 100);
+  s.width = std::max(1, s.width * s.percentage / 100);
+  s.height = std::max(1, s.height * s.percentage / 100);
   s.engine = r.text("engine", "eevee", {"eevee", "workbench"}) == "workbench" ? Engine::workbench : Engine::eevee;
   s.view_transform = r.text("viewTransform", "filmic", {"filmic", "standard"}) == "standard" ? ViewTransform::standard
                                                                                           : ViewTransform::filmic;

@@ -15,7 +15,8 @@
 // | camera                | camera object + Camera data              | (0,-10,0) looking at origin |
 // | lights[]              | light objects + Light data               | none                        |
 // | world                 | World > Color x Strength                 | 0.0509 grey, 1              |
-// | render                | Render and Output properties             | 640 x 480, eevee, filmic    |
+// | render                | Render and Output properties             | 1920 x 1080 at 100%, eevee, |
+// |                       | (resolutionPercentage: Resolution %)     | filmic (Blender's defaults) |
 #include <optional>
 #include <string>
 #include <vector>
@@ -98,7 +99,10 @@ enum class Engine { workbench, eevee };
 enum class ViewTransform { standard, filmic };
 
 struct RenderSettings {
-  int width = 640, height = 480;
+  // What is rendered: Blender's Resolution X and Y scaled by Resolution % (`resolutionPercentage`,
+  // the preview knob), as Blender scales them (rounded down, at least 1).
+  int width = 1920, height = 1080;
+  int percentage = 100;
   Engine engine = Engine::eevee;
   ViewTransform view_transform = ViewTransform::filmic;
   int samples = 4;                // MSAA samples per pixel: 0, 2 or 4

@@ -36,7 +36,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Material, base_color, metallic, roughness, sp
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Object, name, mesh, location, rotation_degrees, scale, shading, material)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Ground, size, height, material)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(World, color, strength)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RenderSettings, width, height, engine, view_transform, samples, shadow_map_size,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RenderSettings, width, height, percentage, engine, view_transform, samples, shadow_map_size,
                                    shadow_filter_taps, reflection_map_size, workbench_shadows, framing)
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Camera, location, rotation_degrees, target, type, lens_mm, sensor_width_mm, sensor_fit,

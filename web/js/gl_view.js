@@ -1,16 +1,15 @@
-// The homework page's WebGL2 view, as hw2.js sets it up: default context attributes (antialias,
-// premultiplied alpha), attributes aVertexPosition / aVertexNormal from a non-indexed triangle
-// list, the uniforms of the contract (both naming styles), fovY 45 degrees, near 0.1, far 100,
-// the mesh at (0, -2, -7.5) spinning about +Y at 20 degrees per second.
+// The homework page's WebGL2 view, as the course's hw2.js sets it up: default context attributes
+// (antialias, premultiplied alpha), attributes aVertexPosition / aVertexNormal from a non-indexed
+// triangle list, and what the course (GET /api/course) says: its camera (fovY, near, far, where
+// the mesh stands) and its uniforms under every name it feeds them by.
 import { multiply, perspective, rotationY, translation } from "./mat4.js";
 
-export const DEFAULT_UNIFORMS = {
-  uAmbientColor: [0.2, 0.1, 0.1, 1.0],
-  uDiffuseColor: [0.7, 0.5, 0.1, 1.0],
-  uSpecularColor: [0.1, 0.4, 0.8, 1.0],
-  uLightPosition: [16.0, 8.0, 4.0],
-  uLightColor: [1.0, 1.0, 1.0, 1.0],
-};
+// The course's uniforms as the view sets them: role (or first name) -> {names, value}.
+export function courseUniforms(course) {
+  const out = {};
+  for (const u of course.uniforms) out[u.role || u.names[0]] = { names: u.names, value: u.value };
+  return out;
+}
 
 // ANGLE: "ERROR: 0:12: 'foo' : undeclared identifier"; Mesa: "0:12(5): error: ...".
 function parseLog(log, stage, lineOffset) {
@@ -24,13 +23,14 @@ function parseLog(log, stage, lineOffset) {
 }
 
 export class GlView {
-  constructor(canvas) {
+  constructor(canvas, course) {
     this.canvas = canvas;
     this.gl = canvas.getContext("webgl2");  // default attributes, as the student's page
     if (!this.gl) throw new Error("this browser has no WebGL2");
+    this.camera = course.camera;
     this.program = null;
     this.mesh = null;
-    this.uniforms = { ...DEFAULT_UNIFORMS };
+    this.uniforms = courseUniforms(course);
     this.active = [];
   }
 
@@ -83,7 +83,8 @@ export class GlView {
     if (!p || !this.mesh) return;
     gl.useProgram(p);
     const rotation = rotationY((degrees * Math.PI) / 180);
-    const projection = perspective(Math.PI / 4, this.canvas.width / this.canvas.height, 0.1, 100);
+    const c = this.camera;
+    const projection = perspective((c.fovYDegrees * Math.PI) / 180, this.canvas.width / this.canvas.height, c.near, c.far);
     const set = (name, value) => {
       const loc = gl.getUniformLocation(p, name);
       if (!loc) return;
@@ -93,12 +94,9 @@ export class GlView {
       while (gl.getError() !== gl.NO_ERROR);  // a type mismatch leaves the uniform at zero, as in hw2.js
     };
     set("uWorldToClipSpaceMatrix", projection);
-    set("uMeshToWorldMatrix", multiply(translation(0, -2, -7.5), rotation));
+    set("uMeshToWorldMatrix", multiply(translation(...c.meshTranslation), rotation));
     set("uMeshToWorldRotMatrix", rotation);
-    for (const [name, value] of Object.entries(this.uniforms)) {
-      set(name, value);
-      set(name[1].toLowerCase() + name.slice(2), value);  // diffuseColor as well as uDiffuseColor
-    }
+    for (const { names, value } of Object.values(this.uniforms)) for (const name of names) set(name, value);
     const attribute = (name, buffer) => {
       const loc = gl.getAttribLocation(p, name);
       if (loc < 0) return;

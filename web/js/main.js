@@ -1,38 +1,44 @@
-// The page: the homework's spinning view in WebGL2, editors, and the server beside it.
+// The page: the homework's spinning view in WebGL2, editors, and the server beside it. Every fact
+// of the homework (canvas, meshes, camera, uniform values, frames and their names) is the
+// course's, from GET /api/course (?course=ID picks one of the server's courses).
 import { compareImages, imageDataOf } from "./compare.js";
 import { Editor } from "./editor.js";
-import { DEFAULT_UNIFORMS, GlView } from "./gl_view.js";
+import { courseUniforms, GlView } from "./gl_view.js";
 import { api } from "./api.js";
 import { parseObj } from "./obj.js";
 import { glslFromFile } from "./shader_module.js";
 
 const $ = (id) => document.getElementById(id);
-const view = new GlView($("glcanvas"));
 const editors = { vertex: new Editor($("vertex-editor"), "phong_vert.js"), fragment: new Editor($("fragment-editor"), "phong_frag.js") };
-const state = { mesh: "bunny", uploadedId: null, last: null, changed: new Set() };
+const state = { course: null, view: null, mesh: null, uploadedId: null, last: null, changed: new Set() };
+const COLOUR_ROLES = ["ambient", "diffuse", "specular"];
 
 function status(id, text, isError = false) {
   $(id).textContent = text;
   $(id).classList.toggle("error", isError);
 }
 
-// ---- uniforms: the hw2.js defaults unless the student changed a control --------------------
+// A frame's file name as the course's page downloads it: hw2_{prefix}_{k}.png.
+const frameFile = (prefix, k, extension = "png") =>
+  `${state.course.frames.fileName.replaceAll("{prefix}", prefix).replaceAll("{k}", String(k))}.${extension}`;
+
+// ---- uniforms: the course's values unless the student changed a control ---------------------
 const hexToVec4 = (hex) => [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16) / 255).concat([1]);
+const vecToHex = (v) => "#" + v.slice(0, 3).map((c) => Math.round(Math.min(1, Math.max(0, c)) * 255).toString(16).padStart(2, "0")).join("");
 function uniforms() {
-  const u = { ...DEFAULT_UNIFORMS };
-  for (const name of ["uAmbientColor", "uDiffuseColor", "uSpecularColor"]) if (state.changed.has(name)) u[name] = hexToVec4($(name).value);
-  if (state.changed.has("light")) u.uLightPosition = ["light-x", "light-y", "light-z"].map((id) => Number($(id).value));
+  const u = courseUniforms(state.course);
+  for (const role of COLOUR_ROLES)
+    if (state.changed.has(role) && u[role]) u[role] = { ...u[role], value: hexToVec4($(`color-${role}`).value) };
+  if (state.changed.has("lightPosition") && u.lightPosition)
+    u.lightPosition = { ...u.lightPosition, value: ["light-x", "light-y", "light-z"].map((id) => Number($(id).value)) };
   return u;
 }
-// What the server gets: only values that differ from its defaults, only for uniforms the program uses.
+// What the server gets: only values the student changed, only for names the program uses.
 function serverUniforms() {
-  const u = uniforms(), out = {};
-  for (const [name, value] of Object.entries(u)) {
-    const changed = name === "uLightPosition" ? state.changed.has("light") : state.changed.has(name);
-    if (!changed) continue;
-    const plain = name[1].toLowerCase() + name.slice(2);
-    if (view.active.includes(name)) out[name] = value;
-    if (view.active.includes(plain)) out[plain] = value;
+  const out = {};
+  for (const [role, { names, value }] of Object.entries(uniforms())) {
+    if (!state.changed.has(role)) continue;
+    for (const name of names) if (state.view.active.includes(name)) out[name] = value;
   }
   return out;
 }
@@ -50,6 +56,7 @@ async function applyLocally() {
       return false;
     }
   }
+  const view = state.view;
   const errors = view.setProgram(loaded.vertex, loaded.fragment);
   view.uniforms = uniforms();
   state.dirty = true;
@@ -60,18 +67,21 @@ async function applyLocally() {
 }
 
 async function loadMesh(name) {
-  const response = await api(`/api/meshes/${name}.obj`);
+  const mesh = state.course.meshes.find((m) => m.name === name);
+  const response = await api(mesh.url);
   if (!response.ok) throw new Error(`cannot load ${name}`);
-  view.setMesh(parseObj(await response.text()));
+  state.view.setMesh(parseObj(await response.text()));
   state.dirty = true;
   state.mesh = name;
   state.uploadedId = null;
 }
 
-// hw2.js turns the mesh 20 degrees per second. A still view is drawn only when something changed:
-// software WebGL at 60 frames a second would take a core from the server next to it.
+// The course's page turns the mesh a frame's step per second (20 degrees). A still view is drawn
+// only when something changed: software WebGL at 60 frames a second would take a core from the
+// server next to it.
 function spin(time) {
-  if ($("spin").checked) view.draw((20 * time) / 1000);
+  const view = state.view;
+  if ($("spin").checked) view.draw((state.course.frames.degreesPerFrame * time) / 1000);
   else if (state.dirty) view.draw(0);
   state.dirty = false;
   requestAnimationFrame(spin);
@@ -80,6 +90,7 @@ function spin(time) {
 // ---- server -------------------------------------------------------------------------------
 function job(output) {
   return {
+    course: state.course.id,
     vertex: editors.vertex.text, fragment: editors.fragment.text,
     vertexName: editors.vertex.name, fragmentName: editors.fragment.name,
     mesh: state.uploadedId ?? state.mesh,
@@ -125,7 +136,7 @@ async function renderOnServer() {
   grid.hidden = false;
   const link = $("download-grid");
   link.href = grid.src;
-  link.download = `hw2_${$("prefix").value}_grid.png`;
+  link.download = frameFile($("prefix").value, "grid");
   link.hidden = false;
   $("frames").innerHTML = "";
   for (const f of result.images.frames) {
@@ -141,7 +152,7 @@ async function renderOnServer() {
 async function downloadFrames() {
   const response = await post("frames");
   const url = URL.createObjectURL(await response.blob());
-  const a = Object.assign(document.createElement("a"), { href: url, download: `hw2_${$("prefix").value}_frames.zip` });
+  const a = Object.assign(document.createElement("a"), { href: url, download: frameFile($("prefix").value, "frames", "zip") });
   document.body.append(a);
   a.click();
   a.remove();
@@ -155,7 +166,7 @@ async function compareFrame(k = 0) {
   const [w, h] = [Number($("width").value), Number($("height").value)];
   const previous = [canvas.width, canvas.height];
   [canvas.width, canvas.height] = [w, h];
-  const blob = await view.captureFrame(k * Number($("degrees").value));
+  const blob = await state.view.captureFrame(k * Number($("degrees").value));
   [canvas.width, canvas.height] = previous;
   const browser = await imageDataOf(blob);
   const serverPng = await (await fetch(`data:image/png;base64,${state.last.images.frames[k].data}`)).blob();
@@ -182,7 +193,8 @@ async function choosePreset(name, presets) {
   $("fragment-name").textContent = p.fragment.name;
   editors.vertex.text = p.vertex.source;
   editors.fragment.text = p.fragment.source;
-  $("prefix").value = name;
+  // A deliverable's reference saves its frames under the deliverable's prefix (hw2_normals_*).
+  $("prefix").value = state.course.checkpoints.find((c) => c.reference === name)?.prefix ?? name;
   state.last = null;
   await applyLocally();
 }
@@ -194,28 +206,48 @@ async function uploadMesh(file) {
   const body = await response.json();
   if (!response.ok) return status("local-status", `Mesh upload: ${body.detail}`, true);
   state.uploadedId = body.id;
-  if (file.name.toLowerCase().endsWith(".obj")) view.setMesh(parseObj(await file.text()));
+  if (file.name.toLowerCase().endsWith(".obj")) state.view.setMesh(parseObj(await file.text()));
   status("local-status", `Uploaded ${file.name}: ${body.info.triangles} triangles.` +
          (file.name.toLowerCase().endsWith(".obj") ? "" : " (The local view previews OBJ only; the server renders it.)"));
 }
 
 const report = (p) => p.catch((e) => { if (!e.problem) status("server-status", e.message, true); });
 
+// The controls start at the course's values.
+function fillControls(course) {
+  $("course-title").textContent = course.title;
+  document.title = `ShadeLab · ${course.title}`;
+  [$("glcanvas").width, $("glcanvas").height] = [course.canvas.width, course.canvas.height];
+  for (const m of course.meshes) $("mesh").append(new Option(m.name, m.name, false, m.name === course.defaultMesh));
+  const u = courseUniforms(course);
+  for (const role of COLOUR_ROLES) if (u[role]) $(`color-${role}`).value = vecToHex(u[role].value);
+  if (u.lightPosition) ["light-x", "light-y", "light-z"].forEach((id, i) => ($(id).value = u.lightPosition.value[i]));
+  $("frame-count").value = course.frames.count;
+  $("degrees").value = course.frames.degreesPerFrame;
+  $("width").value = course.canvas.width;
+  $("height").value = course.canvas.height;
+  for (const p of course.presets) $("preset").append(new Option(p.name, p.name, false, p.name === course.defaultPreset));
+}
+
 async function init() {
-  const presets = await (await api("/api/presets")).json();
-  for (const p of presets) $("preset").append(new Option(p.name, p.name, false, p.name === "specular"));
-  $("preset").value = "specular";
-  await loadMesh("bunny");
-  await choosePreset("specular", presets);
+  const which = new URLSearchParams(location.search).get("course");
+  const response = await api(`/api/course${which ? `?course=${encodeURIComponent(which)}` : ""}`);
+  if (!response.ok) throw new Error(`the server has no course ${which ?? ""}`);
+  const course = (state.course = await response.json());
+  const presets = course.presets;
+  state.view = new GlView($("glcanvas"), course);
+  fillControls(course);
+  await loadMesh(course.defaultMesh);
+  await choosePreset(course.defaultPreset, presets);
   requestAnimationFrame(spin);
 
   $("preset").addEventListener("change", () => choosePreset($("preset").value, presets));
   $("mesh").addEventListener("change", () => loadMesh($("mesh").value).then(() => (state.last = null)));
   $("mesh-file").addEventListener("change", (e) => e.target.files[0] && uploadMesh(e.target.files[0]));
-  for (const id of ["uAmbientColor", "uDiffuseColor", "uSpecularColor"])
-    $(id).addEventListener("input", () => { state.changed.add(id); view.uniforms = uniforms(); state.dirty = true; });
+  for (const role of COLOUR_ROLES)
+    $(`color-${role}`).addEventListener("input", () => { state.changed.add(role); state.view.uniforms = uniforms(); state.dirty = true; });
   for (const id of ["light-x", "light-y", "light-z"])
-    $(id).addEventListener("input", () => { state.changed.add("light"); view.uniforms = uniforms(); state.dirty = true; });
+    $(id).addEventListener("input", () => { state.changed.add("lightPosition"); state.view.uniforms = uniforms(); state.dirty = true; });
   $("apply").addEventListener("click", applyLocally);
   $("spin").addEventListener("change", () => (state.dirty = true));
   $("render-server").addEventListener("click", () => report(renderOnServer()));
@@ -227,7 +259,7 @@ async function init() {
 
   // Hooks for the browser tests (tests/browser), which drive the page as a student would.
   window.shadelab = {
-    view, editors, state, renderOnServer, compareFrame, applyLocally,
+    course, view: state.view, editors, state, renderOnServer, compareFrame, applyLocally, frameFile,
     choosePreset: (name) => choosePreset(name, presets),
     chooseMesh: async (name) => { $("mesh").value = name; await loadMesh(name); state.last = null; },
   };
