@@ -39,6 +39,8 @@ test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev chromium
   # the sheet's PDF read back as a reader would: its text (pdftotext) and its pages (pdftoppm)
   poppler-utils
+  # the course profile's JSON Schema checked against the reader (tests/course_test.cpp), by Debian's python
+  python3 python3-jsonschema
   # the fuzz targets (tools/fuzz.sh): clang with libFuzzer and its sanitizers
   clang libfuzzer-14-dev libclang-rt-14-dev
 )

@@ -24,5 +24,6 @@ Command add_autograde_command(CLI::App& app);
 Command add_sheet_command(CLI::App& app);
 Command add_scene_command(CLI::App& app);
 Command add_dolly_command(CLI::App& app);
+Command add_course_command(CLI::App& app);
 
 }  // namespace shadelab::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   const auto sheet = shadelab::cli::add_sheet_command(app);
   const auto scene = shadelab::cli::add_scene_command(app);
   const auto dolly = shadelab::cli::add_dolly_command(app);
+  const auto course = shadelab::cli::add_course_command(app);
   CLI11_PARSE(app, argc, argv);
   if (app.got_subcommand("render")) return render();
   if (app.got_subcommand("info")) return info();
@@ -25,5 +26,6 @@ int main(int argc, char** argv) {
   if (app.got_subcommand("sheet")) return sheet();
   if (app.got_subcommand("scene")) return scene();
   if (app.got_subcommand("dolly")) return dolly();
+  if (app.got_subcommand("course")) return course();
   return 2;
 }

@@ -28,6 +28,8 @@ struct Preset {
   std::string name;  // "specular"
   std::string description;
   std::string vertex_file, fragment_file;  // as the profile names them (relative to it)
+  // Where they were read: "builtin:shaders/specular_vert.js", or the file's path on disk.
+  std::string vertex_source, fragment_source;
   shader::ShaderFile vertex, fragment;     // named by their file names, as a student's are
 };
 
@@ -93,6 +95,7 @@ struct CourseMesh {
   std::string file;  // as the profile names it
   std::string format;  // obj, ply, ...
   std::string id;      // the worker's cache key: "assets/bunny.obj" when embedded, "course:<sha256>" else
+  std::string source;  // where it was read: "builtin:assets/bunny.obj", or the file's path on disk
   bool embedded = false;
   std::string bytes;   // empty when embedded (embedded_file() has them)
 };

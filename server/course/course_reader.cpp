@@ -31,6 +31,9 @@ Expected<FileSource::Read> read_embedded(const std::string& path) {
   return FileSource::Read{std::string(*bytes), true, path};
 }
 
+// How a read file is named in a portable profile.
+std::string source_of(const FileSource::Read& read) { return read.embedded ? kBuiltinPrefix + read.resolved : read.resolved; }
+
 bool is_identifier(const std::string& s) { return std::regex_match(s, std::regex("[A-Za-z_][A-Za-z0-9_]{0,63}")); }
 bool is_name(const std::string& s) { return std::regex_match(s, std::regex("[a-z0-9][a-z0-9_-]{0,31}")); }
 bool is_prefix(const std::string& s) { return std::regex_match(s, std::regex("[A-Za-z0-9_-]{1,64}")); }
@@ -161,6 +164,7 @@ class Parser {
           m.fail_at(m.at("file"), read.error().message);
         } else {
           out.embedded = read->embedded;
+          out.source = source_of(*read);
           out.id = read->embedded ? read->resolved : "course:" + sha256_hex(read->bytes).substr(0, 32);
           if (!read->embedded) out.bytes = std::move(read->bytes);
           // A profile's own mesh is parsed once here, so a bad file stops the load, not a job.
@@ -176,8 +180,9 @@ class Parser {
     if (error_.empty() && !course_.mesh(course_.default_mesh)) r.fail_at("defaultMesh", "'" + course_.default_mesh + "' is not one of meshes");
   }
 
-  // A shader file of a preset: its text, named by its file name as a student's file is.
-  shader::ShaderFile shader_file(const JsonReader& r, const std::string& key, shader::Stage stage) {
+  // A shader file of a preset: its text, named by its file name as a student's file is; `source`
+  // gets where it was read.
+  shader::ShaderFile shader_file(const JsonReader& r, const std::string& key, shader::Stage stage, std::string& source) {
     const std::string path = r.text(key, "");
     if (path.empty() || !error_.empty()) return {};
     auto read = files_.read(path);
@@ -185,6 +190,7 @@ class Parser {
       r.fail_at(r.at(key), read.error().message);
       return {};
     }
+    source = source_of(*read);
     shader::ShaderFile file{std::filesystem::path(path).filename().string(), std::move(read->bytes)};
     if (auto unwrapped = shader::unwrap(file, stage, {}); !unwrapped) r.fail_at(r.at(key), unwrapped.error().message);
     return file;
@@ -202,8 +208,8 @@ class Parser {
       out.description = p.text("description", "");
       out.vertex_file = p.text("vertex", "");
       out.fragment_file = p.text("fragment", "");
-      out.vertex = shader_file(p, "vertex", shader::Stage::vertex);
-      out.fragment = shader_file(p, "fragment", shader::Stage::fragment);
+      out.vertex = shader_file(p, "vertex", shader::Stage::vertex, out.vertex_source);
+      out.fragment = shader_file(p, "fragment", shader::Stage::fragment, out.fragment_source);
       // The starter's constants hold in every preset that sets them: the references agree with it.
       for (const auto& found : grade::changed_starter_constants(course_.starter_constants, out.fragment.text))
         p.fail_at(p.at("fragment"), out.fragment.name + " sets " + found.variable + " otherwise than specularExponent.value (" +
@@ -362,7 +368,7 @@ FileSource folder_source(const std::filesystem::path& folder) {
     const std::filesystem::path full = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : folder / path;
     std::ifstream in(full, std::ios::binary);
     if (!in) return make_error(ErrorCode::course_invalid, "cannot read '" + full.string() + "'");
-    return FileSource::Read{std::string{std::istreambuf_iterator<char>(in), {}}, false, full.string()};
+    return FileSource::Read{std::string{std::istreambuf_iterator<char>(in), {}}, false, std::filesystem::absolute(full).lexically_normal().string()};
   }};
 }
 
@@ -390,7 +396,7 @@ const Course& builtin_course() {
   return course;
 }
 
-json to_json(const Course& c) {
+json to_json(const Course& c, bool portable) {
   json uniforms = json::array();
   for (const auto& u : c.uniforms) {
     json entry = {{"names", u.names}, {"type", u.type}, {"value", u.value}};
@@ -398,11 +404,11 @@ json to_json(const Course& c) {
     uniforms.push_back(std::move(entry));
   }
   json meshes = json::array();
-  for (const auto& m : c.meshes) meshes.push_back({{"name", m.name}, {"file", m.file}});
+  for (const auto& m : c.meshes) meshes.push_back({{"name", m.name}, {"file", portable ? m.source : m.file}});
   json presets = json::array();
   for (const auto& p : c.presets)
-    presets.push_back({{"name", p.name}, {"description", p.description}, {"vertex", p.vertex_file},
-                       {"fragment", p.fragment_file}});
+    presets.push_back({{"name", p.name}, {"description", p.description}, {"vertex", portable ? p.vertex_source : p.vertex_file},
+                       {"fragment", portable ? p.fragment_source : p.fragment_file}});
   json checkpoints = json::array();
   for (const auto& k : c.checkpoints) {
     json mistakes = json::array();

@@ -42,6 +42,8 @@ const Course& builtin_course();
 inline constexpr const char* kBuiltinCoursePath = "courses/cs148-summer2022.json";
 
 // The profile as its format writes it: read_course(to_json(c)) gives c back, field for field.
-nlohmann::json to_json(const Course& course);
+// `portable`: each file named by where it was read ("builtin:assets/bunny.obj", or an absolute
+// path) instead of as the profile wrote it, so the JSON loads from any folder.
+nlohmann::json to_json(const Course& course, bool portable = false);
 
 }  // namespace shadelab::course

@@ -1,0 +1,87 @@
+// shadelab course: the course profile (docs/course-profile.md) a TA gives every other command.
+//
+//   shadelab course import HW2_DIR [--solution DIR] -o course.json   a homework folder to a profile
+//   shadelab course check course.json                                 load it and say what it holds
+//   shadelab course show [--course FILE]                              print a profile, files portable
+#include <filesystem>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/course_option.h"
+#include "cli/file_output.h"
+#include "course/course_import.h"
+#include "course/course_reader.h"
+
+namespace shadelab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CourseFlags {
+  course::ImportOptions import;
+  std::string solution, check, show;
+};
+
+// What a loaded profile holds, in a few lines.
+void summarise(const course::Course& c) {
+  std::cout << c.id << ": " << c.title << "\n  canvas " << c.width << " x " << c.height << ", " << c.frames << " frames of "
+            << c.degrees_per_frame << " degrees, " << c.msaa << "x MSAA, frames saved as " << c.frame_file("{prefix}", 0, "png")
+            << "\n  meshes:";
+  for (const auto& m : c.meshes) std::cout << " " << m.name << (m.name == c.default_mesh ? " (default)" : "");
+  std::cout << "\n  checkpoints:";
+  for (const auto& k : c.checkpoints) std::cout << " " << k.name << " (" << k.mistakes.size() << " known mistakes)";
+  std::cout << "\n";
+}
+
+int run_import(CourseFlags& f) {
+  if (!f.solution.empty()) f.import.solution = f.solution;
+  auto imported = course::import_course(f.import);
+  if (!imported) return fail(imported.error());
+  for (const auto& line : imported->found) std::cout << "found: " << line << "\n";
+  for (const auto& line : imported->assumed) std::cout << "assumed: " << line << "\n";
+  const fs::path folder = fs::absolute(f.import.output).parent_path();
+  for (const auto& [name, text] : imported->derived_files)
+    if (auto s = write_file(folder / name, text); !s) return fail(s.error());
+  if (auto s = write_file(f.import.output, imported->profile.dump(2) + "\n"); !s) return fail(s.error());
+  // The profile as every other command will read it: a problem here is the import's to report.
+  auto loaded = course::load_course_file(f.import.output);
+  if (!loaded) return fail(loaded.error());
+  std::cout << "wrote " << f.import.output.string() << "\n";
+  summarise(*loaded);
+  return 0;
+}
+
+}  // namespace
+
+Command add_course_command(CLI::App& app) {
+  auto f = std::make_shared<CourseFlags>();
+  auto* cmd = app.add_subcommand("course", "Course profiles: import a homework folder, check a profile, show one");
+  cmd->require_subcommand(1);
+  auto* import = cmd->add_subcommand("import", "A TA's homework folder (and solution shaders) to a course profile");
+  import->add_option("folder", f->import.folder, "The HW2 folder as handed out (index.html, src/hw2.js, src/shaders/, assets/)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  import->add_option("--solution", f->solution, "A folder with the solved shaders (starter_*.js, phong_*.js, diffuse_*.js)")
+      ->check(CLI::ExistingDirectory);
+  import->add_option("-o,--output", f->import.output, "Where the profile goes (its files are named relative to it)")->required();
+  import->add_option("--id", f->import.id, "The profile's id (default: from the folder's name)");
+  import->add_option("--default-mesh", f->import.default_mesh, "The mesh the deliverables use (default: OBJ_FILE in hw2.js)");
+  auto* check = cmd->add_subcommand("check", "Load a profile and say what it holds, or what is wrong with it (field and reason)");
+  check->add_option("file", f->check, "The profile")->required();
+  auto* show = cmd->add_subcommand("show", "Print a profile as JSON, its files named where they were read (builtin:... or absolute)");
+  add_course_option(show, f->show);
+  return [f, import, check, show] {
+    if (*import) return run_import(*f);
+    if (*check || *show) {
+      auto loaded = load_course(*check ? f->check : f->show);
+      if (!loaded) return fail(loaded.error());
+      if (*check) summarise(**loaded);
+      else std::cout << course::to_json(**loaded, true).dump(2) << "\n";
+      return 0;
+    }
+    return 2;
+  };
+}
+
+}  // namespace shadelab::cli

@@ -1,0 +1,446 @@
+#include "course/course_import.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <regex>
+
+#include "course/course_reader.h"
+
+namespace shadelab::course {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, v == std::floor(v) && std::abs(v) < 1e9 ? "%.1f" : "%g", v);
+  return buf;
+}
+
+// The homework folder's files, relative to it, shallowest first.
+struct Folder {
+  fs::path root;
+  std::vector<fs::path> files;
+
+  explicit Folder(fs::path r) : root(std::move(r)) {
+    for (const auto& e : fs::recursive_directory_iterator(root, fs::directory_options::skip_permission_denied))
+      if (e.is_regular_file() && !e.is_symlink()) files.push_back(fs::relative(e.path(), root));
+    std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+      const auto depth = [](const fs::path& p) { return std::distance(p.begin(), p.end()); };
+      return std::pair(depth(a), a.string()) < std::pair(depth(b), b.string());
+    });
+  }
+  std::optional<fs::path> named(const std::string& name) const {
+    for (const auto& f : files)
+      if (f.filename() == name) return f;
+    return std::nullopt;
+  }
+  std::string text(const fs::path& relative) const { return read_text(root / relative); }
+};
+
+// The numbers of the first bracketed list ([...] or (...)) at or after `at`, up to its close.
+std::vector<double> numbers_after(const std::string& s, size_t at) {
+  const size_t open = s.find_first_of("[(", at);
+  if (open == std::string::npos) return {};
+  const size_t close = s.find_first_of("])", open + 1);
+  std::vector<double> out;
+  static const std::regex number("-?[0-9]*\\.?[0-9]+(?:[eE][-+]?[0-9]+)?");
+  const std::string inside = s.substr(open + 1, close == std::string::npos ? std::string::npos : close - open - 1);
+  for (std::sregex_iterator it(inside.begin(), inside.end(), number), end; it != end; ++it) out.push_back(std::stod(it->str()));
+  return out;
+}
+
+// The text of the {...} block that opens at or after `at`.
+std::string block_after(const std::string& s, size_t at) {
+  const size_t open = s.find('{', at);
+  if (open == std::string::npos) return {};
+  int depth = 0;
+  for (size_t i = open; i < s.size(); ++i) {
+    depth += s[i] == '{' ? 1 : s[i] == '}' ? -1 : 0;
+    if (depth == 0) return s.substr(open + 1, i - open - 1);
+  }
+  return {};
+}
+
+// Which homework quantity a uniform's (or a value's) name is, by the words in it.
+std::string role_of(const std::string& name) {
+  const std::string n = lower(name);
+  if (n.find("ambient") != std::string::npos) return "ambient";
+  if (n.find("diffuse") != std::string::npos) return "diffuse";
+  if (n.find("specular") != std::string::npos) return "specular";
+  if (n.find("light") != std::string::npos && n.find("pos") != std::string::npos) return "lightPosition";
+  if (n.find("light") != std::string::npos && n.find("col") != std::string::npos) return "lightColor";
+  return "";
+}
+
+// uAmbientColor -> ambientColor: the other spelling the handout allows.
+std::string plain_spelling(const std::string& name) {
+  if (name.size() > 1 && name[0] == 'u' && std::isupper(static_cast<unsigned char>(name[1])))
+    return std::string(1, static_cast<char>(std::tolower(static_cast<unsigned char>(name[1])))) + name.substr(2);
+  return {};
+}
+
+// The name hw2.js would use for `role` when it does not look it up yet (the students' TODO for
+// diffuse and specular): as it names ambient, with the role's word in place ("uDiffuseColor").
+std::string name_like_ambient(const std::map<std::string, std::string>& names, const std::string& role) {
+  static const std::map<std::string, std::string> words = {{"diffuse", "diffuse"}, {"specular", "specular"}};
+  const auto ambient = names.find("ambient");
+  if (!words.count(role) || ambient == names.end()) return {};
+  const std::string& n = ambient->second;
+  const size_t at = lower(n).find("ambient");
+  std::string word = words.at(role);
+  if (std::isupper(static_cast<unsigned char>(n[at]))) word[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(word[0])));
+  return n.substr(0, at) + word + n.substr(at + 7);
+}
+
+std::string path_from(const fs::path& file, const fs::path& output) {
+  const fs::path from = fs::absolute(output).parent_path().lexically_normal();
+  return fs::absolute(file).lexically_normal().lexically_relative(from).generic_string();
+}
+
+class Importer {
+ public:
+  explicit Importer(const ImportOptions& o) : o_(o), folder_(o.folder), p_(to_json(builtin_course(), true)) {}
+
+  Expected<ImportedCourse> run() {
+    identity();
+    canvas();
+    if (auto s = script(); !s) return s.take_error();
+    exponent();
+    if (auto s = meshes(); !s) return s.take_error();
+    presets();
+    out_.profile = std::move(p_);
+    return std::move(out_);
+  }
+
+ private:
+  void found(std::string what) { out_.found.push_back(std::move(what)); }
+  void assumed(std::string what) { out_.assumed.push_back(std::move(what)); }
+
+  void identity() {
+    std::string id = o_.id;
+    if (id.empty()) {
+      for (const char c : lower(fs::absolute(o_.folder).lexically_normal().filename().string()))
+        if (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') id += c;
+      if (id.empty() || !std::isalnum(static_cast<unsigned char>(id[0]))) id = "course-" + id;
+      id = id.substr(0, 32);
+    }
+    p_["id"] = id;
+    p_["title"] = "HW2 (" + fs::absolute(o_.folder).lexically_normal().filename().string() + ")";
+    p_["source"] = "imported by shadelab course import from " + fs::absolute(o_.folder).lexically_normal().string();
+  }
+
+  void canvas() {
+    const auto index = folder_.named("index.html");
+    static const std::regex canvas_tag("<canvas[^>]*>", std::regex::icase);
+    static const std::regex width("\\bwidth\\s*=\\s*[\"']?([0-9]+)", std::regex::icase), height("\\bheight\\s*=\\s*[\"']?([0-9]+)", std::regex::icase);
+    std::smatch tag, w, h;
+    const std::string html = index ? folder_.text(*index) : std::string();
+    if (index && std::regex_search(html, tag, canvas_tag)) {
+      const std::string t = tag.str();
+      if (std::regex_search(t, w, width) && std::regex_search(t, h, height)) {
+        p_["canvas"] = {{"width", std::stoi(w[1])}, {"height", std::stoi(h[1])}};
+        found("canvas " + w[1].str() + " x " + h[1].str() + " (" + index->generic_string() + ")");
+        return;
+      }
+    }
+    assumed("canvas " + std::to_string(p_["canvas"]["width"].get<int>()) + " x " + std::to_string(p_["canvas"]["height"].get<int>()) +
+            " (no <canvas width height> in an index.html)");
+  }
+
+  // The page's script: the module index.html loads, else the file holding `uniformValues`.
+  std::optional<fs::path> page_script() const {
+    if (auto script = folder_.named("hw2.js")) return script;
+    for (const auto& f : folder_.files)
+      if (f.extension() == ".js" && folder_.text(f).find("uniformValues") != std::string::npos) return f;
+    return std::nullopt;
+  }
+
+  Status script() {
+    const auto path = page_script();
+    if (!path) {
+      assumed("everything hw2.js would say (no hw2.js in the folder): the built-in course's uniforms, camera and frames");
+      return Ok{};
+    }
+    const std::string js = folder_.text(*path), where = " (" + path->generic_string() + ")";
+    uniforms(js, where);
+    camera(js, where);
+    frames(js, where);
+    if (js.find("antialias") != std::string::npos && std::regex_search(js, std::regex("antialias\\s*:\\s*false"))) {
+      p_["msaa"] = 0;
+      found("no multisampling: antialias: false" + where);
+    } else {
+      assumed("4x multisampling (WebGL's default antialias: true, as Chromium gives it)");
+    }
+    static const std::regex obj_file("OBJ_FILE\\s*=\\s*[\"']([^\"']+)[\"']");
+    std::smatch m;
+    if (o_.default_mesh.empty() && std::regex_search(js, m, obj_file)) {
+      default_mesh_ = mesh_name(fs::path(m[1].str()).stem().string());
+      found("default mesh " + default_mesh_ + ": OBJ_FILE" + where + "; the deliverables may use another (--default-mesh)");
+    }
+    return Ok{};
+  }
+
+  // uniformValues' numbers, and the names hw2.js looks the uniforms up by.
+  void uniforms(const std::string& js, const std::string& where) {
+    std::map<std::string, std::string> names;  // role -> the name hw2.js uses
+    static const std::regex lookup("getUniformLocation\\s*\\([^,]*,\\s*[\"']([A-Za-z_][A-Za-z0-9_]*)[\"']");
+    for (std::sregex_iterator it(js.begin(), js.end(), lookup), end; it != end; ++it)
+      if (const std::string role = role_of((*it)[1]); !role.empty() && !names.count(role)) names[role] = (*it)[1];
+    std::map<std::string, std::vector<double>> values;
+    const size_t at = js.find("uniformValues");
+    const std::string block = at == std::string::npos ? std::string() : block_after(js, at);
+    static const std::regex key("([A-Za-z_][A-Za-z0-9_]*)\\s*:");
+    for (std::sregex_iterator it(block.begin(), block.end(), key), end; it != end; ++it)
+      if (const std::string role = role_of((*it)[1]); !role.empty() && !values.count(role))
+        values[role] = numbers_after(block, static_cast<size_t>(it->position() + it->length()));
+    for (auto& u : p_["uniforms"]) {
+      const std::string role = u.value("role", "");
+      const std::string builtin_name = u["names"][0];
+      std::string name = names.count(role) ? names[role] : name_like_ambient(names, role);
+      if (!names.count(role) && !name.empty()) assumed(role + " is named " + name + " (hw2.js does not look it up: the students' TODO)");
+      if (name.empty()) name = builtin_name;
+      json spellings = json::array({name});
+      if (const auto plain = plain_spelling(name); !plain.empty()) spellings.push_back(plain);
+      u["names"] = spellings;
+      const size_t components = u["value"].size();
+      if (values.count(role) && values[role].size() >= components) {
+        u["value"] = std::vector<double>(values[role].begin(), values[role].begin() + static_cast<long>(components));
+        found(role + " = " + u["value"].dump() + " as " + name + where);
+      } else {
+        assumed(role + " = " + u["value"].dump() + " (the built-in course's; not in uniformValues" + where + ")");
+      }
+    }
+  }
+
+  void camera(const std::string& js, const std::string& where) {
+    auto& cam = p_["camera"];
+    const size_t persp = js.find("perspective(");
+    std::smatch m;
+    static const std::regex degrees("([0-9]+(?:\\.[0-9]+)?)\\s*\\*\\s*Math\\.PI\\s*/\\s*180|toRadian\\s*\\(\\s*([0-9]+(?:\\.[0-9]+)?)");
+    const std::string call = persp == std::string::npos ? std::string() : js.substr(persp, js.find(';', persp) - persp);
+    if (!call.empty() && std::regex_search(call, m, degrees)) {
+      cam["fovYDegrees"] = std::stod(m[1].matched ? m[1].str() : m[2].str());
+      const auto nums = numbers_after(call, 0);
+      if (nums.size() >= 2) cam["near"] = nums[nums.size() - 2], cam["far"] = nums.back();
+      found("camera: fovY " + number_text(cam["fovYDegrees"]) + " degrees, near " + number_text(cam["near"]) + ", far " +
+            number_text(cam["far"]) + where);
+    } else {
+      assumed("camera: fovY " + number_text(cam["fovYDegrees"]) + " degrees, near 0.1, far 100 (no perspective(... * Math.PI / 180 ...) " +
+              "call" + where + ")");
+    }
+    static const std::regex translate("translat\\w*\\s*\\([^;]*?\\[\\s*(-?[0-9.]+)\\s*,\\s*(-?[0-9.]+)\\s*,\\s*(-?[0-9.]+)\\s*\\]");
+    if (std::regex_search(js, m, translate)) {
+      cam["meshTranslation"] = {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
+      found("the mesh stands at " + cam["meshTranslation"].dump() + where);
+    } else {
+      assumed("the mesh stands at " + cam["meshTranslation"].dump() + " (no translate(..., [x, y, z]) call" + where + ")");
+    }
+  }
+
+  void frames(const std::string& js, const std::string& where) {
+    auto& f = p_["frames"];
+    std::smatch m;
+    if (std::regex_search(js, m, std::regex("([0-9]+(?:\\.[0-9]+)?)\\s*\\*\\s*TIME\\b"))) {
+      f["degreesPerFrame"] = std::stod(m[1]);
+      found("the mesh turns " + m[1].str() + " degrees per second, a frame a second" + where);
+    } else {
+      assumed("the mesh turns " + number_text(f["degreesPerFrame"]) + " degrees a frame (no N * TIME" + where + ")");
+    }
+    if (std::regex_search(js, m, std::regex("MAX_OUT_FRAMES\\s*=\\s*([0-9]+)")) && std::stoi(m[1]) > 0) {
+      f["count"] = std::stoi(m[1]);
+      found("frames: " + m[1].str() + " (MAX_OUT_FRAMES" + where + ")");
+    } else {
+      assumed("frames: " + std::to_string(f["count"].get<int>()) + " (MAX_OUT_FRAMES is 0 or absent; the notebook's 3 x 3 grid)");
+    }
+    static const std::regex templated("`([A-Za-z0-9_.-]*)\\$\\{\\s*IMAGE_PREFIX\\s*\\}([A-Za-z0-9_.-]*)\\$\\{[^}]*\\}\\.png`");
+    static const std::regex joined("[\"']([A-Za-z0-9_.-]*)[\"']\\s*\\+\\s*IMAGE_PREFIX\\s*\\+\\s*[\"']([A-Za-z0-9_.-]*)[\"']\\s*\\+\\s*[^+]+\\+\\s*[\"']\\.png[\"']");
+    if (std::regex_search(js, m, templated) || std::regex_search(js, m, joined)) {
+      f["fileName"] = m[1].str() + "{prefix}" + m[2].str() + "{k}";
+      found("frames are saved as " + f["fileName"].get<std::string>() + ".png" + where);
+    } else {
+      assumed("frames are saved as " + f["fileName"].get<std::string>() + ".png (no download name around IMAGE_PREFIX" + where + ")");
+    }
+  }
+
+  void exponent() {
+    const auto frag = folder_.named("phong_frag.js");
+    std::smatch m;
+    const std::string text = frag ? folder_.text(*frag) : std::string();
+    static const std::regex alpha("float\\s+([A-Za-z_]*(?:[Aa]lpha|[Ss]hin[A-Za-z]*|[Ee]xponent)[A-Za-z0-9_]*)\\s*=\\s*([0-9]*\\.?[0-9]+)\\s*;");
+    if (frag && std::regex_search(text, m, alpha)) {
+      exponent_ = std::stod(m[2]);
+      p_["specularExponent"] = {{"value", exponent_}, {"variable", m[1].str()}};
+      found("the starter's exponent: " + m[1].str() + " = " + m[2].str() + " (" + frag->generic_string() + ")");
+    } else {
+      exponent_ = p_["specularExponent"]["value"];
+      assumed("the starter's exponent: " + number_text(exponent_) + " (no float ...Alpha = N; in a phong_frag.js)");
+    }
+  }
+
+  static std::string mesh_name(const std::string& stem) {
+    std::string out;
+    for (const char c : lower(stem)) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
+    return out.substr(0, 32);
+  }
+
+  Status meshes() {
+    json list = json::array();
+    for (const auto& f : folder_.files) {
+      if (lower(f.extension().string()) != ".obj") continue;
+      const std::string name = mesh_name(f.stem().string());
+      if (std::any_of(list.begin(), list.end(), [&](const json& m) { return m["name"] == name; })) continue;
+      list.push_back({{"name", name}, {"file", path_from(o_.folder / f, o_.output)}});
+      found("mesh " + name + " (" + f.generic_string() + ")");
+    }
+    if (list.empty()) {
+      assumed("the built-in course's meshes (no .obj file in the folder)");
+      return Ok{};
+    }
+    p_["meshes"] = list;
+    const std::string wanted = !o_.default_mesh.empty() ? o_.default_mesh : default_mesh_;
+    const bool known = std::any_of(list.begin(), list.end(), [&](const json& m) { return m["name"] == wanted; });
+    if (!o_.default_mesh.empty() && !known)
+      return make_error(ErrorCode::invalid_argument, "--default-mesh " + o_.default_mesh + " is not one of the folder's meshes");
+    p_["defaultMesh"] = known ? wanted : list[0]["name"].get<std::string>();
+    if (!known) assumed("default mesh " + p_["defaultMesh"].get<std::string>() + " (the first .obj file)");
+    return Ok{};
+  }
+
+  json& preset(const std::string& name) {
+    for (auto& p : p_["presets"])
+      if (p["name"] == name) return p;
+    p_["presets"].push_back({{"name", name}, {"description", name}});
+    return p_["presets"].back();
+  }
+
+  // A pair from `dir` as a preset's files, when both are there.
+  bool pair_as_preset(const fs::path& dir, const std::string& stem, const std::string& preset_name, const std::string& what) {
+    const Folder f(dir);
+    const auto vert = f.named(stem + "_vert.js"), frag = f.named(stem + "_frag.js");
+    if (!vert || !frag) return false;
+    auto& p = preset(preset_name);
+    p["vertex"] = path_from(dir / *vert, o_.output);
+    p["fragment"] = path_from(dir / *frag, o_.output);
+    found(what + ": " + (dir / *vert).generic_string() + ", " + frag->filename().string());
+    return true;
+  }
+
+  void presets() {
+    if (!pair_as_preset(o_.folder, "starter", "starter", "the starter as distributed"))
+      assumed("the starter: the built-in course's starter_*.js (no starter_vert.js and starter_frag.js in the folder)");
+    const std::string builtin_why = o_.solution ? " (not in the solution folder)" : " (no --solution)";
+    if (!o_.solution || !pair_as_preset(*o_.solution, "starter", "normals", "the normals reference (the solution's starter)"))
+      assumed("the normals reference: the built-in course's" + builtin_why);
+    if (!o_.solution || !pair_as_preset(*o_.solution, "diffuse", "diffuse", "the diffuse reference"))
+      assumed("the diffuse reference: the built-in course's" + builtin_why);
+    if (!o_.solution || !pair_as_preset(*o_.solution, "phong", "specular", "the specular reference (the solution's phong)"))
+      specular_from_builtin(builtin_why);
+    keep_applicable_mistakes();
+  }
+
+  // The built-in specular reference with the folder's exponent: written beside the profile when
+  // the exponent differs.
+  void specular_from_builtin(const std::string& why) {
+    const auto& builtin = builtin_course();
+    const double value = builtin.specular_exponent();
+    if (exponent_ == value) {
+      assumed("the specular reference: the built-in course's" + why);
+      return;
+    }
+    const Preset& s = *builtin.preset("specular");
+    std::string text = s.fragment.text;
+    const std::string from = "float " + builtin.starter_constants.front().variable + " = " + number_text(value) + ";";
+    const std::string variable = p_["specularExponent"]["variable"];
+    text.replace(text.find(from), from.size(), "float " + variable + " = " + number_text(exponent_) + ";");
+    text = std::regex_replace(text, std::regex("\\b" + builtin.starter_constants.front().variable + "\\b"), variable);
+    const std::string file = fs::path(o_.output).stem().string() + ".specular_frag.js";
+    out_.derived_files.emplace_back(file, text);
+    preset("specular")["fragment"] = file;
+    assumed("the specular reference: the built-in course's with " + variable + " = " + number_text(exponent_) + ", written to " + file + why);
+  }
+
+  // The reference text a checkpoint's mistakes are edits of, as the import chose it.
+  std::optional<std::string> stage_text(const std::string& preset_name, const std::string& stage) {
+    for (const auto& p : p_["presets"]) {
+      if (p["name"] != preset_name) continue;
+      const std::string file = p[stage];
+      if (file.starts_with("builtin:")) {
+        const auto& b = *builtin_course().preset(preset_name);
+        return stage == "vertex" ? b.vertex.text : b.fragment.text;
+      }
+      // Lexically: the profile's folder need not exist yet.
+      const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : (fs::absolute(o_.output).parent_path() / file).lexically_normal();
+      for (const auto& [name, text] : out_.derived_files)
+        if (name == file) return text;
+      return read_text(path);
+    }
+    return std::nullopt;
+  }
+
+  void keep_applicable_mistakes() {
+    const std::string builtin_exponent = number_text(builtin_course().specular_exponent());
+    for (auto& c : p_["checkpoints"]) {
+      if (!c.contains("mistakes")) continue;
+      json kept = json::array();
+      for (auto m : c["mistakes"]) {
+        bool applies = true;
+        if (!m.contains("edits")) m["edits"] = json::array();  // a whole preset: it applies
+        for (auto& e : m["edits"]) {
+          // The handout's-exponent edit follows the course's exponent and its variable's name.
+          const std::string builtin_variable = builtin_course().starter_constants.front().variable;
+          const std::string variable = p_["specularExponent"]["variable"];
+          for (const char* side : {"find", "replace"})
+            e[side] = std::regex_replace(e[side].get<std::string>(), std::regex("\\b" + builtin_variable + "\\b"), variable);
+          std::string find = e["find"];
+          if (find.find("= " + builtin_exponent + ";") != std::string::npos) {
+            e["find"] = std::regex_replace(find, std::regex("= " + builtin_exponent + ";"), "= " + number_text(exponent_) + ";");
+            m["message"] = std::regex_replace(m["message"].get<std::string>(), std::regex("uses " + builtin_exponent), "uses " + number_text(exponent_));
+          }
+          const auto text = stage_text(c["reference"], e["stage"]);
+          applies = applies && text && text->find(e["find"].get<std::string>()) != std::string::npos &&
+                    e["find"].get<std::string>() != e["replace"].get<std::string>();
+        }
+        if (m["edits"].empty()) m.erase("edits");
+        if (applies) kept.push_back(m);
+        else assumed("mistake " + c["name"].get<std::string>() + "/" + m["id"].get<std::string>() + " left out: its edit does not apply to the chosen reference");
+      }
+      c["mistakes"] = kept;
+    }
+  }
+
+  const ImportOptions& o_;
+  Folder folder_;
+  json p_;
+  ImportedCourse out_;
+  std::string default_mesh_;
+  double exponent_ = 0;
+};
+
+}  // namespace
+
+Expected<ImportedCourse> import_course(const ImportOptions& options) {
+  if (!fs::is_directory(options.folder)) return make_error(ErrorCode::invalid_argument, "'" + options.folder.string() + "' is not a folder");
+  if (options.solution && !fs::is_directory(*options.solution))
+    return make_error(ErrorCode::invalid_argument, "--solution '" + options.solution->string() + "' is not a folder");
+  return Importer(options).run();
+}
+
+}  // namespace shadelab::course

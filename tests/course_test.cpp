@@ -1,0 +1,335 @@
+// Course profiles (server/course/): the built-in one round-trips; a bad file is refused with the
+// field and the reason; `shadelab course import` reads a homework folder written for this test
+// (never the course's own page code); and a profile with another canvas and light renders and
+// grades with them end to end, on the command line and through the server.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include <nlohmann/json.hpp>
+
+#include "core/base64.h"
+#include "course/course_reader.h"
+#include "support/files.h"
+#include "support/http_fixture.h"
+#include "support/test_support.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace shadelab;
+
+namespace {
+
+const fs::path kSource = SHADELAB_SOURCE_DIR;
+
+struct CliRun {
+  int status;
+  std::string output;
+};
+CliRun run_cli(const std::string& args) {
+  FILE* pipe = popen((std::string(SHADELAB_CLI) + " " + args + " 2>&1").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+void write(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+std::vector<std::uint8_t> bytes_of(const std::string& s) { return {s.begin(), s.end()}; }
+
+json builtin_json() { return json::parse(testkit::read_text(kSource / "courses/cs148-summer2022.json")); }
+
+// The error a profile gets when read as if it sat in courses/ (its files the repository's).
+std::string error_of(const json& profile) {
+  auto read = course::read_course(profile.dump(), course::embedded_source("courses"), "test.json");
+  return read ? std::string("(read)") : read.error().message;
+}
+
+}  // namespace
+
+TEST(CourseProfileTest, TheBuiltInProfileRoundTripsFieldForField) {
+  const course::Course& c = course::builtin_course();
+  const json written = course::to_json(c);
+  auto again = course::read_course(written.dump(), course::embedded_source("courses"), "round trip");
+  ASSERT_TRUE(again) << again.error().message;
+  EXPECT_EQ(course::to_json(*again), written);
+  EXPECT_EQ(written, builtin_json()) << "the file holds exactly what the reader keeps";
+  // Portable: every file named where it was read, so the JSON loads from any folder.
+  const json portable = course::to_json(c, true);
+  EXPECT_EQ(portable["meshes"][0]["file"], "builtin:assets/bunny.obj");
+  auto elsewhere = course::read_course(portable.dump(), course::folder_source("/nonexistent"), "portable");
+  ASSERT_TRUE(elsewhere) << elsewhere.error().message;
+  EXPECT_EQ(course::to_json(*elsewhere), portable);
+}
+
+TEST(CourseProfileTest, ABadProfileIsRefusedWithTheFieldAndTheReason) {
+  const auto with = [](const std::function<void(json&)>& change) {
+    json j = builtin_json();
+    change(j);
+    return error_of(j);
+  };
+  EXPECT_EQ(error_of(builtin_json()), "(read)");
+  EXPECT_EQ(with([](json& j) { j["canvas"]["width"] = "wide"; }), "test.json: canvas.width: expected an integer in [1, 16384]");
+  EXPECT_EQ(with([](json& j) { j["canvas"].erase("height"); }), "test.json: canvas.height: missing (required)");
+  EXPECT_EQ(with([](json& j) { j["msaaa"] = 4; }), "test.json: msaaa: unknown field");
+  EXPECT_EQ(with([](json& j) { j["format"] = "shadelab-course-2"; }),
+            "test.json: format: expected \"shadelab-course-1\" (this ShadeLab reads that version of the format)");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["prefix"] = "spec ular"; }),
+            "test.json: checkpoints[2].prefix: expected letters, digits, '_' or '-' (at most 64)");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["mistakes"][3]["edits"][0]["find"] = "if (NdotL >= 0.0) {"; }),
+            "test.json: checkpoints[2].mistakes[3].edits[0].find: 'if (NdotL >= 0.0) {' is not in specular_frag.js (the reference 'specular')");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["reference"] = "gouraud"; }), "test.json: checkpoints[0].reference: 'gouraud' is not one of presets");
+  EXPECT_EQ(with([](json& j) { j["meshes"][1]["file"] = "../assets/dragon.obj"; }),
+            "test.json: meshes[1].file: no file 'assets/dragon.obj' is compiled into this binary");
+  EXPECT_EQ(with([](json& j) { j["uniforms"][3]["value"] = {16, 8}; }), "test.json: uniforms[3].value: a vec3 takes 3 numbers");
+  EXPECT_EQ(with([](json& j) { j["specularExponent"]["value"] = 0.6; }),
+            "test.json: presets[4].fragment: specular_frag.js sets specularAlpha otherwise than specularExponent.value (your shader's "
+            "exponent is 6.0; the course's starter uses 0.6 (specularAlpha))");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][1]["mistakes"][0] = {{"id", "nothing"}, {"message", "x"}, {"preset", "diffuse"}}; }),
+            "test.json: checkpoints[1].mistakes[0]: the mistake's shaders are the reference's own: it would match every correct submission");
+  EXPECT_EQ(with([](json& j) { j["aliases"][0]["checkpoint"] = "phong"; }), "test.json: aliases[0].checkpoint: 'phong' is not one of checkpoints");
+  EXPECT_EQ(error_of(json::array()), "test.json: a course profile must be a JSON object");
+  // Through the command line: the same words, and the failure's code.
+  const fs::path bad = fs::temp_directory_path() / ("shadelab_course_bad_" + std::to_string(::getpid()) + ".json");
+  json j = builtin_json();
+  j["frames"]["fileName"] = "frames_{k}";
+  for (auto& m : j["meshes"]) m["file"] = "builtin:" + m["file"].get<std::string>().substr(3);
+  for (auto& p : j["presets"])
+    for (const char* stage : {"vertex", "fragment"}) p[stage] = "builtin:" + p[stage].get<std::string>().substr(3);
+  write(bad, j.dump());
+  const auto run = run_cli("course check " + bad.string());
+  fs::remove(bad);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_NE(run.output.find("frames.fileName: expected a name holding {prefix} and {k}"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("[course_invalid]"), std::string::npos) << run.output;
+}
+
+// Debian's JSON Schema validator on `profile` against docs/course-profile.schema.json: "" when it
+// validates, else its first complaint.
+std::string schema_error(const json& profile) {
+  const fs::path file = fs::temp_directory_path() / ("shadelab_schema_" + std::to_string(::getpid()) + ".json");
+  write(file, profile.dump());
+  const std::string script =
+      "import json, sys, jsonschema\n"
+      "schema = json.load(open(sys.argv[1]))\n"
+      "errors = sorted(jsonschema.Draft202012Validator(schema).iter_errors(json.load(open(sys.argv[2]))), key=lambda e: list(e.path))\n"
+      "print('/'.join(str(p) for p in errors[0].path) + ': ' + errors[0].message if errors else '', end='')\n";
+  write(file.string() + ".py", script);
+  FILE* pipe = popen(("/usr/bin/python3 " + file.string() + ".py " + (kSource / "docs/course-profile.schema.json").string() + " " +
+                      file.string() + " 2>&1").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  pclose(pipe);
+  fs::remove(file);
+  fs::remove(file.string() + ".py");
+  return out;
+}
+
+// The schema and the reader agree: each accepts the built-in profile, and each refuses what the
+// other refuses among the mistakes a schema can see. (What only the reader can check, that a file
+// exists, that a mistake's edit is in its reference, that a name is not used twice, is the
+// reader's alone: ABadProfileIsRefusedWithTheFieldAndTheReason.)
+TEST(CourseProfileTest, TheSchemaAndTheReaderAgree) {
+  EXPECT_EQ(schema_error(builtin_json()), "");
+  EXPECT_EQ(error_of(builtin_json()), "(read)");
+  const std::vector<std::pair<std::string, std::function<void(json&)>>> bad = {
+      {"canvas/width", [](json& j) { j["canvas"]["width"] = "wide"; }},
+      {"canvas", [](json& j) { j["canvas"].erase("height"); }},
+      {"", [](json& j) { j["msaaa"] = 4; }},
+      {"format", [](json& j) { j["format"] = "shadelab-course-2"; }},
+      {"checkpoints/2/prefix", [](json& j) { j["checkpoints"][2]["prefix"] = "spec ular"; }},
+      {"meshes/0/file", [](json& j) { j["meshes"][0]["file"] = "../assets/bunny.ply"; }},
+      {"frames/fileName", [](json& j) { j["frames"]["fileName"] = "frame_{k}"; }},
+      {"uniforms/0/role", [](json& j) { j["uniforms"][0]["role"] = "rim"; }},
+      {"checkpoints/1/mistakes/0", [](json& j) { j["checkpoints"][1]["mistakes"][0]["preset"] = "specular"; }},
+      {"notebook/images/0/file", [](json& j) { j["notebook"]["images"][0]["file"] = "/etc/passwd.png"; }},
+      {"camera/fovYDegrees", [](json& j) { j["camera"]["fovYDegrees"] = 180; }},
+  };
+  for (const auto& [where, change] : bad) {
+    json j = builtin_json();
+    change(j);
+    const std::string by_schema = schema_error(j), by_reader = error_of(j);
+    EXPECT_TRUE(by_schema.starts_with(where + ":")) << where << ": the schema says '" << by_schema << "'";
+    EXPECT_NE(by_reader, "(read)") << where << ": the reader took it";
+  }
+}
+
+// A homework folder laid out as the course's (index.html, src/hw2.js, src/shaders/, assets/), its
+// facts all different from the built-in course's, written for this test; a solution folder with
+// the TA's solved normals pair.
+class CourseImportTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = new fs::path(fs::temp_directory_path() / ("shadelab_course_import_" + std::to_string(::getpid())));
+    const fs::path hw = *root_ / "HW2";
+    write(hw / "index.html", "<!doctype html>\n<title>Graphics 101 HW2</title>\n<canvas id=\"glcanvas\" width=400px height=300px></canvas>\n"
+                             "<script type=\"module\" src=\"src/hw2.js\"></script>\n");
+    write(hw / "src/hw2.js", R"(const IMAGE_PREFIX = "normals";
+const MAX_OUT_FRAMES = 0;
+const OBJ_FILE = "assets/teapot.obj";
+const uniformValues = {
+    uAmbient: [0.1, 0.0, 0.2, 1.0],
+    uDiffuse: new Float32Array([0.3, 0.6, 0.9, 1.0]),
+    uSpecular: [1.0, 1.0, 1.0, 1.0],
+    uLightPos: [-8.0, 10.0, 6.0],
+    uLightCol: [0.9, 0.9, 0.8, 1.0],
+};
+function setUp(gl, program) {
+    const ambient = gl.getUniformLocation(program, "uAmbient");
+    const light = gl.getUniformLocation(program, "uLightPos");
+    const lightColour = gl.getUniformLocation(program, "uLightCol");
+    // TODO: diffuse and specular
+}
+function draw(gl) {
+    const gl_ = gl.getContext ? gl.getContext("webgl2") : gl;
+    const proj = perspective(60 * Math.PI / 180, width / height, 0.5, 50.0);
+    const world = translate(identity(), [0.0, -1.5, -6.0]);
+    const spin = rotateY(30 * TIME);
+    const name = `hw2_${IMAGE_PREFIX}_${frame}.png`;
+}
+)");
+    const auto preset = [](const std::string& name, const std::string& stage) {
+      return testkit::read_text(kSource / "shaders" / (name + "_" + stage + ".js"));
+    };
+    write(hw / "src/shaders/starter_vert.js", preset("starter", "vert"));
+    write(hw / "src/shaders/starter_frag.js", preset("starter", "frag"));
+    write(hw / "src/shaders/phong_vert.js", preset("specular", "vert"));
+    std::string phong = preset("specular", "frag");
+    phong.replace(phong.find("float specularAlpha = 6.0;"), 26, "float specularAlpha = 10.0;");
+    write(hw / "src/shaders/phong_frag.js", phong);
+    fs::create_directories(hw / "assets");
+    fs::copy_file(kSource / "assets/teapot.obj", hw / "assets/teapot.obj");
+    write(*root_ / "solution/starter_vert.js", preset("normals", "vert"));
+    write(*root_ / "solution/starter_frag.js", preset("normals", "frag"));
+    imported_ = run_cli("course import " + hw.string() + " --solution " + (*root_ / "solution").string() + " --id graphics101 -o " +
+                        (*root_ / "profile/course.json").string());
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*root_);
+    delete root_;
+  }
+  void SetUp() override { ASSERT_EQ(imported_.status, 0) << imported_.output; }
+  static json profile() { return json::parse(testkit::read_text(*root_ / "profile/course.json")); }
+  static fs::path* root_;
+  static CliRun imported_;
+};
+fs::path* CourseImportTest::root_ = nullptr;
+CliRun CourseImportTest::imported_;
+
+TEST_F(CourseImportTest, TheFolderGivesTheCanvasValuesCameraMeshesAndExponent) {
+  const json p = profile();
+  EXPECT_EQ(p["id"], "graphics101");
+  EXPECT_EQ(p["canvas"], json({{"width", 400}, {"height", 300}}));
+  const auto uniform = [&](const std::string& role) {
+    for (const auto& u : p["uniforms"])
+      if (u["role"] == role) return u;
+    return json();
+  };
+  EXPECT_EQ(uniform("ambient")["names"], json({"uAmbient", "ambient"})) << "both spellings the handout allows";
+  EXPECT_EQ(uniform("ambient")["value"], json({0.1, 0.0, 0.2, 1.0}));
+  EXPECT_EQ(uniform("diffuse")["names"], json({"uDiffuse", "diffuse"})) << "the students' TODO, named as the page names ambient";
+  EXPECT_EQ(uniform("diffuse")["value"], json({0.3, 0.6, 0.9, 1.0}));
+  EXPECT_EQ(uniform("lightPosition")["value"], json({-8.0, 10.0, 6.0}));
+  EXPECT_EQ(uniform("lightColor")["names"], json({"uLightCol", "lightCol"}));
+  EXPECT_EQ(p["camera"]["fovYDegrees"], 60.0);
+  EXPECT_EQ(p["camera"]["near"], 0.5);
+  EXPECT_EQ(p["camera"]["far"], 50.0);
+  EXPECT_EQ(p["camera"]["meshTranslation"], json({0.0, -1.5, -6.0}));
+  EXPECT_EQ(p["frames"]["degreesPerFrame"], 30.0);
+  EXPECT_EQ(p["frames"]["fileName"], "hw2_{prefix}_{k}");
+  EXPECT_EQ(p["specularExponent"]["value"], 10.0);
+  EXPECT_EQ(p["meshes"], json::array({{{"name", "teapot"}, {"file", "../HW2/assets/teapot.obj"}}}));
+  EXPECT_EQ(p["defaultMesh"], "teapot");
+  const std::string& out = imported_.output;
+  for (const char* said : {"found: canvas 400 x 300 (index.html)", "found: the starter's exponent: specularAlpha = 10.0 (src/shaders/phong_frag.js)",
+                           "assumed: frames: 9 (MAX_OUT_FRAMES is 0 or absent; the notebook's 3 x 3 grid)",
+                           "assumed: diffuse is named uDiffuse (hw2.js does not look it up: the students' TODO)",
+                           "found: the normals reference (the solution's starter)",
+                           "assumed: the specular reference: the built-in course's with specularAlpha = 10.0, written to course.specular_frag.js"})
+    EXPECT_NE(out.find(said), std::string::npos) << said << "\n" << out;
+  EXPECT_EQ(out.find("mistake specular/flat_shading left out"), std::string::npos) << "the built-in reference's edits apply";
+  EXPECT_TRUE(fs::exists(*root_ / "profile/course.specular_frag.js"));
+  // The handout's-exponent mistake follows the folder's exponent.
+  const json& handout = p["checkpoints"][2]["mistakes"][5];
+  ASSERT_EQ(handout["id"], "handout_exponent");
+  EXPECT_EQ(handout["edits"][0]["find"], "float specularAlpha = 10.0;");
+  EXPECT_NE(handout["message"].get<std::string>().find("the course's starter uses 10.0"), std::string::npos) << handout;
+}
+
+TEST_F(CourseImportTest, TheImportedCourseRendersAndGradesWithItsCanvasAndLightOnTheCommandLine) {
+  const std::string course = " --course " + (*root_ / "profile/course.json").string();
+  auto run = run_cli("render --preset diffuse --grid " + (*root_ / "g.png").string() + course);
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto grid = testkit::decode(bytes_of(testkit::read_text(*root_ / "g.png")));
+  EXPECT_EQ(grid.width, 3 * 400);
+  EXPECT_EQ(grid.height, 3 * 300);
+  // The same pair under the built-in course's light and colours is another image: the profile's
+  // values reached the render.
+  run = run_cli("render --preset diffuse --size 400x300 --grid " + (*root_ / "b.png").string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(testkit::read_text(*root_ / "g.png"), testkit::read_text(*root_ / "b.png"));
+  // The folder's own phong with its exponent passes its specular checkpoint; the built-in 6.0 does not, and says why.
+  const fs::path hw = *root_ / "HW2/src/shaders";
+  const std::string result = " -o " + (*root_ / "grade.json").string();
+  run = run_cli("grade --vert " + (hw / "phong_vert.js").string() + " --frag " + (hw / "phong_frag.js").string() + course +
+                " --reference specular --size 100x75" + result);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(json::parse(testkit::read_text(*root_ / "grade.json"))["pass"]) << run.output;
+  run = run_cli("grade --vert " + (kSource / "shaders/specular_vert.js").string() + " --frag " + (kSource / "shaders/specular_frag.js").string() +
+                course + " --reference specular --size 100x75");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("your shader's exponent is 6.0; the course's starter uses 10.0"), std::string::npos) << run.output;
+}
+
+TEST_F(CourseImportTest, AServerHoldingBothCoursesRendersAndGradesEachByItsId) {
+  auto imported = course::load_course_file(*root_ / "profile/course.json");
+  ASSERT_TRUE(imported) << imported.error().message;
+  auto config = testkit::test_config();
+  auto set = course::CourseSet::of({std::shared_ptr<const course::Course>(&course::builtin_course(), [](const course::Course*) {}),
+                                    std::make_shared<course::Course>(std::move(*imported))});
+  ASSERT_TRUE(set);
+  config.courses = std::move(*set);
+  testkit::RunningService server(std::move(config));
+  ASSERT_TRUE(server.ok()) << server.failure;
+  auto listed = server.client().Get("/api/courses");
+  ASSERT_TRUE(listed);
+  EXPECT_EQ(json::parse(listed->body)["courses"].size(), 2u);
+  auto page = server.client().Get("/api/course?course=graphics101");
+  ASSERT_TRUE(page);
+  ASSERT_EQ(page->status, 200) << page->body;
+  EXPECT_EQ(json::parse(page->body)["canvas"]["width"], 400);
+  auto r = server.client().Post("/api/render", json{{"course", "graphics101"}, {"preset", "specular"}, {"output", "json"}}.dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const json rendered = json::parse(r->body);
+  EXPECT_EQ(rendered["images"]["frames"][0]["name"], "hw2_specular_0.png");
+  const auto frame = testkit::decode(bytes_of(*base64_decode(rendered["images"]["frames"][0]["data"].get<std::string>())));
+  EXPECT_EQ(frame.width, 400);
+  EXPECT_EQ(frame.height, 300);
+  const fs::path hw = *root_ / "HW2/src/shaders";
+  auto g = server.client().Post("/api/grade",
+                                json{{"course", "graphics101"}, {"reference", "specular"}, {"vertex", testkit::read_text(hw / "phong_vert.js")},
+                                     {"fragment", testkit::read_text(hw / "phong_frag.js")}, {"width", 100}, {"height", 75}}
+                                    .dump(),
+                                "application/json");
+  ASSERT_TRUE(g);
+  ASSERT_EQ(g->status, 200) << g->body;
+  EXPECT_TRUE(json::parse(g->body)["pass"]) << g->body;
+  auto unknown = server.client().Post("/api/render", json{{"course", "cs999"}, {"preset", "specular"}}.dump(), "application/json");
+  ASSERT_TRUE(unknown);
+  EXPECT_EQ(unknown->status, 404);
+  EXPECT_NE(unknown->body.find("unknown_course"), std::string::npos);
+  EXPECT_NE(unknown->body.find("it holds: cs148-summer2022, graphics101"), std::string::npos) << unknown->body;
+}
