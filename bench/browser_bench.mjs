@@ -1,8 +1,8 @@
 // The canonical job as a course runs it in the browser: headless Chromium (Debian's, through
 // playwright-core, SwiftShader's WebGL2 with 4x MSAA, as tests/browser) on ShadeLab's copy of the
-// homework page. Each job compiles a fragment shader the browser has not seen, draws the 9 frames
-// of the bunny at 640 x 480 and saves each with toBlob as the student's page does, then composes
-// the 3x3 grid on a canvas and encodes it as a PNG.
+// homework page. Each job compiles a fragment shader the browser has not seen, draws the course's
+// frames of its bunny on its canvas (9 frames, 512 x 512) and saves each with toBlob as the
+// student's page does, then composes the 3x3 grid on a canvas and encodes it as a PNG.
 //
 //   node bench/browser_bench.mjs [JOBS=20]     (needs tests/browser's npm install and build/shadelab)
 import { readFileSync } from "node:fs";
@@ -22,7 +22,7 @@ const server = await startServer();
 const browser = await startBrowser();
 try {
   const { page } = await openPage(browser, server.base);
-  await page.evaluate(async () => window.shadelab.chooseMesh("bunny"));
+  await page.evaluate(async () => window.shadelab.chooseMesh(window.shadelab.course.defaultMesh));
   // The page's spinning preview draws a frame at every animation frame; left on, each toBlob
   // waits behind those draws (measured: 0.1-1.1 s a frame). The job alone is what is compared.
   await page.evaluate(() => {
@@ -35,15 +35,17 @@ try {
     const fresh = fragment.replace(entry, `${entry}\n    if (gl_FragCoord.x < -${base + i + 2}.0) discard;`);
     const t0 = performance.now();
     const bytes = await page.evaluate(async ([vs, fs]) => {
-      const { view } = window.shadelab;
-      [view.canvas.width, view.canvas.height] = [640, 480];
+      const { view, course } = window.shadelab;
+      const { width: w, height: h } = course.canvas;
+      const n = course.frames.count;
+      [view.canvas.width, view.canvas.height] = [w, h];
       const errors = view.setProgram({ glsl: vs, lineOffset: 0 }, { glsl: fs, lineOffset: 0 });
       if (errors.length) throw new Error(JSON.stringify(errors));
       const frames = [];
-      for (let k = 0; k < 9; ++k) frames.push(await view.captureFrame(20 * k));
-      const grid = new OffscreenCanvas(1920, 1440);
+      for (let k = 0; k < n; ++k) frames.push(await view.captureFrame(course.frames.degreesPerFrame * k));
+      const grid = new OffscreenCanvas(3 * w, Math.ceil(n / 3) * h);
       const ctx = grid.getContext("2d");
-      for (let k = 0; k < 9; ++k) ctx.drawImage(await createImageBitmap(frames[k]), (k % 3) * 640, Math.floor(k / 3) * 480);
+      for (let k = 0; k < n; ++k) ctx.drawImage(await createImageBitmap(frames[k]), (k % 3) * w, Math.floor(k / 3) * h);
       return (await grid.convertToBlob({ type: "image/png" })).size;
     }, [vertex, fresh]);
     if (bytes < 1000) throw new Error("the grid PNG is empty");

@@ -18,6 +18,7 @@
 #include "course/course_reader.h"
 #include "support/files.h"
 #include "support/http_fixture.h"
+#include "support/openapi_check.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -306,10 +307,18 @@ TEST_F(CourseImportTest, AServerHoldingBothCoursesRendersAndGradesEachByItsId) {
   auto listed = server.client().Get("/api/courses");
   ASSERT_TRUE(listed);
   EXPECT_EQ(json::parse(listed->body)["courses"].size(), 2u);
+  testkit::expect_conforms(*listed, "/api/courses", "get");
   auto page = server.client().Get("/api/course?course=graphics101");
   ASSERT_TRUE(page);
   ASSERT_EQ(page->status, 200) << page->body;
   EXPECT_EQ(json::parse(page->body)["canvas"]["width"], 400);
+  testkit::expect_conforms(*page, "/api/course", "get");
+  auto builtin = server.client().Get("/api/course");
+  ASSERT_TRUE(builtin);
+  EXPECT_EQ(json::parse(builtin->body)["id"], course::builtin_course().id) << "the first course is the default";
+  auto mesh = server.client().Get("/api/meshes/teapot.obj?course=graphics101");
+  ASSERT_TRUE(mesh);
+  EXPECT_EQ(mesh->body, testkit::read_text(*root_ / "HW2/assets/teapot.obj")) << "the course's own file, as its page loads it";
   auto r = server.client().Post("/api/render", json{{"course", "graphics101"}, {"preset", "specular"}, {"output", "json"}}.dump(), "application/json");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
@@ -331,5 +340,6 @@ TEST_F(CourseImportTest, AServerHoldingBothCoursesRendersAndGradesEachByItsId) {
   ASSERT_TRUE(unknown);
   EXPECT_EQ(unknown->status, 404);
   EXPECT_NE(unknown->body.find("unknown_course"), std::string::npos);
+  testkit::expect_conforms(*unknown, "/api/render", "post");
   EXPECT_NE(unknown->body.find("it holds: cs148-summer2022, graphics101"), std::string::npos) << unknown->body;
 }

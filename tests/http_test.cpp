@@ -126,7 +126,7 @@ TEST_F(HttpTest, GetRenderOfAPresetIsCacheableWithAStrongEtag) {
 }
 
 TEST_F(HttpTest, FramesOutputIsAZipWithTheHandoutsNames) {
-  auto r = post_json("/api/render", {{"preset", "gouraud"}, {"width", 32}, {"height", 24}, {"output", "frames"}, {"prefix", "smooth"}});
+  auto r = post_json("/api/render", {{"preset", "normals"}, {"width", 32}, {"height", 24}, {"output", "frames"}, {"prefix", "smooth"}});
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
   EXPECT_EQ(r->get_header_value("Content-Type"), "application/zip");

@@ -13,8 +13,9 @@ namespace shadelab::grade {
 
 class ReferenceCache {
  public:
-  // The specular checkpoint at 640 x 480 keeps 12 sets of 9 frames (the reference and five
-  // mistakes, under two lights): ~133 MB. The default holds one checkpoint's sets at that size.
+  // The built-in course's specular checkpoint at its 512 x 512 keeps 14 sets of 9 frames (the
+  // reference and six mistakes, under two lights): ~132 MB. The default holds one checkpoint's
+  // sets at that size.
   static constexpr std::size_t kDefaultBytes = 160u << 20;
 
   explicit ReferenceCache(std::size_t max_bytes = kDefaultBytes) : sets_(std::numeric_limits<std::size_t>::max(), max_bytes) {}

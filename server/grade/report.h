@@ -6,7 +6,7 @@
 //
 // | JSON field   | meaning                                                                    |
 // |--------------|----------------------------------------------------------------------------|
-// | checkpoint   | smooth, gouraud, diffuse, specular, or custom                              |
+// | checkpoint   | the course's checkpoint (normals, diffuse, specular), or custom            |
 // | pass, score, maxScore | the verdict; score is maxScore or 0                               |
 // | diagnosis    | the recognised mistake's id, "swapped_channels", "nan", an error code, ""  |
 // | messages[]   | what the student reads, most important first                               |

@@ -17,7 +17,7 @@ struct CameraModel {
   ImagePlane plane;
   Projection type = Projection::perspective;
   double clip_start = 0.1, clip_end = 100;
-  int width = 640, height = 480;
+  int width = 1920, height = 1080;  // Blender's default output
 
   glm::dvec3 location() const { return glm::dvec3(world_from_camera[3]); }
   double horizontal_fov_degrees() const;  // 0 for orthographic

@@ -107,7 +107,7 @@ def request_seeds():
         "render_preset.json": (0, {"preset": "specular", "mesh": "bunny", "frames": 3, "width": 64, "height": 48}),
         "render_sources.json": (0, {"vertex": vert.decode(), "fragment": frag.decode(), "mesh": "teapot", "msaa": 0,
                                      "uniforms": {"uLightDirection": [1, 1, 1], "uShininess": 20}, "output": "frames", "format": "exr"}),
-        "compile.json": (1, {"preset": "gouraud"}),
+        "compile.json": (1, {"preset": "normals"}),
         "grade_checkpoint.json": (2, {"preset": "diffuse", "reference": "diffuse", "threshold": 4, "maxFailingFraction": 0.01,
                                        "spatialTolerance": 1, "maxScore": 10, "format": "gradescope"}),
         "grade_custom.json": (2, {"vertex": vert.decode(), "fragment": frag.decode(), "referenceVertex": vert.decode(),

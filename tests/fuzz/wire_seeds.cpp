@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = argv[1];
   std::filesystem::create_directories(dir);
   write(dir, "job_render", worker::to_message(job_for(R"({"preset":"specular","frames":2,"width":32,"height":24})", worker::JobKind::render)));
-  write(dir, "job_compile", worker::to_message(job_for(R"({"preset":"gouraud","uniforms":{"uShininess":8}})", worker::JobKind::compile)));
+  write(dir, "job_compile", worker::to_message(job_for(R"({"preset":"normals","uniforms":{"uShininess":8}})", worker::JobKind::compile)));
   write(dir, "job_render_mesh",
         worker::to_message(job_for(R"({"preset":"diffuse","mesh":"m0123456789abcdef","output":"json"})", worker::JobKind::render),
                            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));

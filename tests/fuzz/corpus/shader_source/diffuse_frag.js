@@ -8,13 +8,13 @@ uniform vec4 uDiffuseColor;
 uniform vec3 uLightPosition;
 uniform vec4 uLightColor;
 
-in vec4 vPosition;
-in vec4 vNormal;
+in vec3 vPosition;
+in vec3 vNormal;
 out vec4 fragColor;
 
 void main(void) {
-    vec3 N = normalize(vNormal.xyz);
-    vec3 L = normalize(uLightPosition - vPosition.xyz);
+    vec3 N = normalize(vNormal);
+    vec3 L = normalize(uLightPosition - vPosition);
 
     // D = k_d * max(0, N.L)
     vec4 diffuse = uDiffuseColor * uLightColor * max(0.0, dot(N, L));

@@ -10,13 +10,14 @@ uniform mat4 uMeshToWorldMatrix;
 uniform mat4 uMeshToWorldRotMatrix;
 uniform mat4 uWorldToClipSpaceMatrix;
 
-out vec4 vPosition;
-out vec4 vNormal;
+out vec3 vPosition;
+out vec3 vNormal;
 
 void main(void) {
-    // world space normal and position; world space is camera space here (the eye is at the origin)
-    vNormal = uMeshToWorldRotMatrix * aVertexNormal;
-    vPosition = uMeshToWorldMatrix * aVertexPosition;
-    gl_Position = uWorldToClipSpaceMatrix * vPosition;
+    // world-space position and normal; world space is camera space (the eye is at the origin)
+    vPosition = (uMeshToWorldMatrix * aVertexPosition).xyz;
+    vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;
+
+    gl_Position = uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition;
 }
 `;

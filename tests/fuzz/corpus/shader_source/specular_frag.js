@@ -9,15 +9,15 @@ uniform vec4 uSpecularColor;
 uniform vec3 uLightPosition;
 uniform vec4 uLightColor;
 
-in vec4 vPosition;
-in vec4 vNormal;
+in vec3 vPosition;
+in vec3 vNormal;
 out vec4 fragColor;
 
 void main(void) {
-    float specularAlpha = 0.6;
+    float specularAlpha = 6.0;
 
-    vec3 N = normalize(vNormal.xyz);
-    vec3 L = normalize(uLightPosition - vPosition.xyz);
+    vec3 N = normalize(vNormal);
+    vec3 L = normalize(uLightPosition - vPosition);
     float NdotL = dot(N, L);
 
     // D = k_d * max(0, N.L)
@@ -25,7 +25,7 @@ void main(void) {
 
     // S = k_s * max(0, V.R)^alpha, only on the lit side; the eye is at the origin
     if (NdotL > 0.0) {
-        vec3 V = normalize(-vPosition.xyz);
+        vec3 V = normalize(-vPosition);
         vec3 R = reflect(-L, N);
         color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);
     }

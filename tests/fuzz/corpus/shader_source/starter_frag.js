@@ -7,8 +7,7 @@ flat in vec4 vNormal;
 out vec4 fragColor;
 
 void main(void) {
-    // compute color from interpolated normal
-    vec4 vColor = vec4(normalize(abs(vNormal.xyz)), 1.0);
-    fragColor = vColor;
+    // the normal's direction as a colour
+    fragColor = vec4(normalize(abs(vNormal.xyz)), 1.0);
 }
 `;

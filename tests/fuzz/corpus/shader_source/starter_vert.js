@@ -13,13 +13,9 @@ uniform mat4 uWorldToClipSpaceMatrix;
 flat out vec4 vNormal;
 
 void main(void) {
-    // set vertex normal (to be passed to fragment shader)
+    // the world-space normal, one per triangle (flat: its last corner's)
     vNormal = uMeshToWorldRotMatrix * aVertexNormal;
 
-    // set world space vertex position
-    vec4 vPosition = uMeshToWorldMatrix * aVertexPosition;
-
-    // openGL reads the clipping space coordinates from gl_Position
-    gl_Position = uWorldToClipSpaceMatrix * vPosition;
+    gl_Position = uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition;
 }
 `;
