@@ -43,6 +43,11 @@ struct PoolConfig {
   size_t memory_limit_bytes = size_t{2} << 30;  // per worker
   int cpu_limit_seconds = 600;                  // RLIMIT_CPU backstop over a worker's whole life
   int llvmpipe_threads = 1;                     // LP_NUM_THREADS per worker
+  // A worker is ready when it holds its EGL context; its warm-up (the built-in course's default job:
+  // the mesh parsed and uploaded, the shared vertex shader's JIT, ~250 ms on the 2-core machine at
+  // 512 x 512) is drawn right after, and a job that arrives meanwhile waits for it. True: the
+  // pool's first workers warm up before they say they are ready (start to /readyz then includes it).
+  bool warm_before_ready = false;
   bool force_software = false;
   std::string executable = "/proc/self/exe";    // started as `<executable> worker`
   // Workers forked from here when set (started before the process's first thread; serve does);
