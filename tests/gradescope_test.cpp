@@ -165,6 +165,28 @@ TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
   }
 }
 
+// A TA's own course profile shipped in the zip (source/course/course.json): run_autograder grades
+// by it. Here the built-in profile with the normals checkpoint renamed in words and worth 2 points.
+TEST_F(GradescopeTest, TheCourseInTheZipIsTheOneGradedBy) {
+  FILE* pipe = popen((std::string(SHADELAB_CLI) + " course show").c_str(), "r");
+  std::string text;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) text.append(buf, n);
+  ASSERT_EQ(pclose(pipe), 0);
+  json profile = json::parse(text);
+  profile["checkpoints"][0]["title"] = "Part 1: normals";
+  profile["checkpoints"][0]["points"] = 2;
+  fs::create_directories(root_ / "source/course");
+  std::ofstream(root_ / "source/course/course.json") << profile.dump(2);
+  submit_preset("starter_vert.js", "normals", "vert");
+  submit_preset("starter_frag.js", "normals", "frag");
+  const json results = autograde();
+  const json* part1 = test_named(results, "Part 1: normals");
+  ASSERT_TRUE(part1) << results.dump(2);
+  EXPECT_EQ((*part1)["max_score"], 2.0);
+  EXPECT_EQ((*part1)["score"], 2.0);
+}
+
 // Without the grader installed the student still gets a results.json that says so.
 TEST_F(GradescopeTest, AMissingGraderStillWritesResults) {
   const std::string command = "AUTOGRADER_ROOT='" + root_.string() + "' SHADELAB_BIN=/nonexistent/shadelab bash '" +

@@ -41,6 +41,8 @@ test_packages=(
   poppler-utils
   # the course profile's JSON Schema checked against the reader (tests/course_test.cpp), by Debian's python
   python3 python3-jsonschema
+  # gradescope/make_autograder_zip.sh adds a TA's course folder to the zip
+  zip
   # the fuzz targets (tools/fuzz.sh): clang with libFuzzer and its sanitizers
   clang libfuzzer-14-dev libclang-rt-14-dev
 )
