@@ -18,25 +18,14 @@
 #include <nlohmann/json.hpp>
 
 #include "support/files.h"
+#include "support/run_command.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-struct Run {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-Run run_cli(const std::string& args) {
-  const std::string cmd = std::string(SHADELAB_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using Run = shadelab::testkit::CommandRun;
+Run run_cli(const std::string& args) { return shadelab::testkit::run_shadelab(args); }
 
 class CliTest : public ::testing::Test {
  protected:
@@ -209,12 +198,8 @@ TEST_F(CliTest, ServeOnAPortAnotherServerHoldsExitsWithAMessage) {
   ASSERT_EQ(::listen(other, 8), 0);
   ::getsockname(other, reinterpret_cast<sockaddr*>(&addr), &len);
   // `timeout` turns a server that wrongly starts into a failure here, not a hung test.
-  const std::string cmd = "timeout 20 " + std::string(SHADELAB_CLI) + " serve --workers 1 --port " + std::to_string(ntohs(addr.sin_port)) + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  ::Run run{0, ""};
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) run.output.append(buf, n);
-  run.status = pclose(pipe);
+  const auto run = shadelab::testkit::run_command("timeout 20 " + std::string(SHADELAB_CLI) + " serve --workers 1 --port " +
+                                                  std::to_string(ntohs(addr.sin_port)));
   ::close(other);
   EXPECT_NE(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("already in use"), std::string::npos) << run.output;

@@ -19,6 +19,7 @@
 #include "support/files.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
+#include "support/run_command.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -29,18 +30,8 @@ namespace {
 
 const fs::path kSource = SHADELAB_SOURCE_DIR;
 
-struct CliRun {
-  int status;
-  std::string output;
-};
-CliRun run_cli(const std::string& args) {
-  FILE* pipe = popen((std::string(SHADELAB_CLI) + " " + args + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using CliRun = testkit::CommandRun;
+CliRun run_cli(const std::string& args) { return testkit::run_shadelab(args); }
 
 void write(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
@@ -127,12 +118,9 @@ std::string schema_error(const json& profile) {
       "errors = sorted(jsonschema.Draft202012Validator(schema).iter_errors(json.load(open(sys.argv[2]))), key=lambda e: list(e.path))\n"
       "print('/'.join(str(p) for p in errors[0].path) + ': ' + errors[0].message if errors else '', end='')\n";
   write(file.string() + ".py", script);
-  FILE* pipe = popen(("/usr/bin/python3 " + file.string() + ".py " + (kSource / "docs/course-profile.schema.json").string() + " " +
-                      file.string() + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  pclose(pipe);
+  const std::string out = testkit::run_command("/usr/bin/python3 " + file.string() + ".py " +
+                                              (kSource / "docs/course-profile.schema.json").string() + " " + file.string())
+                              .output;
   fs::remove(file);
   fs::remove(file.string() + ".py");
   return out;

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/files.h"
+#include "support/run_command.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -168,12 +169,9 @@ TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
 // A TA's own course profile shipped in the zip (source/course/course.json): run_autograder grades
 // by it. Here the built-in profile with the normals checkpoint renamed in words and worth 2 points.
 TEST_F(GradescopeTest, TheCourseInTheZipIsTheOneGradedBy) {
-  FILE* pipe = popen((std::string(SHADELAB_CLI) + " course show").c_str(), "r");
-  std::string text;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) text.append(buf, n);
-  ASSERT_EQ(pclose(pipe), 0);
-  json profile = json::parse(text);
+  const auto shown = shadelab::testkit::run_shadelab("course show");
+  ASSERT_EQ(shown.status, 0) << shown.output;
+  json profile = json::parse(shown.output);
   profile["checkpoints"][0]["title"] = "Part 1: normals";
   profile["checkpoints"][0]["points"] = 2;
   fs::create_directories(root_ / "source/course");

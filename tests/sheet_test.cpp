@@ -19,6 +19,7 @@
 #include "support/files.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
+#include "support/run_command.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -28,18 +29,8 @@ namespace {
 
 const fs::path kSource = SHADELAB_SOURCE_DIR;
 
-struct Ran {
-  int status;
-  std::string output;
-};
-Ran run(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using Ran = testkit::CommandRun;
+Ran run(const std::string& command) { return testkit::run_command(command); }
 
 // A small PNG of one colour, for an image a student hands in.
 std::string solid_png(int width, int height, std::uint8_t red) {

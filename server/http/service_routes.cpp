@@ -1,6 +1,7 @@
 // What the service says about itself: its courses and their presets, the OpenAPI document,
 // health and metrics.
 #include "core/embedded_files.h"
+#include "course/course_reader.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -19,39 +20,18 @@ json presets_json(const course::Course& c) {
   return out;
 }
 
-// A course as the page and API clients see it: every fact they need to draw and name frames as
-// the course's page does, and nothing of where the server keeps its files.
+// A course as the page and API clients see it: the profile's own JSON (docs/course-profile.md),
+// with what only the server uses swapped out: meshes as the URLs the page loads them from,
+// presets with their sources instead of file paths, and no catalogue of mistakes.
 json course_json(const course::Course& c) {
-  json uniforms = json::array();
-  for (const auto& u : c.uniforms) uniforms.push_back({{"names", u.names}, {"type", u.type}, {"value", u.value}, {"role", u.role}});
+  json out = course::to_json(c);
   json meshes = json::array();
   for (const auto& m : c.meshes) meshes.push_back({{"name", m.name}, {"url", "/api/meshes/" + m.name + ".obj?course=" + c.id}});
-  json checkpoints = json::array();
-  for (const auto& k : c.checkpoints) {
-    json probes = json::array();
-    for (const auto& p : k.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
-    checkpoints.push_back({{"name", k.name}, {"title", k.title}, {"prefix", k.prefix}, {"reference", k.reference}, {"code", k.code},
-                           {"points", k.points}, {"frames", c.frame_file(k.prefix, 0, "png")}, {"probes", probes}});
-  }
-  json aliases = json::array();
-  for (const auto& a : c.aliases) aliases.push_back({{"name", a.name}, {"checkpoint", a.checkpoint}, {"note", a.note}});
-  const auto& cam = c.camera;
-  return {{"id", c.id},
-          {"title", c.title},
-          {"canvas", {{"width", c.width}, {"height", c.height}}},
-          {"frames", {{"count", c.frames}, {"degreesPerFrame", c.degrees_per_frame}, {"fileName", c.frame_name}}},
-          {"msaa", c.msaa},
-          {"camera", {{"fovYDegrees", cam.fov_y_degrees}, {"near", cam.near}, {"far", cam.far},
-                      {"meshTranslation", {cam.mesh_translation.x, cam.mesh_translation.y, cam.mesh_translation.z}}}},
-          {"uniforms", uniforms},
-          {"specularExponent", c.specular_exponent()},
-          {"meshes", meshes},
-          {"defaultMesh", c.default_mesh},
-          {"presets", presets_json(c)},
-          {"defaultPreset", c.default_preset},
-          {"checkpoints", checkpoints},
-          {"defaultCheckpoint", c.default_checkpoint},
-          {"aliases", aliases}};
+  out["meshes"] = std::move(meshes);
+  out["presets"] = presets_json(c);
+  for (auto& checkpoint : out["checkpoints"]) checkpoint.erase("mistakes");
+  out.erase("format");
+  return out;
 }
 
 void openapi(const httplib::Request&, httplib::Response& res) {
