@@ -6,6 +6,7 @@
 
 #include "core/lru_cache.h"
 #include "grade/reference_cache.h"
+#include "grade/starter_constants.h"
 #include "scene/mesh.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
@@ -363,4 +364,30 @@ TEST(LruCacheTest, EvictsTheLeastRecentlyUsedWithinItsCountAndBytes) {
   cache.insert("f", 7, 10);
   EXPECT_EQ(cache.find("huge"), nullptr) << "and out at the next insert";
   EXPECT_EQ(cache.bytes(), 10u);
+}
+
+// The starter's constants read from a student's source: the first assignment of a literal, not a
+// comment, not another name, not a comparison; linear on a stranger's bytes.
+TEST(StarterConstantsTest, TheFirstAssignedLiteralIsReadAndNothingElse) {
+  const std::vector<grade::StarterConstant> exponent = {{"specularAlpha", "exponent", 6.0}};
+  const auto found = [&](const std::string& source) {
+    const auto f = grade::changed_starter_constants(exponent, source);
+    return f.empty() ? std::string() : f[0].message;
+  };
+  EXPECT_EQ(found("float specularAlpha = 20.0;"), "your shader's exponent is 20.0; the course's starter uses 6.0 (specularAlpha)");
+  EXPECT_EQ(found("  float specularAlpha=0.6 ;\n"), "your shader's exponent is 0.6; the course's starter uses 6.0 (specularAlpha)");
+  EXPECT_EQ(found("float specularAlpha = 6.0;"), "") << "the starter's own value";
+  EXPECT_EQ(found("float specularAlpha = 6.;"), "") << "the same number, written otherwise";
+  EXPECT_EQ(found("// float specularAlpha = 0.6;\nfloat specularAlpha = 6.0;"), "") << "a comment is not the code";
+  EXPECT_EQ(found("/* specularAlpha = 1.0; */ float specularAlpha = 6.0;"), "");
+  EXPECT_EQ(found("float mySpecularAlpha2 = 1.0; float specularAlphaX = 2.0;"), "") << "other names";
+  EXPECT_EQ(found("if (specularAlpha == 1.0) {}"), "") << "a comparison";
+  EXPECT_EQ(found("float specularAlpha = uShininess;"), "") << "not a literal";
+  EXPECT_EQ(found("float specularAlpha = 1e1;"), "your shader's exponent is 1e1; the course's starter uses 6.0 (specularAlpha)");
+  // A megabyte of spaces between the name and its value, and a megabyte of the name: no recursion.
+  EXPECT_EQ(found("float specularAlpha" + std::string(1 << 20, ' ') + "= 2.0;"),
+            "your shader's exponent is 2.0; the course's starter uses 6.0 (specularAlpha)");
+  std::string names;
+  for (int i = 0; i < 60000; ++i) names += "specularAlpha ";
+  EXPECT_EQ(found(names), "");
 }
