@@ -9,5 +9,7 @@ cd "$source_dir"
 bash tools/setup.sh build
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHADELAB_BUILD_TESTS=OFF -DSHADELAB_BUILD_BENCH=OFF
 cmake --build build -j "$(nproc)"
+# The course's references and known mistakes, rendered once now, not once per student.
+bash gradescope/warm_references.sh
 # Gradescope runs /autograder/run_autograder; keep it executable whatever the zip kept.
 install -m 755 run_autograder "${AUTOGRADER_ROOT:-/autograder}/run_autograder"

@@ -2,6 +2,9 @@
 // students make, each recognised with the right message.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
+
 #include <nlohmann/json.hpp>
 
 #include "core/lru_cache.h"
@@ -364,6 +367,51 @@ TEST(LruCacheTest, EvictsTheLeastRecentlyUsedWithinItsCountAndBytes) {
   cache.insert("f", 7, 10);
   EXPECT_EQ(cache.find("huge"), nullptr) << "and out at the next insert";
   EXPECT_EQ(cache.bytes(), 10u);
+}
+
+// A wrong shader the catalogue does not hold (another exponent) is graded once: its diagnosis (the
+// catalogue's renders, the comparisons) is the grader's work, outside the student's deadline, so
+// it is never stopped and retried; and it costs about what a passing grade costs once the
+// catalogue is in the worker's memory. Timed against a passing grade in the same test, pair by
+// pair on one worker, so whatever else the machine does weighs on both.
+TEST(GraderTimeTest, AnUncataloguedMistakeIsGradedOnceInAboutTheTimeOfAPass) {
+  auto config = testkit::test_config();
+  config.pool.workers = 1;
+  testkit::RunningService server(std::move(config));
+  ASSERT_TRUE(server.ok()) << server.failure;
+  const auto grade = [&](json job) {
+    job["reference"] = "specular";
+    const auto start = std::chrono::steady_clock::now();
+    auto r = server.client().Post("/api/grade", job.dump(), "application/json");
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no response");
+    return std::pair{r ? json::parse(r->body) : json::object(), ms};
+  };
+  // A fresh shader each time (Mesa caches programs by their IR): a never-taken branch on a new constant.
+  const auto fresh = [](json job, int serial) {
+    std::string f = job["fragment"];
+    const std::string entry = "void main(void) {";
+    f.insert(f.find(entry) + entry.size(), "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;");
+    job["fragment"] = f;
+    return job;
+  };
+  grade(student_pair("0.6", true));  // the catalogue into the worker's memory (a catalogued mistake)
+  std::vector<double> passing, failing;
+  for (int i = 0; i < 3; ++i) {
+    const auto [pass, pass_ms] = grade(fresh(student_pair("6.0", true), 2 * i + 1));
+    EXPECT_TRUE(pass["pass"]) << pass.dump();
+    passing.push_back(pass_ms);
+    const auto [wrong, wrong_ms] = grade(fresh(student_pair("20.0", true), 2 * i + 2));
+    EXPECT_FALSE(wrong["pass"]);
+    EXPECT_EQ(wrong["attempts"], 1) << wrong.dump();
+    for (const auto& m : wrong["messages"]) EXPECT_EQ(m.get<std::string>().find("stopped"), std::string::npos) << m;
+    EXPECT_EQ(wrong["diagnosis"], "changed_specularAlpha");
+    EXPECT_EQ(wrong["graderWork"]["rendered"], 0) << "the catalogue came from memory: " << wrong["graderWork"];
+    failing.push_back(wrong_ms);
+  }
+  std::sort(passing.begin(), passing.end());
+  std::sort(failing.begin(), failing.end());
+  EXPECT_LE(failing[1], 2 * passing[1]) << "median failing " << failing[1] << " ms, passing " << passing[1] << " ms";
 }
 
 // The starter's constants read from a student's source: the first assignment of a literal, not a

@@ -185,6 +185,29 @@ TEST_F(GradescopeTest, TheCourseInTheZipIsTheOneGradedBy) {
   EXPECT_EQ((*part1)["score"], 2.0);
 }
 
+// setup.sh renders the course's references and known mistakes once (warm_references.sh, run here
+// as setup.sh runs it): grading a student then reads them, and renders only the student's frames,
+// even for a failing submission whose diagnosis needs the whole catalogue.
+TEST_F(GradescopeTest, AStoreWarmedAtSetupMeansNoReferenceIsRenderedPerStudent) {
+  const std::string env = "AUTOGRADER_ROOT='" + root_.string() + "' SHADELAB_BIN='" + SHADELAB_CLI + "' ";
+  const auto warmed = shadelab::testkit::run_command(env + "bash '" + (kSource / "gradescope/warm_references.sh").string() + "'");
+  ASSERT_EQ(warmed.status, 0) << warmed.output;
+  submit_preset("starter_vert.js", "normals", "vert");
+  submit_preset("starter_frag.js", "normals", "frag");
+  submit_preset("phong_vert.js", "diffuse", "vert");  // the specular stage not done: fails, diagnosed
+  submit_preset("phong_frag.js", "diffuse", "frag");
+  const json results = autograde();
+  ASSERT_EQ(results["tests"].size(), 2u) << results.dump(2);
+  for (const auto& t : results["tests"]) {
+    const json& work = t["extra_data"]["graderWork"];
+    EXPECT_EQ(work["rendered"], 0) << t["name"] << ": " << work;
+    EXPECT_GT(work["fromStore"].get<int>(), 0) << t["name"] << ": " << work;
+  }
+  const json* specular = test_named(results, title("specular"));
+  ASSERT_TRUE(specular);
+  EXPECT_NE((*specular)["output"].get<std::string>().find("specular highlight missing"), std::string::npos) << "diagnosed from the store";
+}
+
 // Without the grader installed the student still gets a results.json that says so.
 TEST_F(GradescopeTest, AMissingGraderStillWritesResults) {
   const std::string command = "AUTOGRADER_ROOT='" + root_.string() + "' SHADELAB_BIN=/nonexistent/shadelab bash '" +

@@ -66,6 +66,9 @@ json graded_test(const AutogradeFlags& f, const course::Checkpoint& checkpoint, 
                  const Graded& graded) {
   json test = grade::to_gradescope(graded.result.report, graded.seconds)["tests"][0];
   test["name"] = checkpoint.title + " (" + pair.first.string() + ", " + pair.second.filename().string() + ")";
+  // For the course staff: what the grader rendered for this test, and what it read from its store.
+  const auto& w = graded.result.report.grader_work;
+  test["extra_data"] = {{"graderWork", {{"rendered", w.rendered}, {"fromStore", w.from_store}, {"fromMemory", w.from_memory}}}};
   const std::string& png = graded.result.heatmap_png;
   if (graded.result.report.pass || png.empty() || f.heatmaps.empty()) return test;
   const fs::path file = fs::path(f.heatmaps) / (checkpoint.name + ".png");
@@ -153,6 +156,7 @@ Command add_autograde_command(CLI::App& app) {
   cmd->add_option("-o,--results", f->results, "Where results.json goes")->required();
   cmd->add_option("--heatmaps", f->heatmaps, "Folder for the heat map of each failed checkpoint (<checkpoint>.png)");
   add_course_option(cmd, f->grade.course);
+  add_cache_option(cmd, f->grade.cache_dir);
   cmd->add_option("--max-score", f->max_score, "Points per checkpoint (default: the course's points for each)");
   cmd->add_option("--timeout-ms", f->grade.timeout_ms, "Compile and render deadline per checkpoint, in CPU time")->capture_default_str();
   cmd->add_flag("--software", f->grade.software, "Force Mesa's software renderer");

@@ -3,12 +3,14 @@
 //   shadelab course import HW2_DIR [--solution DIR] -o course.json   a homework folder to a profile
 //   shadelab course check course.json                                 load it and say what it holds
 //   shadelab course show [--course FILE]                              print a profile, files portable
+//   shadelab course warm [--course FILE] [--cache-dir DIR]            render its references into the store
 #include <filesystem>
 #include <iostream>
 
 #include "cli/commands.h"
 #include "cli/course_option.h"
 #include "cli/file_output.h"
+#include "cli/grade_runner.h"
 #include "course/course_import.h"
 #include "course/course_reader.h"
 
@@ -21,6 +23,7 @@ namespace fs = std::filesystem;
 struct CourseFlags {
   course::ImportOptions import;
   std::string solution, check, show;
+  GradeFlags warm;
 };
 
 // What a loaded profile holds, in a few lines.
@@ -52,6 +55,28 @@ int run_import(CourseFlags& f) {
   return 0;
 }
 
+// Every checkpoint's reference and catalogue, rendered once into the store: a grade of its first
+// known mistake (a failing submission, so the whole catalogue is rendered), or of the reference
+// itself when it has none.
+int run_warm(const GradeFlags& flags) {
+  if (flags.cache_dir.empty()) return fail(make_error(ErrorCode::invalid_argument, "course warm needs a --cache-dir to keep the renders in"));
+  auto loaded = load_course(flags.course);
+  if (!loaded) return fail(loaded.error());
+  const course::Course& c = **loaded;
+  worker::WorkerPool pool(pool_config(flags, static_cast<int>(c.checkpoints.size())));
+  for (const auto& checkpoint : c.checkpoints) {
+    GradeFlags f = flags;
+    f.reference = checkpoint.name;
+    const course::Preset& reference = *c.preset(checkpoint.reference);
+    const grade::Mistake* first = checkpoint.mistakes.empty() ? nullptr : &checkpoint.mistakes.front().shaders;
+    auto graded = grade_pair(pool, c, f, first ? first->vertex : reference.vertex, first ? first->fragment : reference.fragment);
+    if (!graded) return fail(graded.error());
+    const auto& w = graded->result.report.grader_work;
+    std::cout << checkpoint.name << ": " << w.rendered << " sets rendered, " << w.from_store << " already in " << flags.cache_dir << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command add_course_command(CLI::App& app) {
@@ -71,8 +96,13 @@ Command add_course_command(CLI::App& app) {
   check->add_option("file", f->check, "The profile")->required();
   auto* show = cmd->add_subcommand("show", "Print a profile as JSON, its files named where they were read (builtin:... or absolute)");
   add_course_option(show, f->show);
-  return [f, import, check, show] {
+  auto* warm = cmd->add_subcommand("warm", "Render a course's references and known mistakes once into the reference store");
+  add_course_option(warm, f->warm.course);
+  add_cache_option(warm, f->warm.cache_dir);
+  warm->add_flag("--software", f->warm.software, "Force Mesa's software renderer");
+  return [f, import, check, show, warm] {
     if (*import) return run_import(*f);
+    if (*warm) return run_warm(f->warm);
     if (*check || *show) {
       auto loaded = load_course(*check ? f->check : f->show);
       if (!loaded) return fail(loaded.error());

@@ -107,6 +107,7 @@ Command add_grade_command(CLI::App& app) {
   std::string checkpoints;
   for (const auto& n : builtin.checkpoint_names()) checkpoints += (checkpoints.empty() ? "" : ", ") + n;
   add_course_option(cmd, f->course);
+  add_cache_option(cmd, f->cache_dir);
   cmd->add_option("--reference", f->reference, "A checkpoint of the course (built-in: " + checkpoints + "; default " +
                                                     builtin.default_checkpoint + ")");
   cmd->add_option("--mesh", f->mesh, "A mesh of the course (default: its default mesh, " + builtin.default_mesh + ")");

@@ -35,7 +35,7 @@ struct GradeJob {
   std::string payload;
 };
 
-Expected<GradeJob> grade_job(const course::Course& c, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
+Expected<GradeJob> grade_job(const course::Course& c, const GradeFlags& f, shader::ShaderFile vert, shader::ShaderFile frag) {
   grade::GradeOptions options;
   options.compare.threshold = f.threshold;
   options.compare.spatial_tolerance = f.spatial;
@@ -47,8 +47,9 @@ Expected<GradeJob> grade_job(const course::Course& c, const GradeFlags& f, const
   worker::Job& job = out.job;
   if (auto s = worker::attach_course_mesh(c, f.mesh.empty() ? c.default_mesh : f.mesh, job, out.payload); !s) return s.take_error();
   job.grade = c.grade_spec(*checkpoint->checkpoint, options);
+  job.grade.reference_store = f.cache_dir;
   auto& r = job.request;
-  r = c.render_request({vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
+  r = c.render_request(std::move(vert), std::move(frag));
   if (!f.size.empty())
     if (auto s = parse_size(f.size, "--size", r.width, r.height); !s) return s.take_error();
   r.frames = f.frames.value_or(r.frames);
@@ -62,16 +63,28 @@ Expected<GradeJob> grade_job(const course::Course& c, const GradeFlags& f, const
 
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, const fs::path& vert,
                            const fs::path& frag) {
+  return grade_pair(pool, c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
+}
+
+Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, shader::ShaderFile vert,
+                            shader::ShaderFile frag) {
   const std::string checkpoint = f.reference.empty() ? c.default_checkpoint : f.reference;
   const auto ungradable = [&](Error e) -> Expected<Graded> {
     if (!info(e.code).submission_caused) return e;
     return Graded{{grade::failed_submission(e, checkpoint, f.max_score), {}}, 0};
   };
-  auto job = grade_job(c, f, vert, frag);
+  auto job = grade_job(c, f, std::move(vert), std::move(frag));
   if (!job) return ungradable(job.take_error());
   auto answered = worker::grade(pool, job->job, std::move(job->payload));
   if (!answered) return ungradable(answered.take_error());
   return Graded{std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
+}
+
+void add_cache_option(CLI::App* command, std::string& folder) {
+  command->add_option("--cache-dir", folder,
+                      "Where reference renders are kept across runs, rendered once per course and checkpoint "
+                      "(also SHADELAB_CACHE_DIR; an empty string keeps them in memory only)")
+      ->capture_default_str();
 }
 
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {

@@ -7,8 +7,11 @@
 #include <string>
 #include <utility>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/environment.h"
 #include "course/course.h"
+#include "grade/reference_store.h"
 #include "worker/client.h"
 
 namespace shadelab::cli {
@@ -16,6 +19,7 @@ namespace shadelab::cli {
 // Unset facts (empty, nullopt) are the course's: its default checkpoint and mesh, its canvas and frames.
 struct GradeFlags {
   std::string course;
+  std::string cache_dir = grade::default_reference_folder();  // the reference store; empty: memory only
   std::string vert, frag, submissions, reference, mesh, out = "grades", output, heatmap;
   std::string format = "json", size;
   std::optional<int> frames;
@@ -44,6 +48,12 @@ struct Graded {
 };
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
                  const std::filesystem::path& frag);
+// The same for shaders already in memory.
+Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, shader::ShaderFile vert,
+                            shader::ShaderFile frag);
+
+// --cache-dir on a grading command: where reference renders are kept across runs.
+void add_cache_option(CLI::App* command, std::string& folder);
 
 // Workers for `jobs` submissions: one per core at most, the cores shared among them.
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs);

@@ -7,6 +7,7 @@
 #include "cli/course_option.h"
 #include "cli/environment.h"
 #include "course/course_reader.h"
+#include "grade/reference_store.h"
 #include "http/service.h"
 #include "worker/fork_server.h"
 #include "worker/worker_main.h"
@@ -148,6 +149,11 @@ Command add_serve_command(CLI::App& app) {
   add_tenant_flags(cmd, config->tenants);
   add_shared_store_flags(cmd, config->shared_store);
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
+  config->reference_store = grade::default_reference_folder();
+  cmd->add_option("--cache-dir", config->reference_store,
+                  "Where workers keep reference renders across restarts, rendered once per course and checkpoint "
+                  "(also SHADELAB_CACHE_DIR; an empty string keeps them in memory only)")
+      ->capture_default_str();
 
   return [=] {
     if (!course_files->empty()) {

@@ -69,7 +69,7 @@ int run_sheet(const SheetFlags& f) {
     input.scenes.push_back(std::move(*scene));
   }
   worker::WorkerPool pool(pool_config(f.grade, 16));  // every section's jobs queued at once (sheet/assemble.h)
-  auto assembled = sheet::assemble(pool, **loaded, std::move(input));
+  auto assembled = sheet::assemble(pool, **loaded, std::move(input), f.grade.cache_dir);
   if (!assembled) return fail(assembled.error());
   const sheet::Sheet& sheet = *assembled;
   auto pdf = sheet::render_pdf(sheet);
@@ -96,6 +96,7 @@ Command add_sheet_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--title", f->title, "The sheet's title (e.g. the student's name)")->capture_default_str();
   add_course_option(cmd, f->grade.course);
+  add_cache_option(cmd, f->grade.cache_dir);
   cmd->add_flag("--software", f->grade.software, "Force Mesa's software renderer");
   return [f] { return run_sheet(*f); };
 }

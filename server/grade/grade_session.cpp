@@ -17,12 +17,45 @@ Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, c
   return out;
 }
 
+const std::string& GradeSession::mesh_address(const std::string& mesh_key, const scene::Mesh& mesh) {
+  if (address_of_ != mesh_key) {
+    address_ = scene::content_address(mesh);
+    address_of_ = mesh_key;
+  }
+  return address_;
+}
+
 Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
   std::string key = render::pixel_identity(r) + '\0' + mesh_key;
-  if (const SharedFrames* hit = references_.find(key)) return *hit;
+  if (const SharedFrames* hit = references_.find(key)) {
+    ++work_.from_memory;
+    return *hit;
+  }
+  const std::string stored = store_ ? store_->key(r, mesh_address(mesh_key, m)) : std::string();
+  if (store_)
+    if (auto loaded = store_->load(stored)) {
+      ++work_.from_store;
+      references_.insert(std::move(key), *loaded);
+      return std::move(*loaded);
+    }
   auto frames = frames_of(r, m);
-  if (frames) references_.insert(std::move(key), *frames);
+  if (!frames) return frames;
+  ++work_.rendered;
+  if (store_) store_->save(stored, *frames);
+  references_.insert(std::move(key), *frames);
   return frames;
+}
+
+std::vector<RenderedMistake> GradeSession::rendered_mistakes(const GradeSpec& spec, const render::RenderRequest& reference,
+                                                             const scene::Mesh& mesh, const std::string& mesh_key) {
+  std::vector<RenderedMistake> mistakes;
+  for (const auto& mk : spec.mistakes) {
+    render::RenderRequest mr = reference;
+    mr.vertex = mk.vertex;
+    mr.fragment = mk.fragment;
+    if (auto frames = render_under_lights(spec, mr, mesh, &mesh_key)) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
+  }
+  return mistakes;
 }
 
 // `base` with the light moved, for the names the program declares as the page does (vec3); a name
@@ -98,6 +131,12 @@ Expected<std::vector<image::NonFinite>> GradeSession::float_check(const GradeSpe
 Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
                                           const std::string& mesh_key, const PhaseHooks& phases) {
   const auto ungradable = [&](const Error& e) { return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}}; };
+  work_ = {};
+  store_.reset();
+  if (!spec.reference_store.empty()) {
+    const auto& info = renderer_.context_info();
+    store_.emplace(spec.reference_store, info.gl_renderer + " | " + info.gl_version);
+  }
   auto compiled = renderer_.compile(submission.vertex, submission.fragment);
   if (!compiled) return ungradable(compiled.error());
   if (auto s = phases.compiled(); !s) return s.take_error();
@@ -119,19 +158,15 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   ref.fragment = spec.reference_fragment;
   auto reference = render_under_lights(spec, ref, **mesh, &mesh_key);
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
-  std::vector<RenderedMistake> mistakes;
-  for (const auto& mk : spec.mistakes) {
-    render::RenderRequest mr = ref;
-    mr.vertex = mk.vertex;
-    mr.fragment = mk.fragment;
-    if (auto frames = render_under_lights(spec, mr, **mesh, &mesh_key)) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
-  }
+  // The catalogue only for a submission that fails: a passing one needs no diagnosis.
+  GradeResult result = grade::grade(*student, *student_non_finite, *reference, {}, spec.options);
+  if (!result.pass && !spec.mistakes.empty())
+    result = grade::grade(*student, *student_non_finite, *reference, rendered_mistakes(spec, ref, **mesh, mesh_key), spec.options);
 
   std::vector<std::string> lights = {"homework"};
   for (const auto& p : spec.probes) lights.push_back(p.name);
-  GradeOutput out{report(grade::grade(*student, *student_non_finite, *reference, mistakes, spec.options), spec.reference_name, lights,
-                         static_cast<size_t>(r.frames)),
-                  {}};
+  GradeOutput out{report(result, spec.reference_name, lights, static_cast<size_t>(r.frames)), {}};
+  out.report.grader_work = work_;
   out.report.warnings = compiled->warnings;
   // A catalogued mistake says what went wrong already; otherwise a changed starter constant may.
   if (!out.report.pass && out.report.diagnosis.empty())

@@ -5,12 +5,14 @@
 // NaN and infinity survive); the reference and every known mistake are rendered the same way with
 // the submission's uniform values, and grade() decides.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/expected.h"
 #include "grade/grade_spec.h"
 #include "grade/reference_cache.h"
+#include "grade/reference_store.h"
 #include "grade/report.h"
 #include "render/renderer.h"
 
@@ -47,7 +49,13 @@ class GradeSession {
 
  private:
   Expected<SharedFrames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh);
+  // A reference set from the worker's memory, else the store on disk (when the spec names one),
+  // else rendered (and kept in both); `work` counts which.
   Expected<SharedFrames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
+  // The reference's and the known mistakes' frames under every light, for a submission that failed.
+  std::vector<RenderedMistake> rendered_mistakes(const GradeSpec& spec, const render::RenderRequest& reference, const scene::Mesh& mesh,
+                                                 const std::string& mesh_key);
+  const std::string& mesh_address(const std::string& mesh_key, const scene::Mesh& mesh);
   // Calls `each` with `base` under the homework's light, then under each probe light.
   Status for_each_light(const GradeSpec& spec, const render::RenderRequest& base,
                         const std::function<Status(const render::RenderRequest&)>& each);
@@ -62,8 +70,11 @@ class GradeSession {
 
   render::Renderer& renderer_;
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch
-  // grading a class renders them once per worker.
+  // grading a class renders them once per worker, and with a store, once per course.
   ReferenceCache references_;
+  std::optional<ReferenceStore> store_;   // the current grade's (its spec names the folder)
+  Report::GraderWork work_;               // the current grade's
+  std::string address_of_, address_;      // the last mesh key's content address (the store's keys)
 };
 
 }  // namespace shadelab::grade

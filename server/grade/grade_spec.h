@@ -45,6 +45,9 @@ struct GradeSpec {
   std::vector<std::string> light_position_uniforms;
   std::vector<StarterConstant> starter_constants;
   GradeOptions options;
+  // A folder where reference renders are kept across processes (grade/reference_store.h); empty:
+  // only in the worker's memory.
+  std::string reference_store;
 };
 
 }  // namespace shadelab::grade

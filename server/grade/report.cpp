@@ -77,7 +77,9 @@ json to_json(const Report& r) {
   for (const auto& d : r.diagnostics) diagnostics.push_back(to_json(d));
   return {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},           {"maxScore", r.max_score},
           {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},           {"diagnostics", diagnostics},
-          {"warnings", r.warnings},     {"attempts", r.attempts}};
+          {"warnings", r.warnings},     {"attempts", r.attempts},
+          {"graderWork", {{"rendered", r.grader_work.rendered}, {"fromStore", r.grader_work.from_store},
+                          {"fromMemory", r.grader_work.from_memory}}}};
 }
 
 Expected<Report> report_from_json(const json& j) {
@@ -93,6 +95,10 @@ Expected<Report> report_from_json(const json& j) {
     for (const auto& d : j.at("diagnostics")) r.diagnostics.push_back(diagnostic_from_json(d));
     r.warnings = j.at("warnings").get<std::vector<std::string>>();
     r.attempts = j.value("attempts", 1);
+    if (j.contains("graderWork")) {
+      const json& w = j.at("graderWork");
+      r.grader_work = {w.at("rendered"), w.at("fromStore"), w.at("fromMemory")};
+    }
     return r;
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed grade report: ") + e.what());

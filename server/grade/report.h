@@ -13,6 +13,7 @@
 // | frames[]     | per frame and light: metrics, failing share of the object, NaN/Inf counts  |
 // | diagnostics[]| compiler messages at the student's lines (ungradable submissions)          |
 // | warnings[]   | request fields ignored, uniforms the program does not use, ...             |
+// | graderWork   | the grader's own sets of frames: rendered, fromStore (disk), fromMemory    |
 #include <string>
 #include <vector>
 
@@ -38,6 +39,11 @@ struct Report {
   std::vector<Diagnostic> diagnostics;
   std::vector<std::string> warnings;
   int attempts = 1;  // 2 when the first ran past its deadline and the grade is the retry's
+  // The grader's own work for this grade, in sets of frames (one light's render of the reference
+  // or of one known mistake): rendered, read from the store on disk, or found in the worker's memory.
+  struct GraderWork {
+    int rendered = 0, from_store = 0, from_memory = 0;
+  } grader_work;
 };
 
 // A graded result; `lights` names the light of each run of frames_per_light frames, in order.

@@ -36,6 +36,7 @@ void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res)
   } else {
     auto mesh = c.mesh_bytes(parsed->parsed);
     if (!mesh) return send_problem(res, mesh.error(), req.path);
+    parsed->parsed.job.grade.reference_store = c.config.reference_store;
     auto answered = worker::grade(c.pool, parsed->parsed.job, std::move(*mesh));
     if (!answered) return send_problem(res, answered.error(), req.path);
     graded = std::move(answered->result);

@@ -25,6 +25,7 @@ struct ServiceConfig {
   store::SharedStoreConfig shared_store;  // Redis shared by the replicas; empty url: none
   std::string web_root;  // served at /; empty: no static files
   course::CourseSet courses;  // what requests name by `course`; the first is the default (built-in unless given)
+  std::string reference_store;  // where workers keep reference renders across restarts (grade/reference_store.h); empty: memory only
 };
 
 class Service {

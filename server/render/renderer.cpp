@@ -39,23 +39,12 @@ std::vector<VariableInfo> describe(const std::vector<gl::ActiveVariable>& vars) 
   return out;
 }
 
-// What names a mesh's data in the cache: the SHA-256 of its positions and of its normals. One
-// worker's cache serves every tenant, so the name must resist a crafted collision (core/hash.h).
-// It is taken from the arrays as they are: ~40 ms for a million triangles on the 2-core machine,
-// where building the interleaved array to FNV-hash it took ~115 ms on every job, hit or miss.
-std::string fingerprint(const scene::Mesh& mesh) {
-  const auto bytes = [](const std::vector<glm::vec3>& v) {
-    return std::string_view(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(glm::vec3));
-  };
-  return sha256_hex(bytes(mesh.positions)) + sha256_hex(bytes(mesh.normals));
-}
-
 }  // namespace
 
 struct Renderer::State {
   egl::HeadlessContext context;
   LruCache<gl::Program> programs{kProgramCacheSize, SIZE_MAX};  // by vertex GLSL + '\0' + fragment GLSL; count only
-  LruCache<gl::MeshBuffer> meshes{kMeshCacheSize, kMeshCacheBytes};  // by fingerprint()
+  LruCache<gl::MeshBuffer> meshes{kMeshCacheSize, kMeshCacheBytes};  // by scene::content_address()
   // Two targets, so frame k is read back while the driver renders frame k + 1.
   std::array<std::optional<gl::RenderTarget>, 2> targets;
   gl::Readback readback = context.info().software ? gl::Readback::direct : gl::Readback::pixel_buffer;
@@ -143,7 +132,7 @@ struct Renderer::State {
   }
 
   gl::MeshBuffer& mesh_buffer(const scene::Mesh& mesh, bool& cached) {
-    std::string name = fingerprint(mesh);
+    std::string name = scene::content_address(mesh);
     if (gl::MeshBuffer* hit = meshes.find(name)) {
       cached = true;
       return *hit;

@@ -5,6 +5,8 @@
 
 #include <glm/common.hpp>
 
+#include "core/hash.h"
+
 namespace shadelab::scene {
 
 std::vector<float> Mesh::interleaved() const {
@@ -16,6 +18,13 @@ std::vector<float> Mesh::interleaved() const {
     out.insert(out.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
   }
   return out;
+}
+
+std::string content_address(const Mesh& mesh) {
+  const auto bytes = [](const std::vector<glm::vec3>& v) {
+    return std::string_view(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(glm::vec3));
+  };
+  return sha256_hex(bytes(mesh.positions)) + sha256_hex(bytes(mesh.normals));
 }
 
 Bounds bounds(const Mesh& mesh) {

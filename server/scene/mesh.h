@@ -25,6 +25,12 @@ struct Mesh {
   std::vector<float> interleaved() const;
 };
 
+// What names a mesh's data in a cache: the SHA-256 of its positions and of its normals. One
+// worker's caches serve every tenant, so the name must resist a crafted collision (core/hash.h).
+// It is taken from the arrays as they are: ~40 ms for a million triangles on the 2-core machine,
+// where building the interleaved array to FNV-hash it took ~115 ms.
+std::string content_address(const Mesh& mesh);
+
 // The memory a mesh's positions and normals take.
 inline std::size_t bytes_of(const Mesh& mesh) { return (mesh.positions.size() + mesh.normals.size()) * sizeof(glm::vec3); }
 

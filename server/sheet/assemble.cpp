@@ -50,8 +50,10 @@ Expected<std::string> grid(worker::WorkerPool& pool, CourseJob job) {
   return rendered.take_error();
 }
 
-Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, CourseJob job) {
+Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, CourseJob job,
+                               const std::string& reference_store) {
   job.job.grade = course.grade_spec(checkpoint, grade::GradeOptions{.max_score = checkpoint.points});
+  job.job.grade.reference_store = reference_store;
   if (auto sources = render::check_sources(job.job.request, render::RenderLimits{}); !sources)
     return grade::failed_submission(sources.error(), checkpoint.name, checkpoint.points);
   auto answered = worker::grade(pool, job.job, std::move(job.payload));
@@ -97,11 +99,13 @@ CheckpointSection from_saved_frames(const course::Course& course, const course::
 }
 
 Expected<CheckpointSection> section(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input,
-                                    const course::Checkpoint& checkpoint, const std::optional<course::CheckpointFiles>& c) {
+                                    const course::Checkpoint& checkpoint, const std::optional<course::CheckpointFiles>& c,
+                                    const std::string& reference_store) {
   if (!c || !c->pair) return from_saved_frames(course, checkpoint, input);
   CheckpointSection s{checkpoint.name, checkpoint.title};
   s.graded = true;
-  auto report = graded(pool, course, checkpoint, job_for(course, worker::JobKind::grade, input, c->pair->first, c->pair->second));
+  auto report = graded(pool, course, checkpoint, job_for(course, worker::JobKind::grade, input, c->pair->first, c->pair->second),
+                       reference_store);
   if (!report) return report.take_error();
   s.report = std::move(*report);
   auto png = grid(pool, job_for(course, worker::JobKind::render, input, c->pair->first, c->pair->second));
@@ -158,7 +162,7 @@ Expected<SceneSection> scene_section(worker::WorkerPool& pool, SceneInput input)
 
 // Every section's jobs are in the pool at once (its workers take them in parallel); the sections
 // are collected in the sheet's order, so the result does not depend on which finishes first.
-Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input) {
+Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input, const std::string& reference_store) {
   Sheet sheet;
   sheet.title = input.title;
   sheet.answers = input.answers;
@@ -173,8 +177,8 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course,
     std::optional<course::CheckpointFiles> files;
     for (const auto& p : plan)
       if (p.checkpoint == checkpoint.name) files = p;
-    checkpoints.push_back(std::async(std::launch::async, [&pool, &course, &input, &checkpoint, files] {
-      return section(pool, course, input, checkpoint, files);
+    checkpoints.push_back(std::async(std::launch::async, [&pool, &course, &input, &checkpoint, files, &reference_store] {
+      return section(pool, course, input, checkpoint, files, reference_store);
     }));
   }
   std::vector<std::future<Expected<SceneSection>>> scenes;

@@ -1,0 +1,111 @@
+#include "grade/reference_store.h"
+
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <memory>
+
+#include "core/hash.h"
+
+namespace shadelab::grade {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr char kMagic[] = "SLREF1\n";
+constexpr size_t kMagicSize = sizeof kMagic - 1, kHeaderSize = kMagicSize + 16;
+
+void put_u32(std::string& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
+}
+std::uint32_t get_u32(const std::string& in, size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 0; i < 4; ++i) v |= std::uint32_t{static_cast<unsigned char>(in[at + static_cast<size_t>(i)])} << (8 * i);
+  return v;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+}  // namespace
+
+const std::string& build_fingerprint() {
+  static const std::string fingerprint = sha256_hex(read_file("/proc/self/exe"));
+  return fingerprint;
+}
+
+std::string default_reference_folder() {
+  if (const char* dir = std::getenv("SHADELAB_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/shadelab/references";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/shadelab/references";
+  return {};
+}
+
+ReferenceStore::ReferenceStore(fs::path folder, std::string renderer) : folder_(std::move(folder)), renderer_(std::move(renderer)) {}
+
+std::string ReferenceStore::key(const render::RenderRequest& request, const std::string& mesh) const {
+  return sha256_hex(std::string(kMagic) + build_fingerprint() + '\0' + renderer_ + '\0' + mesh + '\0' + render::pixel_identity(request));
+}
+
+std::optional<SharedFrames> ReferenceStore::load(const std::string& key) const {
+  const std::string file = read_file(folder_ / key);
+  if (file.size() < kHeaderSize || file.compare(0, kMagicSize, kMagic) != 0) return std::nullopt;
+  const std::uint32_t width = get_u32(file, kMagicSize), height = get_u32(file, kMagicSize + 4);
+  const std::uint32_t frames = get_u32(file, kMagicSize + 8), type = get_u32(file, kMagicSize + 12);
+  if (type > 1 || width == 0 || height == 0 || width > 16384 || height > 16384 || frames == 0 || frames > 3600) return std::nullopt;
+  const auto pixel_type = type == 0 ? image::PixelType::u8 : image::PixelType::f32;
+  const size_t frame_bytes = size_t{width} * height * (pixel_type == image::PixelType::u8 ? 4 : 16);
+  std::string pixels(frame_bytes * frames, '\0');
+  uLongf size = pixels.size();
+  const auto* compressed = reinterpret_cast<const Bytef*>(file.data() + kHeaderSize);
+  if (uncompress(reinterpret_cast<Bytef*>(pixels.data()), &size, compressed, file.size() - kHeaderSize) != Z_OK || size != pixels.size())
+    return std::nullopt;
+  SharedFrames out;
+  for (std::uint32_t k = 0; k < frames; ++k) {
+    auto frame = std::make_shared<image::Image>(image::Image::blank(static_cast<int>(width), static_cast<int>(height), pixel_type));
+    std::memcpy(frame->bytes.data(), pixels.data() + k * frame_bytes, frame_bytes);
+    out.push_back(std::move(frame));
+  }
+  return out;
+}
+
+void ReferenceStore::save(const std::string& key, const SharedFrames& frames) const {
+  if (frames.empty()) return;
+  const image::Image& first = *frames.front();
+  std::string pixels;
+  for (const auto& f : frames) {
+    if (f->width != first.width || f->height != first.height || f->type != first.type) return;
+    pixels.append(reinterpret_cast<const char*>(f->bytes.data()), f->bytes.size());
+  }
+  std::string out = kMagic;
+  put_u32(out, static_cast<std::uint32_t>(first.width));
+  put_u32(out, static_cast<std::uint32_t>(first.height));
+  put_u32(out, static_cast<std::uint32_t>(frames.size()));
+  put_u32(out, first.type == image::PixelType::u8 ? 0 : 1);
+  uLongf size = compressBound(pixels.size());
+  std::string compressed(size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(compressed.data()), &size, reinterpret_cast<const Bytef*>(pixels.data()), pixels.size(), 1) != Z_OK)
+    return;
+  out.append(compressed.data(), size);
+  std::error_code ec;
+  fs::create_directories(folder_, ec);
+  const fs::path temporary = folder_ / (key + ".tmp" + std::to_string(::getpid()));
+  {
+    std::ofstream file(temporary, std::ios::binary);
+    if (!file.write(out.data(), static_cast<std::streamsize>(out.size()))) {
+      fs::remove(temporary, ec);
+      return;
+    }
+  }
+  fs::rename(temporary, folder_ / key, ec);
+  if (ec) fs::remove(temporary, ec);
+}
+
+}  // namespace shadelab::grade
