@@ -50,6 +50,7 @@ constexpr ErrorCodeInfo kCodes[] = {
     {ErrorCode::course_invalid,             "course_invalid",             422, "The course profile is not valid",                       false, false},
     {ErrorCode::unknown_course,             "unknown_course",             404, "No such course",                                        false, false},
     {ErrorCode::grader_failed,              "grader_failed",              500, "The grader's own work failed",                          false, false},
+    {ErrorCode::frames_invalid,             "frames_invalid",             422, "A saved frame cannot be read",                          true,  false},
 };
 }  // namespace
 

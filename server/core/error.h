@@ -57,6 +57,7 @@ enum class ErrorCode {
   // What grading answers when its own work (the reference, the known mistakes) fails: never the
   // submission's doing, so never its grade.
   grader_failed,           // the grader's renders ran over their CPU budget, crashed or ran out of memory
+  frames_invalid,          // a saved frame cannot be read: not a PNG, truncated, larger than a canvas
 };
 
 // Everything known about a code, in one row of the table in error.cpp.

@@ -111,6 +111,28 @@ grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptio
   return spec;
 }
 
+grade::GradeSpec Course::frames_grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {
+  grade::GradeSpec spec = grade_spec(c, options);
+  spec.probes.clear();
+  const auto named = [&](const std::string& preset) {
+    for (const auto& m : c.mistakes)
+      if (m.preset == preset) return true;  // the catalogue says it better ("missing_specular")
+    return preset == c.reference;
+  };
+  for (const Preset& p : presets) {
+    if (named(p.name)) continue;
+    const Checkpoint* owner = nullptr;
+    for (const auto& other : checkpoints)
+      if (other.reference == p.name) owner = &other;
+    const std::string what = owner ? "the " + owner->name + " deliverable's frames (" + frame_file(owner->prefix, 0, "png") + ", ...)"
+                                   : "the " + p.name + " shaders' frames (" + p.description + ")";
+    spec.mistakes.push_back({"frames_of_" + p.name,
+                             "these look like " + what + ", not the " + c.name + " deliverable's: saved under the wrong names, or before the shaders were changed?",
+                             p.vertex, p.fragment});
+  }
+  return spec;
+}
+
 std::string Course::frame_file(std::string_view prefix, int k, std::string_view extension) const {
   return render::frame_file_name(frame_name, prefix, k, extension);
 }

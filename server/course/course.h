@@ -149,6 +149,11 @@ struct Course {
   render::RenderRequest render_request(shader::ShaderFile vertex, shader::ShaderFile fragment) const;
   // What a submission of `checkpoint` is graded against, with `options`' tolerance.
   grade::GradeSpec grade_spec(const Checkpoint& checkpoint, const grade::GradeOptions& options) const;
+  // What a checkpoint's saved frames are graded against: its grade spec without probe lights (the
+  // page draws only under its own light), its mistakes, and the frames a student may have saved in
+  // their place: each other preset's (another deliverable's frames under this one's names, the
+  // starter's), named for what they are.
+  grade::GradeSpec frames_grade_spec(const Checkpoint& checkpoint, const grade::GradeOptions& options) const;
   // Frame k's file name under `prefix`, with `extension` ("png"): hw2_specular_3.png.
   std::string frame_file(std::string_view prefix, int k, std::string_view extension) const;
   // The names the page feeds the light's position by (what a probe light moves).

@@ -17,6 +17,15 @@ Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, c
   return out;
 }
 
+void GradeSession::begin(const GradeSpec& spec) {
+  work_ = {};
+  store_.reset();
+  if (!spec.reference_store.empty()) {
+    const auto& info = renderer_.context_info();
+    store_.emplace(spec.reference_store, info.gl_renderer + " | " + info.gl_version);
+  }
+}
+
 const std::string& GradeSession::mesh_address(const std::string& mesh_key, const scene::Mesh& mesh) {
   if (address_of_ != mesh_key) {
     address_ = scene::content_address(mesh);
@@ -129,17 +138,12 @@ Expected<std::vector<image::NonFinite>> GradeSession::float_check(const GradeSpe
 }
 
 Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
-                                          const std::string& mesh_key, const PhaseHooks& phases) {
+                                          const std::string& mesh_key, const EnterPhase& enter) {
   const auto ungradable = [&](const Error& e) { return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}}; };
-  work_ = {};
-  store_.reset();
-  if (!spec.reference_store.empty()) {
-    const auto& info = renderer_.context_info();
-    store_.emplace(spec.reference_store, info.gl_renderer + " | " + info.gl_version);
-  }
+  begin(spec);
   auto compiled = renderer_.compile(submission.vertex, submission.fragment);
   if (!compiled) return ungradable(compiled.error());
-  if (auto s = phases.compiled(); !s) return s.take_error();
+  if (auto s = enter("render"); !s) return s.take_error();
   auto mesh = mesh_source();
   if (!mesh) return mesh.take_error();
 
@@ -149,7 +153,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   if (!student) return ungradable(student.error());
   auto student_non_finite = float_check(spec, r, **mesh);
   if (!student_non_finite) return ungradable(student_non_finite.error());
-  if (auto s = phases.submission_rendered(); !s) return s.take_error();
+  if (auto s = enter("grader"); !s) return s.take_error();
 
   // The reference gets the same uniform values as the submission: a grader that changes the
   // colours grades against the reference with those colours.

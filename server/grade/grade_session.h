@@ -11,6 +11,7 @@
 
 #include "core/expected.h"
 #include "grade/grade_spec.h"
+#include "grade/lag_fit.h"
 #include "grade/reference_cache.h"
 #include "grade/reference_store.h"
 #include "grade/report.h"
@@ -27,12 +28,15 @@ struct GradeOutput {
 using MeshSource = std::function<Expected<const scene::Mesh*>()>;
 
 // Where a grade's work changes hands, for the worker to tell its pool (worker/pool.h's phases):
-// once the submission has compiled, a hang or a crash is its render's; once its frames are
-// rendered, the rest (the reference, the known mistakes, the comparisons) is the grader's own,
-// bounded separately and never charged to the submission.
-struct PhaseHooks {
-  std::function<Status()> compiled;
-  std::function<Status()> submission_rendered;
+// "render" once the submission has compiled (from then a hang or a crash is its render's),
+// "grader" while the grader does its own work (the reference, the known mistakes, the
+// comparisons: bounded separately and never charged to the submission).
+using EnterPhase = std::function<Status(const char* phase)>;
+
+struct FramesGradeOutput {
+  Report frames;              // the saved frames against the reference
+  std::optional<Report> code; // the saved frames against what the submission's code renders
+  std::string heatmap_png;    // the saved frames against the reference at their lags
 };
 
 class GradeSession {
@@ -43,7 +47,14 @@ class GradeSession {
   // is the grader's own problem (the reference does not render, the mesh does not load).
   // `mesh_key` names the mesh for the reference cache (the same key must mean the same mesh).
   Expected<GradeOutput> grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh,
-                              const std::string& mesh_key, const PhaseHooks& phases);
+                              const std::string& mesh_key, const EnterPhase& enter);
+
+  // Frames a student saved from their browser (PNG files, in order), graded against the reference
+  // at the lag each was drawn with (grade/lag_fit.h) and, when `code` holds their shaders, against
+  // what that code renders at the same angles. `code` carries the course's job (canvas, frames,
+  // page) with or without shaders. Errors as grade()'s.
+  Expected<FramesGradeOutput> grade_frames(const GradeSpec& spec, const render::RenderRequest& code, const std::vector<SavedFrame>& saved,
+                                           const MeshSource& mesh, const std::string& mesh_key, const EnterPhase& enter);
 
   std::size_t reference_cache_bytes() const { return references_.bytes(); }
 
@@ -56,6 +67,19 @@ class GradeSession {
   std::vector<RenderedMistake> rendered_mistakes(const GradeSpec& spec, const render::RenderRequest& reference, const scene::Mesh& mesh,
                                                  const std::string& mesh_key);
   const std::string& mesh_address(const std::string& mesh_key, const scene::Mesh& mesh);
+  // A grade's start: the counts zeroed, the store its spec names opened.
+  void begin(const GradeSpec& spec);
+  // The known mistakes a failing set of saved frames is compared with, each at the angles the
+  // frames fit it at (`fits` says which mistake's, when not the reference's).
+  struct MistakesAtLags {
+    std::vector<RenderedMistake> rendered;
+    std::vector<std::pair<std::string, std::vector<LagFit>>> fits;
+  };
+  MistakesAtLags mistakes_at_lags(const GradeSpec& spec, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
+                                  const std::string& mesh_key, const std::vector<const image::Image*>& saved,
+                                  const std::vector<LagFit>& fits, const LagGrid& grid);
+  // `request` rendered at `angles` (the grader's work, counted).
+  Expected<SharedFrames> at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles);
   // Calls `each` with `base` under the homework's light, then under each probe light.
   Status for_each_light(const GradeSpec& spec, const render::RenderRequest& base,
                         const std::function<Status(const render::RenderRequest&)>& each);

@@ -50,4 +50,10 @@ struct GradeSpec {
   std::string reference_store;
 };
 
+// A frame a student saved from their browser, as it arrived: its file name and its PNG bytes.
+struct SavedFrame {
+  std::string name;  // hw2_specular_3.png
+  std::string bytes;
+};
+
 }  // namespace shadelab::grade

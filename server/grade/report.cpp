@@ -19,7 +19,8 @@ json frame_json(const FrameReport& f, size_t index) {
           {"failingFraction", m.failing_fraction},
           {"failingFractionOfObject", f.grade.failing_fraction_of_object},
           {"nanPixels", f.grade.non_finite.nan},
-          {"infPixels", f.grade.non_finite.inf}};
+          {"infPixels", f.grade.non_finite.inf},
+          {"lagDegrees", f.lag_degrees ? json(*f.lag_degrees) : json(nullptr)}};
 }
 
 FrameReport frame_from_json(const json& j) {
@@ -36,6 +37,7 @@ FrameReport frame_from_json(const json& j) {
   f.grade.failing_fraction_of_object = j.at("failingFractionOfObject");
   f.grade.non_finite.nan = j.at("nanPixels");
   f.grade.non_finite.inf = j.at("infPixels");
+  if (j.contains("lagDegrees") && !j.at("lagDegrees").is_null()) f.lag_degrees = j.at("lagDegrees").get<double>();
   return f;
 }
 

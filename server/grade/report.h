@@ -10,10 +10,12 @@
 // | pass, score, maxScore | the verdict; score is maxScore or 0                               |
 // | diagnosis    | the recognised mistake's id, "swapped_channels", "nan", an error code, ""  |
 // | messages[]   | what the student reads, most important first                               |
-// | frames[]     | per frame and light: metrics, failing share of the object, NaN/Inf counts  |
+// | frames[]     | per frame and light: metrics, failing share of the object, NaN/Inf counts; |
+// |              | lagDegrees for a frame the student saved                                   |
 // | diagnostics[]| compiler messages at the student's lines (ungradable submissions)          |
 // | warnings[]   | request fields ignored, uniforms the program does not use, ...             |
 // | graderWork   | the grader's own sets of frames: rendered, fromStore (disk), fromMemory    |
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,8 @@ namespace shadelab::grade {
 struct FrameReport {
   FrameGrade grade;
   std::string light = "homework";  // "homework", or the probe light it was rendered under
+  // A saved frame's: how far behind its nominal angle it was drawn (grade/lag_fit.h).
+  std::optional<double> lag_degrees;
 };
 
 struct Report {

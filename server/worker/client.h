@@ -36,4 +36,8 @@ Expected<Answered<Result>> run(WorkerPool& pool, Message job, WorkerPool::Lane l
 // submission that runs out of time is graded once more before its 0 stands (report.attempts).
 Expected<Answered<GradeResult>> grade(WorkerPool& pool, const Job& job, std::string mesh_bytes);
 
+// Saved frames graded (a grade_frames job), by the same rule. The code handed in with them can
+// hang or crash its render: that is the code's grade, and the frames are graded again without it.
+Expected<Answered<FramesGradeResult>> grade_frames(WorkerPool& pool, const Job& job, const FramesPayload& payload);
+
 }  // namespace shadelab::worker

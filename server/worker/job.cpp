@@ -52,7 +52,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr JobKind kKinds[] = {JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade, JobKind::scene};
+constexpr JobKind kKinds[] = {JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade, JobKind::grade_frames, JobKind::scene};
 
 json file_json(const shader::ShaderFile& f) { return {{"name", f.name}, {"text", f.text}}; }
 shader::ShaderFile file_from(const json& j) { return {j.at("name"), j.at("text")}; }
@@ -150,6 +150,7 @@ std::string_view to_string(JobKind k) {
     case JobKind::compile: return "compile";
     case JobKind::mesh_check: return "mesh_check";
     case JobKind::grade: return "grade";
+    case JobKind::grade_frames: return "grade_frames";
     case JobKind::scene: return "scene";
   }
   return "render";
@@ -164,8 +165,16 @@ Message to_message(const Job& job, std::string mesh_bytes) {
                  {"meshEmbedded", job.mesh_embedded}, {"meshFormat", job.mesh_format},       {"fit", fit},
                  {"frameName", job.frame_name},     {"prefix", job.prefix},                 {"output", to_string(job.output)},
                  {"format", to_string(job.format)}};
-  if (job.kind == JobKind::grade) header["grade"] = grade_json(job.grade);
+  if (job.kind == JobKind::grade || job.kind == JobKind::grade_frames) header["grade"] = grade_json(job.grade);
   return {std::move(header), std::move(mesh_bytes)};
+}
+
+Message to_message(const Job& job, const FramesPayload& payload) {
+  Message m = to_message(job);
+  std::vector<PayloadPartView> parts{{"mesh", payload.mesh}};
+  for (const auto& f : payload.saved) parts.push_back({f.name, f.bytes});
+  m.header["parts"] = pack_parts(parts, m.payload);
+  return m;
 }
 
 Message to_message(const SceneJob& job) {
@@ -206,7 +215,7 @@ Expected<Job> job_from_message(const Message& m) {
     job.prefix = j.at("prefix");
     job.output = enum_named(j.at("output"), {Output::grid, Output::frames, Output::json});
     job.format = enum_named(j.at("format"), {Format::png, Format::exr});
-    if (job.kind == JobKind::grade) job.grade = grade_from(j.at("grade"));
+    if (job.kind == JobKind::grade || job.kind == JobKind::grade_frames) job.grade = grade_from(j.at("grade"));
     return job;
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed job: ") + e.what());
@@ -226,6 +235,19 @@ Expected<SceneJob> scene_job_from_message(const Message& m) {
     return job;
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed scene job: ") + e.what());
+  }
+}
+
+Expected<FramesPayload> frames_payload_from(const Message& m) {
+  try {
+    auto parts = unpack_parts(m.header.at("parts"), m.payload);
+    if (!parts) return parts.take_error();
+    if (parts->empty() || (*parts)[0].name != "mesh") return make_error(ErrorCode::worker_protocol, "a frames job without its mesh part");
+    FramesPayload out{std::move((*parts)[0].bytes), {}};
+    for (size_t i = 1; i < parts->size(); ++i) out.saved.push_back({std::move((*parts)[i].name), std::move((*parts)[i].bytes)});
+    return out;
+  } catch (const json::exception& e) {
+    return make_error(ErrorCode::worker_protocol, std::string("malformed frames job: ") + e.what());
   }
 }
 

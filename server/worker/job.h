@@ -9,6 +9,7 @@
 // | compile    | Job      | none                           | CompileResult                   |
 // | mesh_check | Job      | the mesh file                  | MeshCheckResult                 |
 // | grade      | Job      | the uploaded mesh, if any      | GradeResult                     |
+// | grade_frames | Job    | the uploaded mesh, saved frames | FramesGradeResult              |
 // | scene      | SceneJob | each non-built-in mesh's bytes | SceneResult                     |
 #include <optional>
 #include <string>
@@ -25,7 +26,7 @@
 
 namespace shadelab::worker {
 
-enum class JobKind { render, compile, mesh_check, grade, scene };
+enum class JobKind { render, compile, mesh_check, grade, grade_frames, scene };
 enum class Output { grid, frames, json };
 enum class Format { png, exr };
 
@@ -43,7 +44,14 @@ struct Job {
   std::string prefix = "render";
   Output output = Output::grid;
   Format format = Format::png;
-  grade::GradeSpec grade;  // for JobKind::grade
+  grade::GradeSpec grade;  // for JobKind::grade and grade_frames
+};
+
+// A grade_frames job's payload: the uploaded mesh's bytes (empty for a built-in one) and the
+// frames the student saved, in order.
+struct FramesPayload {
+  std::string mesh;
+  std::vector<grade::SavedFrame> saved;
 };
 
 struct SceneMeshBytes {
@@ -58,12 +66,14 @@ struct SceneJob {
 };
 
 Message to_message(const Job& job, std::string mesh_bytes = {});
+Message to_message(const Job& job, const FramesPayload& payload);  // a grade_frames job
 Message to_message(const SceneJob& job);
 
 // The kind a message carries, for the worker's dispatch; worker_protocol when there is none.
 Expected<JobKind> job_kind_of(const Message& message);
 Expected<Job> job_from_message(const Message& message);
 Expected<SceneJob> scene_job_from_message(const Message& message);
+Expected<FramesPayload> frames_payload_from(const Message& message);
 
 std::string_view to_string(JobKind k);
 std::string_view to_string(Output o);

@@ -128,11 +128,22 @@ SceneResult read(const json& j, std::vector<PayloadPart>& files) {
   return {scene_report_from(j.at("report")), j.at("encodeMs"), take_file(files, "image.png")};
 }
 
+grade::Report report_at(const json& j) {
+  auto report = grade::report_from_json(j);
+  if (!report) throw json::other_error::create(501, report.error().message, &j);
+  return std::move(*report);
+}
+
 template <>
 GradeResult read(const json& j, std::vector<PayloadPart>& files) {
-  auto report = grade::report_from_json(j.at("report"));
-  if (!report) throw json::other_error::create(501, report.error().message, &j);
-  return {std::move(*report), take_file(files, "heatmap.png")};
+  return {report_at(j.at("report")), take_file(files, "heatmap.png")};
+}
+
+template <>
+FramesGradeResult read(const json& j, std::vector<PayloadPart>& files) {
+  FramesGradeResult r{report_at(j.at("frames")), {}, take_file(files, "heatmap.png")};
+  if (const json& code = j.at("code"); !code.is_null()) r.code = report_at(code);
+  return r;
 }
 
 }  // namespace
@@ -266,6 +277,12 @@ Message answer(const GradeResult& r) {
   return ok({{"report", grade::to_json(r.report)}}, files);
 }
 
+Message answer(const FramesGradeResult& r) {
+  std::vector<PayloadPartView> files;
+  if (!r.heatmap_png.empty()) files.push_back({"heatmap.png", r.heatmap_png});
+  return ok({{"frames", grade::to_json(r.frames)}, {"code", r.code ? grade::to_json(*r.code) : json(nullptr)}}, files);
+}
+
 Message answer(const Error& e) { return {{{"ok", false}, {"error", to_json(e)}}, {}}; }
 
 template <class Result>
@@ -286,5 +303,6 @@ template Expected<RenderResult> result_from(const Message&);
 template Expected<MeshCheckResult> result_from(const Message&);
 template Expected<SceneResult> result_from(const Message&);
 template Expected<GradeResult> result_from(const Message&);
+template Expected<FramesGradeResult> result_from(const Message&);
 
 }  // namespace shadelab::worker

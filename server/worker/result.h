@@ -10,7 +10,9 @@
 // | mesh_check | MeshCheckResult | none                                                   |
 // | scene      | SceneResult     | the PNG                                                |
 // | grade      | GradeResult     | the heat map PNG, when the submission rendered         |
+// | grade_frames | FramesGradeResult | the heat map PNG of the saved frames                 |
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -75,12 +77,21 @@ struct GradeResult {
   std::string heatmap_png;  // empty when the submission did not render
 };
 
+// Saved frames graded (grade/grade_session.h's grade_frames): against the reference, and against
+// the code handed in with them when there was some.
+struct FramesGradeResult {
+  grade::Report frames;
+  std::optional<grade::Report> code;
+  std::string heatmap_png;  // the saved frames against the reference; empty when they did not decode
+};
+
 // Worker side: the answer to send.
 Message answer(const CompileResult& r);
 Message answer(const RenderResult& r);
 Message answer(const MeshCheckResult& r);
 Message answer(const SceneResult& r);
 Message answer(const GradeResult& r);
+Message answer(const FramesGradeResult& r);
 Message answer(const Error& e);
 
 // Reader side: the result an answer holds, its Error, or worker_protocol when it is malformed.

@@ -132,6 +132,7 @@ class Worker {
       case JobKind::mesh_check: return answer_or_error(check_mesh(*job, in.payload));
       case JobKind::compile: return answer_or_error(compile(*job));
       case JobKind::grade: return answer_or_error(grade(*job, in.payload));
+      case JobKind::grade_frames: return answer_or_error(grade_frames(*job, in));
       case JobKind::render: return answer_or_error(render(*job, in.payload));
       case JobKind::scene: break;
     }
@@ -234,10 +235,18 @@ class Worker {
 
   Expected<GradeResult> grade(const Job& job, const std::string& payload) {
     auto graded = grading_.grade(job.grade, job.request, [&] { return job_mesh(job, payload); },
-                                 fitted_key(job),
-                                 {[&] { return enter_render_phase(); }, [&] { return enter_phase("grader"); }});
+                                 fitted_key(job), [&](const char* phase) { return enter_phase(phase); });
     if (!graded) return graded.take_error();
     return GradeResult{std::move(graded->report), std::move(graded->heatmap_png)};
+  }
+
+  Expected<FramesGradeResult> grade_frames(const Job& job, const Message& in) {
+    auto payload = frames_payload_from(in);
+    if (!payload) return payload.take_error();
+    auto graded = grading_.grade_frames(job.grade, job.request, payload->saved, [&] { return job_mesh(job, payload->mesh); },
+                                        fitted_key(job), [&](const char* phase) { return enter_phase(phase); });
+    if (!graded) return graded.take_error();
+    return FramesGradeResult{std::move(graded->frames), std::move(graded->code), std::move(graded->heatmap_png)};
   }
 
   // Scenes run our own shaders, not a student's: straight to the render phase and its deadline.

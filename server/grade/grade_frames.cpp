@@ -1,0 +1,288 @@
+// GradeSession::grade_frames: the frames a student saved from their browser, graded against the
+// reference at the lag each was drawn with, and against their own code at the same angles.
+//
+// The work, for a deliverable of 9 frames: the reference at the lag grid's angles (57 frames,
+// once per course: the store and the worker's memory keep it), the lags fitted against it, then
+// the reference rendered once at the fitted angles (one render of the job) and compared. Only a
+// failing set pays for more: each known mistake rendered at the same angles, for the diagnosis.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "grade/grade_session.h"
+#include "grade/lag_fit.h"
+#include "image/encode.h"
+#include "image/grid.h"
+#include "image/metrics.h"
+#include "image/png_decode.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+std::string degrees(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+std::string percent(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f%%", 100 * v);
+  return buf;
+}
+
+std::string frame_list(const std::vector<int>& frames) {
+  std::string out;
+  for (size_t i = 0; i < frames.size(); ++i) out += (i == 0 ? "" : i + 1 == frames.size() ? " and " : ", ") + std::to_string(frames[i]);
+  return out;
+}
+
+// The saved frames decoded, each the canvas's size; frames_invalid naming the file otherwise.
+Expected<SharedFrames> decode_all(const std::vector<SavedFrame>& saved, int width, int height) {
+  SharedFrames out;
+  for (const auto& f : saved) {
+    auto image = image::decode_png(f.bytes);
+    if (!image) return make_error(ErrorCode::frames_invalid, f.name + ": " + image.error().message);
+    if (image->width != width || image->height != height)
+      return make_error(ErrorCode::frames_invalid, f.name + " is " + std::to_string(image->width) + " x " + std::to_string(image->height) +
+                                                       "; the course's canvas is " + std::to_string(width) + " x " + std::to_string(height) +
+                                                       ": save the frames from the page at its own size");
+    out.push_back(std::make_shared<const image::Image>(std::move(*image)));
+  }
+  return out;
+}
+
+// The angle each frame was drawn at, to a thousandth of a degree (what a render is keyed by).
+std::vector<double> fitted_angles(const std::vector<LagFit>& fits, const LagGrid& grid) {
+  std::vector<double> out;
+  for (const auto& f : fits) out.push_back(std::round((grid.nominal(f.frame) - f.lag_degrees) * 1000) / 1000);
+  return out;
+}
+
+bool is_clear(const std::uint8_t* p) { return p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 255; }
+
+// How much two frames' outlines overlap: the pixels either covers that both cover.
+double outline_overlap(const image::Image& a, const image::Image& b) {
+  size_t both = 0, either = 0;
+  for (size_t i = 0; i < a.bytes.size(); i += 4) {
+    const bool in_a = !is_clear(&a.bytes[i]), in_b = !is_clear(&b.bytes[i]);
+    both += in_a && in_b;
+    either += in_a || in_b;
+  }
+  return either == 0 ? 1 : static_cast<double>(both) / static_cast<double>(either);
+}
+
+// The lowest outline overlap over the frames: under ~0.9 the saved frames show another shape
+// (another mesh, another camera) than the one rendered, whatever the shading.
+double worst_outline_overlap(const SharedFrames& a, const SharedFrames& b) {
+  double worst = 1;
+  for (size_t k = 0; k < a.size(); ++k) worst = std::min(worst, outline_overlap(*a[k], *b[k]));
+  return worst;
+}
+constexpr double kSameOutline = 0.9;
+
+// The fits in words: the lags found, and what does not fit (a frame behind the window, one that
+// looks like another frame). Frames of the second kind fail.
+void describe_fits(const std::vector<LagFit>& fits, const LagGrid& grid, const std::vector<SavedFrame>& saved, Report& r) {
+  double lo = 1e9, hi = -1e9;
+  for (size_t k = 0; k < fits.size(); ++k) {
+    const LagFit& f = fits[k];
+    r.frames[k].lag_degrees = f.lag_degrees;
+    if (k > 0) lo = std::min(lo, f.lag_degrees), hi = std::max(hi, f.lag_degrees);
+    if (f.beyond_window)
+      r.messages.push_back(saved[k].name + " was drawn " + degrees(grid.window) + " degrees or more behind " + degrees(grid.nominal(f.frame)) +
+                           " (the window searched): compared at that limit");
+    if (f.looks_like) {
+      r.frames[k].grade.pass = false;
+      if (r.diagnosis.empty()) r.diagnosis = "frames_out_of_order";
+      r.messages.insert(r.messages.begin(), saved[k].name + " shows frame " + std::to_string(*f.looks_like) + "'s rotation (" +
+                                                degrees(grid.nominal(*f.looks_like)) + " degrees), not frame " + std::to_string(k) +
+                                                "'s (" + degrees(grid.nominal(f.frame)) + "): saved out of order, or twice?");
+    }
+  }
+  if (fits.size() > 1)
+    r.messages.push_back("frames 1 to " + std::to_string(fits.size() - 1) + " were drawn " + degrees(lo) + " to " + degrees(hi) +
+                         " degrees behind their nominal angles (the page draws with the previous frame's time), and were compared there");
+}
+
+// Pass when every frame passes (after the fits' findings); the score is all or nothing, as a code grade's.
+void settle(Report& r) {
+  r.pass = !r.frames.empty();
+  for (const auto& f : r.frames) r.pass = r.pass && f.grade.pass;
+  r.score = r.pass ? r.max_score : 0;
+}
+
+// The saved frames against the code's frames at the same angles: are they what the code renders?
+Report code_match(const SharedFrames& saved, const SharedFrames& code, const SharedFrames& reference, const Report& frames_report,
+                  const GradeSpec& spec, const GradeOptions& options) {
+  Report r{spec.reference_name, false, 0, options.max_score, "", {}, {}, {}, {}};
+  std::vector<int> differing;
+  int code_matches_reference = 0;
+  for (size_t k = 0; k < saved.size(); ++k) {
+    GradeResult one = grade::grade({saved[k]}, {}, {code[k]}, {}, options);
+    r.frames.push_back({one.frames[0], "homework", frames_report.frames[k].lag_degrees});
+    if (!one.pass) differing.push_back(static_cast<int>(k));
+    code_matches_reference += grade::grade({code[k]}, {}, {reference[k]}, {}, options).pass;
+  }
+  settle(r);
+  if (differing.empty()) {
+    r.messages.push_back("the saved frames are what your code renders, at the angles they were drawn at");
+    return r;
+  }
+  const bool code_right = code_matches_reference == static_cast<int>(saved.size());
+  const double outline = worst_outline_overlap(saved, code);
+  if (outline < kSameOutline) {
+    r.diagnosis = "frames_of_another_shape";
+    r.messages.push_back("the saved frames show another shape than your code renders on this mesh (the outlines overlap by " + percent(outline) +
+                         " at worst): saved with another mesh selected on the page?");
+  } else if (differing.size() < saved.size()) {
+    r.diagnosis = "edited_frames";
+    r.messages.push_back("frame " + frame_list(differing) + (differing.size() == 1 ? " differs" : " differ") +
+                         " from what your code renders, the others match: edited, or saved from another run?");
+  } else if (code_right) {
+    r.diagnosis = "stale_frames";
+    r.messages.push_back("your code renders the reference, but the saved frames are not what it renders: saved from an earlier version of your code?" +
+                         (frames_report.messages.empty() ? std::string() : " (the frames: " + frames_report.messages.front() + ")"));
+  } else if (frames_report.pass) {
+    r.diagnosis = "frames_not_from_code";
+    r.messages.push_back("the saved frames match the reference, but your code renders something else: they were not made by this code");
+  } else {
+    r.diagnosis = "frames_not_from_code";
+    r.messages.push_back("the saved frames are not what your code renders, and neither matches the reference");
+  }
+  return r;
+}
+
+}  // namespace
+
+Expected<SharedFrames> GradeSession::at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles) {
+  request.angles = angles;
+  request.frames = static_cast<int>(angles.size());
+  request.pixel_type = image::PixelType::u8;
+  auto frames = frames_of(request, mesh);
+  if (frames) ++work_.rendered;
+  return frames;
+}
+
+// Every mistake is rendered at the angles fitted against the reference; those that explain the
+// frames best there (better than the reference, and within twice the best mistake's residual) are
+// fitted on their own lag grid (frames of other shading fit the reference's grid at the wrong
+// angles: the shading, not the rotation, decides the fit) and rendered again at their own angles.
+// Most mistakes are ruled out by one render of the job.
+GradeSession::MistakesAtLags GradeSession::mistakes_at_lags(const GradeSpec& spec, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
+                                                            const std::string& mesh_key, const std::vector<const image::Image*>& saved,
+                                                            const std::vector<LagFit>& fits, const LagGrid& grid) {
+  const std::vector<double> angles = fitted_angles(fits, grid);
+  struct Candidate {
+    const Mistake* mistake;
+    render::RenderRequest request;
+    SharedFrames frames;
+    double residual = 0;
+  };
+  std::vector<Candidate> candidates;
+  double best = total_residual(fits);
+  for (const auto& mk : spec.mistakes) {
+    render::RenderRequest mr = grid_request;
+    mr.vertex = mk.vertex;
+    mr.fragment = mk.fragment;
+    auto at = at_angles(mr, mesh, angles);
+    if (!at) continue;  // a catalogued mistake that does not render diagnoses nothing
+    double residual = 0;
+    for (size_t k = 0; k < saved.size(); ++k) residual += squared_difference(*saved[k], *(*at)[k]);
+    best = std::min(best, residual);
+    candidates.push_back({&mk, std::move(mr), std::move(*at), residual});
+  }
+  const double reference_residual = total_residual(fits);
+  MistakesAtLags out;
+  for (auto& c : candidates) {
+    if (c.residual < reference_residual && c.residual <= 2 * best)
+      if (auto own_grid = cached_frames(c.request, mesh, mesh_key)) {
+        std::vector<LagFit> own = fit_lags(saved, *own_grid, grid);
+        if (auto refit = at_angles(c.request, mesh, fitted_angles(own, grid))) {
+          c.frames = std::move(*refit);
+          out.fits.emplace_back(c.mistake->id, std::move(own));
+        }
+      }
+    out.rendered.push_back({c.mistake->id, c.mistake->message, std::move(c.frames)});
+  }
+  return out;
+}
+
+Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, const render::RenderRequest& code, const std::vector<SavedFrame>& saved,
+                                                       const MeshSource& mesh_source, const std::string& mesh_key, const EnterPhase& enter) {
+  begin(spec);
+  const auto failed = [&](const Error& e) { return FramesGradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}, {}}; };
+  // The student's code first, under the compile deadline; its failure is the code's report.
+  const bool has_code = !code.vertex.text.empty() || !code.fragment.text.empty();
+  std::optional<Error> code_error;
+  if (has_code)
+    if (auto compiled = renderer_.compile(code.vertex, code.fragment); !compiled) code_error = compiled.error();
+  if (auto s = enter("grader"); !s) return s.take_error();
+  auto frames = decode_all(saved, code.width, code.height);
+  if (!frames) return failed(frames.error());
+  if (frames->size() != static_cast<size_t>(code.frames))
+    return failed(make_error(ErrorCode::frames_invalid, std::to_string(frames->size()) + " frames handed in; the deliverable has " +
+                                                            std::to_string(code.frames)));
+  auto mesh = mesh_source();
+  if (!mesh) return mesh.take_error();
+
+  // The reference as the student's page drew it: the page's own uniform values.
+  const LagGrid grid{code.frames, code.degrees_per_frame};
+  render::RenderRequest ref = code;
+  ref.uniforms.clear();
+  ref.vertex = spec.reference_vertex;
+  ref.fragment = spec.reference_fragment;
+  ref.angles = grid.angles();
+  ref.frames = static_cast<int>(ref.angles.size());
+  ref.pixel_type = image::PixelType::u8;
+  auto grid_frames = cached_frames(ref, **mesh, mesh_key);
+  if (!grid_frames) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + grid_frames.error().message);
+  std::vector<const image::Image*> saved_images;
+  for (const auto& f : *frames) saved_images.push_back(f.get());
+  const std::vector<LagFit> fits = fit_lags(saved_images, *grid_frames, grid);
+  const std::vector<double> angles = fitted_angles(fits, grid);
+  auto reference = at_angles(ref, **mesh, angles);
+  if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
+
+  // Frames from another rasteriser (the student's browser): an edge may fall a pixel away.
+  GradeOptions options = spec.options;
+  options.compare.spatial_tolerance = true;
+  GradeResult result = grade::grade(*frames, {}, *reference, {}, options);
+  std::vector<LagFit> diagnosed_fits = fits;
+  if (!result.pass) {
+    MistakesAtLags mistakes = mistakes_at_lags(spec, ref, **mesh, mesh_key, saved_images, fits, grid);
+    result = grade::grade(*frames, {}, *reference, mistakes.rendered, options);
+    for (const auto& [id, own] : mistakes.fits)
+      if (id == result.diagnosis) diagnosed_fits = own;
+  }
+  FramesGradeOutput out{report(result, spec.reference_name, {"homework"}, fits.size()), {}, {}};
+  describe_fits(diagnosed_fits, grid, saved, out.frames);
+  if (!result.pass && out.frames.diagnosis.empty())
+    if (const double outline = worst_outline_overlap(*frames, *reference); outline < kSameOutline) {
+      out.frames.diagnosis = "frames_of_another_shape";
+      out.frames.messages.insert(out.frames.messages.begin(), "the saved frames show another shape than the reference on this mesh (the outlines overlap by " +
+                                                                  percent(outline) + " at worst): saved with another mesh selected on the page?");
+    }
+  settle(out.frames);
+
+  if (has_code && code_error) out.code = failed_submission(*code_error, spec.reference_name, spec.options.max_score);
+  if (has_code && !code_error) {
+    render::RenderRequest at = code;
+    at.angles = angles;
+    at.pixel_type = image::PixelType::u8;
+    if (auto s = enter("render"); !s) return s.take_error();
+    auto rendered = frames_of(at, **mesh);
+    if (auto s = enter("grader"); !s) return s.take_error();
+    out.code = rendered ? code_match(*frames, *rendered, *reference, out.frames, spec, options)
+                        : failed_submission(rendered.error(), spec.reference_name, spec.options.max_score);
+  }
+  out.frames.grader_work = work_;
+  std::vector<image::Image> heat;
+  for (size_t k = 0; k < frames->size(); ++k) heat.push_back(image::heatmap(*(*frames)[k], *(*reference)[k]));
+  if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(code.frames, code.width, code.height), heat)))
+    out.heatmap_png.assign(png->begin(), png->end());
+  return out;
+}
+
+}  // namespace shadelab::grade
