@@ -38,6 +38,12 @@ class GradescopeTest : public ::testing::Test {
                                          ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(root_);
     fs::create_directories(root_ / "submission");
+    // One reference store for the suite, as setup.sh's warmed store serves every student: the
+    // store is content-addressed and written by rename, so the tests' processes share it safely.
+    const fs::path store = fs::temp_directory_path() / "shadelab_gradescope_test_references";
+    fs::create_directories(store);
+    fs::create_directories(root_ / "source");
+    fs::create_directory_symlink(store, root_ / "source/reference-store");
   }
   void TearDown() override { fs::remove_all(root_); }
 
@@ -47,6 +53,27 @@ class GradescopeTest : public ::testing::Test {
   }
   void submit_preset(const std::string& name, const std::string& preset, const std::string& stage) const {
     submit(name, shadelab::testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js")));
+  }
+
+  // A deliverable's frames as the page saves them, rendered by `shadelab render` from `preset`
+  // (at the nominal angles: a page with a fixed clock) and named for `prefix`.
+  void save_frames(const std::string& folder, const std::string& preset, const std::string& prefix, const std::string& more = "") const {
+    fs::create_directories(root_ / "submission" / folder);
+    const auto r = shadelab::testkit::run_shadelab("render --preset " + preset + " --prefix " + prefix + " --frames-dir '" +
+                                                   (root_ / "submission" / folder).string() + "' " + more);
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  // A student's HW2 folder as the course lays it out: src/shaders/ and images/, every deliverable
+  // right unless the arguments say otherwise.
+  void hand_in(const std::string& specular_frames = "specular", const std::string& specular_code = "specular") const {
+    submit_preset("HW2/src/shaders/starter_vert.js", "normals", "vert");
+    submit_preset("HW2/src/shaders/starter_frag.js", "normals", "frag");
+    submit_preset("HW2/src/shaders/phong_vert.js", specular_code, "vert");
+    submit_preset("HW2/src/shaders/phong_frag.js", specular_code, "frag");
+    submit("HW2/HW2.ipynb", "{}");
+    save_frames("HW2/images", "normals", "normals");
+    save_frames("HW2/images", "diffuse", "diffuse");
+    if (!specular_frames.empty()) save_frames("HW2/images", specular_frames, "specular");
   }
 
   // Gradescope's run: the environment names the folders; the results file is what it reads.
@@ -60,6 +87,17 @@ class GradescopeTest : public ::testing::Test {
     return results;
   }
 
+  // A deliverable's test by what it grades: "saved frames", "code", "code under a hidden light",
+  // "saved frames made by your code".
+  static const json* test_of(const json& results, const std::string& checkpoint, const std::string& what) {
+    const std::string name = title(checkpoint) + ": " + what;
+    for (const auto& t : results["tests"]) {
+      const std::string n = t["name"];
+      if (n == name || n.starts_with(name + " (")) return &t;
+    }
+    return nullptr;
+  }
+  static std::string output_of(const json* test) { return test ? (*test)["output"].get<std::string>() : std::string(); }
   static const json* test_named(const json& results, const std::string& prefix) {
     for (const auto& t : results["tests"])
       if (t["name"].get<std::string>().starts_with(prefix)) return &t;
@@ -73,31 +111,99 @@ class GradescopeTest : public ::testing::Test {
 
 }  // namespace
 
-// The student's HW2 folder as they zip it (the course's layout: src/shaders/), macOS litter
-// included: each checkpoint found by the course's file names (and the diffuse stage the student
-// kept under its own name), each graded and worth the course's points.
-TEST_F(GradescopeTest, TheHomeworkFolderIsGradedCheckpointByCheckpoint) {
-  submit_preset("HW2/src/shaders/starter_vert.js", "normals", "vert");
-  submit_preset("HW2/src/shaders/starter_frag.js", "normals", "frag");
-  submit_preset("HW2/src/shaders/phong_vert.js", "specular", "vert");
-  submit_preset("HW2/src/shaders/phong_frag.js", "specular", "frag");
-  submit_preset("HW2/src/shaders/diffuse_vert.js", "diffuse", "vert");
-  submit_preset("HW2/src/shaders/diffuse_frag.js", "diffuse", "frag");
+// The student's HW2 folder as they zip it (the course's layout: src/shaders/ and images/), macOS
+// litter included: each deliverable's saved frames, its code, the hidden-light rule and whether the
+// frames are the code's, each its own test worth its share of the course's points.
+TEST_F(GradescopeTest, TheHomeworkFolderIsGradedDeliverableByDeliverable) {
+  hand_in();
   submit("HW2/src/hw2.js", "// the page's script\n");
   submit("__MACOSX/HW2/src/shaders/._phong_vert.js", "\x00\x05\x16\x07 resource fork");
   const json results = autograde();
-  ASSERT_EQ(results["tests"].size(), 3u) << results.dump(2);
   double points = 0;
   for (const auto& c : shadelab::testkit::course().checkpoints) points += c.points;
   EXPECT_EQ(results["score"], points) << results.dump(2);
-  const json* normals = test_named(results, title("normals"));
-  ASSERT_TRUE(normals);
-  EXPECT_EQ((*normals)["name"], title("normals") + " (HW2/src/shaders/starter_vert.js, starter_frag.js)");
-  EXPECT_EQ((*normals)["status"], "passed");
-  EXPECT_EQ((*normals)["visibility"], "visible");
-  ASSERT_TRUE(test_named(results, title("diffuse") + " (HW2/src/shaders/diffuse_vert.js"));
-  ASSERT_TRUE(test_named(results, title("specular") + " (HW2/src/shaders/phong_vert.js"));
-  EXPECT_FALSE(fs::exists(root_ / "results/heatmaps")) << "no checkpoint failed";
+  // normals: frames, code, match; diffuse: frames; specular: frames, code, probe, match.
+  ASSERT_EQ(results["tests"].size(), 8u) << results.dump(2);
+  for (const auto& t : results["tests"]) {
+    EXPECT_EQ(t["status"], "passed") << t["name"] << ": " << t["output"];
+    EXPECT_EQ(t["visibility"], "visible");
+  }
+  const json* code = test_of(results, "normals", "code");
+  ASSERT_TRUE(code);
+  EXPECT_EQ((*code)["name"], title("normals") + ": code (HW2/src/shaders/starter_vert.js, starter_frag.js)");
+  const json* frames = test_of(results, "specular", "saved frames");
+  ASSERT_TRUE(frames);
+  EXPECT_EQ((*frames)["name"], title("specular") + ": saved frames (HW2/images/hw2_specular_0.png, ...)");
+  // The weights are the profile's: the frames twice a code test's share.
+  EXPECT_DOUBLE_EQ((*frames)["max_score"].get<double>(), 2 * (*test_of(results, "specular", "code"))["max_score"].get<double>());
+  const json* probe = test_of(results, "specular", "code under a hidden light");
+  ASSERT_TRUE(probe);
+  EXPECT_NE(output_of(probe).find("N.L > 0"), std::string::npos) << "the rule it checks, in words: " << output_of(probe);
+  EXPECT_NE(output_of(test_of(results, "specular", "saved frames made by your code")).find("what your code renders"), std::string::npos);
+  EXPECT_FALSE(fs::exists(root_ / "results/heatmaps")) << "no test failed";
+}
+
+// Frames saved before the specular term was written (made by a diffuse-only shader) under the
+// specular names, with the finished code: the frames fail as missing the highlight, and are said
+// not to be what the code renders.
+TEST_F(GradescopeTest, StaleSpecularFramesAreCaughtAndNamed) {
+  hand_in("diffuse", "specular");
+  const json results = autograde();
+  const json* frames = test_of(results, "specular", "saved frames");
+  ASSERT_TRUE(frames) << results.dump(2);
+  EXPECT_EQ((*frames)["score"], 0.0);
+  EXPECT_NE(output_of(frames).find("specular highlight missing"), std::string::npos) << output_of(frames).substr(0, 400);
+  EXPECT_EQ((*frames)["output_format"], "html") << "the heat map, embedded";
+  EXPECT_TRUE(fs::exists(root_ / "results/heatmaps/specular_frames.png"));
+  const json* code = test_of(results, "specular", "code");
+  ASSERT_TRUE(code);
+  EXPECT_EQ((*code)["status"], "passed");
+  const json* match = test_of(results, "specular", "saved frames made by your code");
+  ASSERT_TRUE(match);
+  EXPECT_EQ((*match)["score"], 0.0);
+  EXPECT_NE(output_of(match).find("saved from an earlier version of your code"), std::string::npos) << output_of(match);
+}
+
+// The specular frames saved under the diffuse names: the diffuse deliverable's test says they look
+// like the specular deliverable's frames.
+TEST_F(GradescopeTest, SpecularFramesUnderTheDiffuseNamesAreNamedForWhatTheyAre) {
+  hand_in();
+  save_frames("HW2/images", "specular", "diffuse");  // over the diffuse frames
+  const json results = autograde();
+  const json* frames = test_of(results, "diffuse", "saved frames");
+  ASSERT_TRUE(frames) << results.dump(2);
+  EXPECT_EQ((*frames)["score"], 0.0);
+  EXPECT_NE(output_of(frames).find("look like the specular deliverable's frames (hw2_specular_0.png"), std::string::npos)
+      << output_of(frames).substr(0, 400);
+}
+
+// Frames saved at another size than the course's canvas: the file and both sizes are named.
+TEST_F(GradescopeTest, FramesOfAnotherSizeSaySo) {
+  hand_in("");
+  save_frames("HW2/images", "specular", "specular", "--size 640x480");
+  const json results = autograde();
+  const json* frames = test_of(results, "specular", "saved frames");
+  ASSERT_TRUE(frames) << results.dump(2);
+  EXPECT_EQ((*frames)["score"], 0.0);
+  EXPECT_NE(output_of(frames).find("hw2_specular_0.png is 640 x 480; the course's canvas is 512 x 512"), std::string::npos) << output_of(frames);
+  EXPECT_EQ((*test_of(results, "normals", "saved frames"))["status"], "passed") << "the other deliverables are graded as usual";
+}
+
+// A frame missing, and a frame saved twice in place of the next.
+TEST_F(GradescopeTest, AMissingFrameAndARepeatedFrameAreNamed) {
+  hand_in();
+  fs::remove(root_ / "submission/HW2/images/hw2_normals_4.png");
+  fs::copy_file(root_ / "submission/HW2/images/hw2_specular_2.png", root_ / "submission/HW2/images/hw2_specular_3.png",
+                fs::copy_options::overwrite_existing);
+  const json results = autograde();
+  const json* normals = test_of(results, "normals", "saved frames");
+  ASSERT_TRUE(normals) << results.dump(2);
+  EXPECT_EQ((*normals)["score"], 0.0);
+  EXPECT_NE(output_of(normals).find("hw2_normals_4.png is missing"), std::string::npos) << output_of(normals);
+  const json* specular = test_of(results, "specular", "saved frames");
+  ASSERT_TRUE(specular);
+  EXPECT_EQ((*specular)["score"], 0.0);
+  EXPECT_NE(output_of(specular).find("hw2_specular_3.png shows frame 2's rotation"), std::string::npos) << output_of(specular).substr(0, 400);
 }
 
 // The modules alone, the specular stage not done: the missing checkpoint says what was looked
@@ -107,13 +213,16 @@ TEST_F(GradescopeTest, AMissingAndAWrongCheckpointSayWhy) {
   submit_preset("phong_frag.js", "diffuse", "frag");
   const json results = autograde();
   EXPECT_EQ(results["score"], 0.0) << results.dump(2);
-  const json* normals = test_named(results, title("normals"));
+  const json* normals = test_of(results, "normals", "code");
   ASSERT_TRUE(normals) << results.dump(2);
   EXPECT_EQ((*normals)["score"], 0.0);
   EXPECT_NE((*normals)["output"].get<std::string>().find("expected starter_vert.js and starter_frag.js"), std::string::npos);
   EXPECT_NE((*normals)["output"].get<std::string>().find("the submission has phong_frag.js, phong_vert.js"), std::string::npos)
       << (*normals)["output"];
-  const json* specular = test_named(results, title("specular") + " (phong_vert.js, phong_frag.js)");
+  const json* frames = test_of(results, "normals", "saved frames");
+  ASSERT_TRUE(frames);
+  EXPECT_NE(output_of(frames).find("no saved frames: expected hw2_normals_0.png to hw2_normals_8.png"), std::string::npos) << output_of(frames);
+  const json* specular = test_named(results, title("specular") + ": code (phong_vert.js, phong_frag.js)");
   ASSERT_TRUE(specular) << results.dump(2);
   EXPECT_EQ((*specular)["status"], "failed");
   const std::string output = (*specular)["output"];
@@ -133,7 +242,7 @@ TEST_F(GradescopeTest, ASubmissionThatDoesNotCompileScoresZeroWithItsError) {
   submit("starter_vert.js", broken);
   submit_preset("starter_frag.js", "normals", "frag");
   const json results = autograde();
-  const json* normals = test_named(results, title("normals"));
+  const json* normals = test_of(results, "normals", "code");
   ASSERT_TRUE(normals) << results.dump(2);
   EXPECT_EQ((*normals)["score"], 0.0);
   EXPECT_EQ((*normals)["status"], "failed");
@@ -149,7 +258,7 @@ TEST_F(GradescopeTest, ALinkInTheSubmissionIsNotFollowed) {
   fs::create_symlink(outside, root_ / "submission/starter_vert.js");
   submit_preset("starter_frag.js", "normals", "frag");
   const json results = autograde();
-  const json* normals = test_named(results, title("normals"));
+  const json* normals = test_of(results, "normals", "code");
   ASSERT_TRUE(normals) << results.dump(2);
   EXPECT_EQ((*normals)["score"], 0.0) << "graded through the link";
   EXPECT_NE((*normals)["output"].get<std::string>().find("the submission has starter_frag.js\n"), std::string::npos)
@@ -159,10 +268,13 @@ TEST_F(GradescopeTest, ALinkInTheSubmissionIsNotFollowed) {
 TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
   const json results = autograde();
   EXPECT_EQ(results["score"], 0.0);
-  ASSERT_EQ(results["tests"].size(), 2u) << results.dump(2);
+  ASSERT_EQ(results["tests"].size(), 8u) << results.dump(2);
   for (const auto& t : results["tests"]) {
     EXPECT_EQ(t["score"], 0.0);
-    EXPECT_NE(t["output"].get<std::string>().find("the submission has nothing"), std::string::npos) << t["output"];
+    const std::string output = t["output"];
+    EXPECT_TRUE(output.find("the submission has nothing") != std::string::npos || output.find("these PNGs: nothing") != std::string::npos ||
+                output.find("not compared") != std::string::npos || output.find("no shaders for this deliverable") != std::string::npos)
+        << t["name"] << ": " << output;
   }
 }
 
@@ -179,10 +291,11 @@ TEST_F(GradescopeTest, TheCourseInTheZipIsTheOneGradedBy) {
   submit_preset("starter_vert.js", "normals", "vert");
   submit_preset("starter_frag.js", "normals", "frag");
   const json results = autograde();
-  const json* part1 = test_named(results, "Part 1: normals");
+  const json* part1 = test_named(results, "Part 1: normals: code");
   ASSERT_TRUE(part1) << results.dump(2);
-  EXPECT_EQ((*part1)["max_score"], 2.0);
-  EXPECT_EQ((*part1)["score"], 2.0);
+  // 2 points shared by the frames (2 shares), the code (1) and the match (1).
+  EXPECT_EQ((*part1)["max_score"], 0.5);
+  EXPECT_EQ((*part1)["score"], 0.5);
 }
 
 // setup.sh renders the course's references and known mistakes once (warm_references.sh, run here
@@ -196,14 +309,20 @@ TEST_F(GradescopeTest, AStoreWarmedAtSetupMeansNoReferenceIsRenderedPerStudent) 
   submit_preset("starter_frag.js", "normals", "frag");
   submit_preset("phong_vert.js", "diffuse", "vert");  // the specular stage not done: fails, diagnosed
   submit_preset("phong_frag.js", "diffuse", "frag");
+  save_frames("images", "normals", "normals");
   const json results = autograde();
-  ASSERT_EQ(results["tests"].size(), 2u) << results.dump(2);
-  for (const auto& t : results["tests"]) {
-    const json& work = t["extra_data"]["graderWork"];
-    EXPECT_EQ(work["rendered"], 0) << t["name"] << ": " << work;
-    EXPECT_GT(work["fromStore"].get<int>(), 0) << t["name"] << ": " << work;
+  for (const std::string what : {"code", "code under a hidden light"}) {
+    const json* t = test_of(results, what == "code" ? "normals" : "specular", what);
+    ASSERT_TRUE(t) << what << ": " << results.dump(2);
+    const json& work = (*t)["extra_data"]["graderWork"];
+    EXPECT_EQ(work["rendered"], 0) << (*t)["name"] << ": " << work;
+    EXPECT_GT(work["fromStore"].get<int>(), 0) << (*t)["name"] << ": " << work;
   }
-  const json* specular = test_named(results, title("specular"));
+  // Saved frames: the lag grid from the store, and one render of the job at the angles found.
+  const json& frames_work = (*test_of(results, "normals", "saved frames"))["extra_data"]["graderWork"];
+  EXPECT_EQ(frames_work["rendered"], 1) << frames_work;
+  EXPECT_EQ(frames_work["fromStore"], 1) << frames_work;
+  const json* specular = test_of(results, "specular", "code");
   ASSERT_TRUE(specular);
   EXPECT_NE((*specular)["output"].get<std::string>().find("specular highlight missing"), std::string::npos) << "diagnosed from the store";
 }

@@ -13,6 +13,7 @@
 #include "cli/grade_runner.h"
 #include "course/course_import.h"
 #include "course/course_reader.h"
+#include "image/encode.h"
 
 namespace shadelab::cli {
 
@@ -55,6 +56,15 @@ int run_import(CourseFlags& f) {
   return 0;
 }
 
+// A deliverable's frames, blank, at the course's canvas size and names.
+std::vector<grade::SavedFrame> blank_frames(const course::Course& c, const course::Checkpoint& checkpoint) {
+  const auto png = image::encode_png(image::Image::blank(c.width, c.height, image::PixelType::u8));
+  std::vector<grade::SavedFrame> out;
+  for (int k = 0; k < c.frames; ++k)
+    out.push_back({c.frame_file(checkpoint.prefix, k, "png"), png ? std::string(png->begin(), png->end()) : std::string()});
+  return out;
+}
+
 // Every checkpoint's reference and catalogue, rendered once into the store: a grade of its first
 // known mistake (a failing submission, so the whole catalogue is rendered), or of the reference
 // itself when it has none.
@@ -73,6 +83,11 @@ int run_warm(const GradeFlags& flags) {
     if (!graded) return fail(graded.error());
     const auto& w = graded->result.report.grader_work;
     std::cout << checkpoint.name << ": " << w.rendered << " sets rendered, " << w.from_store << " already in " << flags.cache_dir << "\n";
+    // The saved frames' lag grid (grade/lag_fit.h): a set of blank frames, graded, renders it.
+    auto frames = grade_frame_set(pool, c, f, checkpoint, blank_frames(c, checkpoint), std::nullopt);
+    if (!frames) return fail(frames.error());
+    const auto& fw = frames->result.frames.grader_work;
+    std::cout << checkpoint.name << " (saved frames): " << fw.rendered << " sets rendered, " << fw.from_store << " already in " << flags.cache_dir << "\n";
   }
   return 0;
 }

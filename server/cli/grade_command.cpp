@@ -11,6 +11,7 @@
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
 #include "cli/server_grader.h"
+#include "cli/submission_files.h"
 #include "course/course_reader.h"
 #include "course/submission_files.h"
 #include "grade/report.h"
@@ -34,6 +35,33 @@ int run_single(const course::Course& c, const GradeFlags& f) {
   if (!f.heatmap.empty() && !graded.result.heatmap_png.empty())
     if (auto s = write_file(f.heatmap, graded.result.heatmap_png); !s) return fail(s.error());
   for (const auto& m : report.messages) std::cerr << m << "\n";
+  return 0;
+}
+
+// A deliverable's saved frames (found by name under --saved-frames), with --vert/--frag when given:
+// {"frames": report, "code": report or null}; the heat map is the frames' against the reference.
+int run_saved_frames(const course::Course& c, const GradeFlags& f) {
+  auto found = c.checkpoint(f.reference.empty() ? c.default_checkpoint : f.reference);
+  if (!found) return fail(found.error());
+  const course::Checkpoint& checkpoint = *found->checkpoint;
+  const fs::path root = f.saved_frames;
+  const course::SavedFrameFiles files = course::saved_frame_files(c, checkpoint, submitted_files(root));
+  std::optional<std::pair<fs::path, fs::path>> code;
+  if (!f.vert.empty() && !f.frag.empty()) code = std::pair{fs::absolute(f.vert), fs::absolute(f.frag)};
+  worker::WorkerPool pool(pool_config(f, 1));
+  auto graded = grade_saved_frames(pool, c, f, checkpoint, root, files, code);
+  if (!graded) return fail(graded.error());
+  const auto& r = graded->result;
+  json out = {{"frames", grade::to_json(r.frames)}, {"code", r.code ? grade::to_json(*r.code) : json(nullptr)}};
+  for (const auto& extra : files.extra)
+    out["frames"]["messages"].push_back(extra.filename().string() + " is not graded: the deliverable has " + std::to_string(c.frames) + " frames");
+  if (f.output.empty()) std::cout << out.dump(2) << "\n";
+  else if (auto s = write_file(f.output, out.dump(2) + "\n"); !s) return fail(s.error());
+  if (!f.heatmap.empty() && !r.heatmap_png.empty())
+    if (auto s = write_file(f.heatmap, r.heatmap_png); !s) return fail(s.error());
+  for (const auto& m : r.frames.messages) std::cerr << "frames: " << m << "\n";
+  if (r.code)
+    for (const auto& m : r.code->messages) std::cerr << "code: " << m << "\n";
   return 0;
 }
 
@@ -102,6 +130,10 @@ Command add_grade_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("grade", "Grade shaders against a checkpoint (one submission, or a folder of them)");
   cmd->add_option("--vert", f->vert, "Submission's vertex shader");
   cmd->add_option("--frag", f->frag, "Submission's fragment shader");
+  cmd->add_option("--saved-frames", f->saved_frames,
+                  "A folder holding the deliverable's frames as the page saves them (images/hw2_specular_0.png ...): graded "
+                  "at the lag each was drawn with, and against --vert/--frag's render when given")
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--submissions", f->submissions, "A folder with one folder per student holding their shaders/*.js");
   const course::Course& builtin = course::builtin_course();
   std::string checkpoints;
@@ -136,6 +168,7 @@ Command add_grade_command(CLI::App& app) {
     auto loaded = load_course(f->course);
     if (!loaded) return fail(loaded.error());
     if (!f->submissions.empty()) return run_batch(**loaded, *f);
+    if (!f->saved_frames.empty()) return run_saved_frames(**loaded, *f);
     if (f->vert.empty() || f->frag.empty()) {
       std::cerr << "error: give --vert and --frag, or --submissions DIR\n";
       return 2;

@@ -11,6 +11,7 @@
 
 #include "cli/environment.h"
 #include "course/course.h"
+#include "course/submission_files.h"
 #include "grade/reference_store.h"
 #include "worker/client.h"
 
@@ -20,7 +21,7 @@ namespace shadelab::cli {
 struct GradeFlags {
   std::string course;
   std::string cache_dir = grade::default_reference_folder();  // the reference store; empty: memory only
-  std::string vert, frag, submissions, reference, mesh, out = "grades", output, heatmap;
+  std::string vert, frag, saved_frames, submissions, reference, mesh, out = "grades", output, heatmap;
   std::string format = "json", size;
   std::optional<int> frames;
   int workers = 0, concurrency = 0;
@@ -51,6 +52,23 @@ Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& cours
 // The same for shaders already in memory.
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, shader::ShaderFile vert,
                             shader::ShaderFile frag);
+
+// A deliverable's saved frames (`files`, relative to `root`) graded against `checkpoint`'s
+// reference and, with `code` (vertex, fragment; relative to `root`), against what that code
+// renders. A frame missing, unreadable or too large is the frames' grade, 0 with the file named.
+struct GradedFrames {
+  worker::FramesGradeResult result;
+  double seconds = 0;
+};
+Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f,
+                                          const course::Checkpoint& checkpoint, const std::filesystem::path& root,
+                                          const course::SavedFrameFiles& files,
+                                          const std::optional<std::pair<std::filesystem::path, std::filesystem::path>>& code);
+
+// The same for frames already in memory (`code`: vertex, fragment).
+Expected<GradedFrames> grade_frame_set(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f,
+                                       const course::Checkpoint& checkpoint, std::vector<grade::SavedFrame> saved,
+                                       const std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>>& code);
 
 // --cache-dir on a grading command: where reference renders are kept across runs.
 void add_cache_option(CLI::App* command, std::string& folder);

@@ -97,6 +97,32 @@ render::RenderRequest Course::render_request(shader::ShaderFile vertex, shader::
   return r;
 }
 
+bool Checkpoint::applies(DeliverableTest test) const {
+  switch (test) {
+    case DeliverableTest::frames: return true;
+    case DeliverableTest::code:
+    case DeliverableTest::match: return !code.empty();
+    case DeliverableTest::probe: return !code.empty() && !probes.empty();
+  }
+  return false;
+}
+
+double Checkpoint::max_score(DeliverableTest test, double of) const {
+  const auto weight = [&](DeliverableTest t) {
+    if (!applies(t)) return 0.0;
+    switch (t) {
+      case DeliverableTest::frames: return weights.frames;
+      case DeliverableTest::code: return weights.code;
+      case DeliverableTest::probe: return weights.probe;
+      case DeliverableTest::match: return weights.match;
+    }
+    return 0.0;
+  };
+  double sum = 0;
+  for (auto t : {DeliverableTest::frames, DeliverableTest::code, DeliverableTest::probe, DeliverableTest::match}) sum += weight(t);
+  return sum > 0 ? of * weight(test) / sum : 0;
+}
+
 grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {
   grade::GradeSpec spec;
   spec.reference_name = c.name;

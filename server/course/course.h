@@ -48,6 +48,16 @@ struct Mistake {
   grade::Mistake shaders;
 };
 
+// What a deliverable's points are shared by, Gradescope's tests for it: its saved frames against
+// the reference, its code against the reference (under the page's light, and under the probe
+// lights: a rule the page's light cannot show), and whether the saved frames are what the code
+// renders. Shares of the checkpoint's points; a test that does not apply (no code, no probes)
+// takes no share.
+struct TestWeights {
+  double frames = 1, code = 1, probe = 1, match = 1;
+};
+enum class DeliverableTest { frames, code, probe, match };
+
 // A deliverable: the frames `images/{frame name with prefix}` and, when `code` names a stem, the
 // shaders `{code}_vert.js` / `{code}_frag.js` handed in with it.
 struct Checkpoint {
@@ -57,8 +67,13 @@ struct Checkpoint {
   std::string reference;  // a preset
   std::string code;       // "starter", "phong", or empty: the deliverable is images alone
   double points = 1;
+  TestWeights weights;
   std::vector<Mistake> mistakes;
   std::vector<grade::Probe> probes;
+
+  bool applies(DeliverableTest test) const;
+  // A test's share of `points` (0 for one that does not apply).
+  double max_score(DeliverableTest test, double points) const;
 };
 
 // An old or other name for a checkpoint, and what it now means.

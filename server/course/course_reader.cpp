@@ -273,7 +273,7 @@ class Parser {
       r.fail_at("checkpoints", "expected at least one checkpoint");
     std::set<std::string> prefixes;
     for (const JsonReader& c : r.objects("checkpoints")) {
-      c.only({"name", "title", "prefix", "reference", "code", "points", "mistakes", "probes"});
+      c.only({"name", "title", "prefix", "reference", "code", "points", "weights", "mistakes", "probes"});
       c.require("name") && c.require("title") && c.require("prefix") && c.require("reference");
       Checkpoint out;
       out.name = c.text("name", "");
@@ -288,6 +288,11 @@ class Parser {
       out.code = c.text("code", "");
       if (c.has("code") && !is_identifier(out.code)) c.fail_at(c.at("code"), "expected a file stem: starter for starter_vert.js and starter_frag.js");
       out.points = c.number("points", 1, 0, 1e6);
+      if (c.has("weights")) {
+        const JsonReader w = c.object("weights");
+        w.only({"frames", "code", "probe", "match"});
+        out.weights = {w.number("frames", 1, 0, 1e6), w.number("code", 1, 0, 1e6), w.number("probe", 1, 0, 1e6), w.number("match", 1, 0, 1e6)};
+      }
       const Preset* reference = course_.preset(out.reference);
       if (c.has("reference") && !reference && error_.empty()) c.fail_at(c.at("reference"), "'" + out.reference + "' is not one of presets");
       std::set<std::string> ids;
@@ -297,10 +302,10 @@ class Parser {
           ids.insert(out.mistakes.back().id);
         }
       for (const JsonReader& p : c.objects("probes")) {
-        p.only({"name", "lightPosition"});
+        p.only({"name", "lightPosition", "checks"});
         p.require("name") && p.require("lightPosition");
         const glm::dvec3 at = p.vec3("lightPosition", glm::dvec3(0.0), -1e7, 1e7);
-        out.probes.push_back({p.text("name", ""), {float(at.x), float(at.y), float(at.z)}});
+        out.probes.push_back({p.text("name", ""), {float(at.x), float(at.y), float(at.z)}, p.text("checks", "")});
         if (!course_.uniform_with_role("lightPosition"))
           p.fail(p.path() + ": a probe moves the light, but no uniform has the role lightPosition");
       }
@@ -425,8 +430,21 @@ json to_json(const Course& c, bool portable) {
       mistakes.push_back(std::move(entry));
     }
     json probes = json::array();
-    for (const auto& p : k.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
+    for (const auto& p : k.probes) {
+      probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
+      if (!p.checks.empty()) probes.back()["checks"] = p.checks;
+    }
     json entry = {{"name", k.name}, {"title", k.title}, {"prefix", k.prefix}, {"reference", k.reference}, {"points", k.points}};
+    // The weights of the tests that apply, when one is not the default.
+    const auto& w = k.weights;
+    const TestWeights defaults;
+    if (w.frames != defaults.frames || w.code != defaults.code || w.probe != defaults.probe || w.match != defaults.match) {
+      json weights = {{"frames", w.frames}};
+      if (k.applies(DeliverableTest::code)) weights["code"] = w.code;
+      if (k.applies(DeliverableTest::probe)) weights["probe"] = w.probe;
+      if (k.applies(DeliverableTest::match)) weights["match"] = w.match;
+      entry["weights"] = std::move(weights);
+    }
     if (!k.code.empty()) entry["code"] = k.code;
     if (!mistakes.empty()) entry["mistakes"] = std::move(mistakes);
     if (!probes.empty()) entry["probes"] = std::move(probes);

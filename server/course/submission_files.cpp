@@ -56,6 +56,30 @@ std::optional<std::pair<fs::path, fs::path>> checkpoint_pair(const Course& cours
   return std::nullopt;
 }
 
+bool SavedFrameFiles::any() const {
+  return std::any_of(frames.begin(), frames.end(), [](const auto& f) { return f.has_value(); });
+}
+
+std::vector<std::string> SavedFrameFiles::missing(const Course& course, const Checkpoint& c) const {
+  std::vector<std::string> out;
+  for (size_t k = 0; k < frames.size(); ++k)
+    if (!frames[k]) out.push_back(course.frame_file(c.prefix, static_cast<int>(k), "png"));
+  return out;
+}
+
+SavedFrameFiles saved_frame_files(const Course& course, const Checkpoint& c, const std::vector<fs::path>& files) {
+  SavedFrameFiles out;
+  out.frames.resize(static_cast<size_t>(course.frames));
+  for (const auto& f : files) {  // shallowest first: the first of a name wins
+    for (int k = 0; k < course.frames; ++k)
+      if (f.filename() == course.frame_file(c.prefix, k, "png") && !out.frames[static_cast<size_t>(k)]) out.frames[static_cast<size_t>(k)] = f;
+    // Frames past the count: the page saved one more, or a set of another length.
+    for (int k = course.frames; k < course.frames + 100; ++k)
+      if (f.filename() == course.frame_file(c.prefix, k, "png")) out.extra.push_back(f);
+  }
+  return out;
+}
+
 std::string wanted_files(const Course& course, const Checkpoint& c) {
   std::string out;
   const auto all = stems(course, c);

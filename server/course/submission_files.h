@@ -40,6 +40,19 @@ std::vector<CheckpointFiles> plan_checkpoints(const Course& course, const std::v
 std::optional<std::pair<std::filesystem::path, std::filesystem::path>> checkpoint_pair(
     const Course& course, const Checkpoint& checkpoint, const std::vector<std::filesystem::path>& files);
 
+// A deliverable's saved frames in a submission: frame k's file by the course's name for it
+// (hw2_specular_3.png), the shallowest first (images/ in the course's folder), and the files named
+// as frames beyond the deliverable's count (hw2_specular_9.png), which are not graded.
+struct SavedFrameFiles {
+  std::vector<std::optional<std::filesystem::path>> frames;  // one per frame of the job
+  std::vector<std::filesystem::path> extra;
+
+  bool any() const;
+  // "hw2_specular_4.png and hw2_specular_7.png": the frames not found; empty when none is missing.
+  std::vector<std::string> missing(const Course& course, const Checkpoint& checkpoint) const;
+};
+SavedFrameFiles saved_frame_files(const Course& course, const Checkpoint& checkpoint, const std::vector<std::filesystem::path>& files);
+
 // "starter_vert.js and starter_frag.js (or normals_vert.js and normals_frag.js)": what was looked for.
 std::string wanted_files(const Course& course, const Checkpoint& checkpoint);
 

@@ -101,7 +101,9 @@ void describe_fits(const std::vector<LagFit>& fits, const LagGrid& grid, const s
                                                 "'s (" + degrees(grid.nominal(f.frame)) + "): saved out of order, or twice?");
     }
   }
-  if (fits.size() > 1)
+  if (fits.size() > 1 && hi < 0.005)
+    r.messages.push_back("frames 1 to " + std::to_string(fits.size() - 1) + " were drawn at their nominal angles (no lag: a fixed clock)");
+  else if (fits.size() > 1)
     r.messages.push_back("frames 1 to " + std::to_string(fits.size() - 1) + " were drawn " + degrees(lo) + " to " + degrees(hi) +
                          " degrees behind their nominal angles (the page draws with the previous frame's time), and were compared there");
 }

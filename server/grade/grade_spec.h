@@ -26,6 +26,7 @@ struct Mistake {
 struct Probe {
   std::string name;
   std::array<float, 3> light_position;
+  std::string checks;  // the rule it checks, in a student's words ("the specular term only where N.L > 0")
 };
 
 // A number the starter shader sets that a student should keep ("float specularAlpha = 6.0;"): a

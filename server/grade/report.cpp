@@ -1,5 +1,7 @@
 #include "grade/report.h"
 
+#include <algorithm>
+
 namespace shadelab::grade {
 
 using nlohmann::json;
@@ -71,6 +73,24 @@ Report failed_submission(const Error& e, const std::string& checkpoint, double m
       break;
     }
   return {checkpoint, false, 0.0, max_score, std::string(to_string(e.code)), {message}, {}, e.diagnostics, {}};
+}
+
+Report part_of(const Report& whole, bool probes, double max_score) {
+  Report out = whole;
+  out.max_score = max_score;
+  out.frames.clear();
+  for (const auto& f : whole.frames)
+    if ((f.light != "homework") == probes) out.frames.push_back(f);
+  out.pass = !out.frames.empty() && std::all_of(out.frames.begin(), out.frames.end(), [](const FrameReport& f) { return f.grade.pass; });
+  // A whole that failed for what no frame shows (NaN found in the float frames) fails each part.
+  const bool a_frame_fails = std::any_of(whole.frames.begin(), whole.frames.end(), [](const FrameReport& f) { return !f.grade.pass; });
+  if (!whole.pass && !a_frame_fails) out.pass = false;
+  out.score = out.pass ? max_score : 0;
+  if (out.pass) {
+    out.diagnosis.clear();
+    out.messages = {probes ? "matches the reference under the hidden light" : "matches the reference under the page's light"};
+  }
+  return out;
 }
 
 json to_json(const Report& r) {

@@ -56,6 +56,11 @@ Report report(const GradeResult& result, const std::string& checkpoint, const st
 // A submission that could not be graded: score 0, the reason (its first compile error at its line).
 Report failed_submission(const Error& error, const std::string& checkpoint, double max_score);
 
+// The part of a report under the page's light (`probes` false) or under the probe lights (true),
+// worth `max_score`: a submission right under the page's light and wrong under a probe sees which.
+// A report with no frames (the code did not compile) is the same failure for either part.
+Report part_of(const Report& whole, bool probes, double max_score);
+
 nlohmann::json to_json(const Report& report);
 Expected<Report> report_from_json(const nlohmann::json& j);
 

@@ -61,7 +61,7 @@ json grade_json(const grade::GradeSpec& g) {
   json mistakes = json::array(), probes = json::array();
   for (const auto& m : g.mistakes)
     mistakes.push_back({{"id", m.id}, {"message", m.message}, {"vertex", file_json(m.vertex)}, {"fragment", file_json(m.fragment)}});
-  for (const auto& p : g.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
+  for (const auto& p : g.probes) probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}, {"checks", p.checks}});
   json constants = json::array();
   for (const auto& k : g.starter_constants) constants.push_back({{"variable", k.variable}, {"meaning", k.meaning}, {"value", k.value}});
   const auto& o = g.options;
@@ -79,7 +79,7 @@ grade::GradeSpec grade_from(const json& g) {
   spec.reference_fragment = file_from(g.at("referenceFragment"));
   for (const auto& m : g.at("mistakes"))
     spec.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
-  for (const auto& p : g.at("probes")) spec.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>()});
+  for (const auto& p : g.at("probes")) spec.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>(), p.value("checks", "")});
   spec.light_position_uniforms = g.at("lightPositionUniforms").get<std::vector<std::string>>();
   spec.reference_store = g.at("referenceStore");
   for (const auto& k : g.at("starterConstants")) spec.starter_constants.push_back({k.at("variable"), k.at("meaning"), k.at("value")});

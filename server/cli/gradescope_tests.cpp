@@ -1,0 +1,150 @@
+#include "cli/gradescope_tests.h"
+
+#include <iostream>
+
+#include "cli/file_output.h"
+#include "core/base64.h"
+#include "grade/report.h"
+
+namespace shadelab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using course::DeliverableTest;
+
+std::string html_escape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+json test_of(const std::string& name, double score, double max_score, bool pass, const std::string& output) {
+  return {{"name", name}, {"score", score}, {"max_score", max_score}, {"status", pass ? "passed" : "failed"},
+          {"visibility", "visible"}, {"output", output}};
+}
+
+// Nothing to grade: 0 and what was looked for.
+json absent(const std::string& name, double max_score, const std::string& why) { return test_of(name, 0, max_score, false, why + "\n"); }
+
+// The grader could not grade it: 0 on Gradescope (it has no "not graded"), and words that put it on
+// the grader, not the student.
+json ungraded(const std::string& name, double max_score, const Error& e) {
+  return absent(name, max_score, "The autograder could not grade this: " + e.message + " [" + std::string(info(e.code).name) +
+                                     "]. This is not a problem with your submission; please tell the course staff.");
+}
+
+// A report as a test worth `max_score` (its pass, not its own scale, decides the score).
+json graded(const std::string& name, const grade::Report& r, double max_score, const std::string& preface = "") {
+  std::string output = preface;
+  for (const auto& m : r.messages) output += m + "\n";
+  json test = test_of(name, r.pass ? max_score : 0, max_score, r.pass, output);
+  const auto& w = r.grader_work;
+  test["extra_data"] = {{"graderWork", {{"rendered", w.rendered}, {"fromStore", w.from_store}, {"fromMemory", w.from_memory}}}};
+  return test;
+}
+
+// A failed test's heat map written beside results.json as `file`, and embedded when small enough.
+void attach_heatmap(json& test, const std::string& png, const std::string& file, const HeatmapOutput& out) {
+  if (test["status"] == "passed" || png.empty() || out.folder.empty()) return;
+  const fs::path path = fs::path(out.folder) / (file + ".png");
+  if (auto written = write_file(path, png); !written) std::cerr << "autograde: " << written.error().message << "\n";
+  if (png.size() > out.embed_limit) {
+    test["output"] = test["output"].get<std::string>() + "difference heat map: " + path.string() + "\n";
+    return;
+  }
+  test["output_format"] = "html";
+  test["output"] = "<pre>" + html_escape(test["output"].get<std::string>()) +
+                   "</pre><p>Where your frames differ from the reference (brighter: further off):</p>"
+                   "<img alt=\"difference heat map\" style=\"max-width:100%\" src=\"data:image/png;base64," + base64_encode(png) + "\">";
+}
+
+std::string frame_range(const course::Course& c, const course::Checkpoint& k) {
+  return c.frame_file(k.prefix, 0, "png") + " to " + c.frame_file(k.prefix, c.frames - 1, "png");
+}
+
+std::string pngs_in(const std::vector<fs::path>& files) {
+  std::vector<fs::path> pngs;
+  for (const auto& f : files)
+    if (f.extension() == ".png") pngs.push_back(f);
+  return course::listing(pngs);
+}
+
+json frames_test(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files, const HeatmapOutput& heatmaps) {
+  const course::Checkpoint& k = *d.checkpoint;
+  const double max = k.max_score(DeliverableTest::frames, d.points);
+  std::string name = k.title + ": saved frames";
+  if (!d.frames.any() || !d.frames_grade)
+    return absent(name, max, "no saved frames: expected " + frame_range(c, k) + ", saved from the page (its Save button names them so) into images/; the submission has these PNGs: " +
+                                 pngs_in(files));
+  if (d.frames.frames[0]) name += " (" + (d.frames.frames[0]->parent_path() / c.frame_file(k.prefix, 0, "png")).string() + ", ...)";
+  if (!*d.frames_grade) return ungraded(name, max, d.frames_grade->error());
+  const GradedFrames& g = **d.frames_grade;
+  json test = graded(name, g.result.frames, max);
+  for (const auto& extra : d.frames.extra)
+    test["output"] = test["output"].get<std::string>() + extra.string() + " is not graded: the deliverable is " + frame_range(c, k) + "\n";
+  attach_heatmap(test, g.result.heatmap_png, k.name + "_frames", heatmaps);
+  return test;
+}
+
+std::string code_files(const DeliverableGrades& d) { return d.code->first.string() + ", " + d.code->second.filename().string(); }
+
+json code_test(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files, const HeatmapOutput& heatmaps) {
+  const course::Checkpoint& k = *d.checkpoint;
+  const double max = k.max_score(DeliverableTest::code, d.points);
+  if (!d.code)
+    return absent(k.title + ": code", max, "no shaders for this deliverable: expected " + course::wanted_files(c, k) +
+                                               " in one folder; the submission has " + course::listing(files));
+  const std::string name = k.title + ": code (" + code_files(d) + ")";
+  if (!*d.code_grade) return ungraded(name, max, d.code_grade->error());
+  const Graded& g = **d.code_grade;
+  const std::string note = k.applies(DeliverableTest::code) ? "" : "not part of the grade: this deliverable is graded by its saved frames\n";
+  json test = graded(name, grade::part_of(g.result.report, false, max), max, note);
+  attach_heatmap(test, g.result.heatmap_png, k.name, heatmaps);
+  return test;
+}
+
+json probe_test(const DeliverableGrades& d) {
+  const course::Checkpoint& k = *d.checkpoint;
+  const double max = k.max_score(DeliverableTest::probe, d.points);
+  std::string rules;
+  for (const auto& p : k.probes) rules += "This test moves the light (" + p.name + ") to check that " + (p.checks.empty() ? "the shading is right" : p.checks) + ".\n";
+  const std::string name = k.title + ": code under a hidden light";
+  if (!d.code) return absent(name, max, rules + "no shaders for this deliverable");
+  if (!*d.code_grade) return ungraded(name, max, d.code_grade->error());
+  return graded(name, grade::part_of((*d.code_grade)->result.report, true, max), max, rules);
+}
+
+json match_test(const DeliverableGrades& d) {
+  const course::Checkpoint& k = *d.checkpoint;
+  const double max = k.max_score(DeliverableTest::match, d.points);
+  const std::string name = k.title + ": saved frames made by your code";
+  if (!d.code) return absent(name, max, "not compared: no shaders for this deliverable");
+  if (!d.frames.any() || !d.frames_grade) return absent(name, max, "not compared: no saved frames");
+  if (!*d.frames_grade) return ungraded(name, max, d.frames_grade->error());
+  const auto& code = (*d.frames_grade)->result.code;
+  if (!code) return absent(name, max, "not compared: the code was not sent with the frames");
+  return graded(name, *code, max);
+}
+
+}  // namespace
+
+std::vector<json> deliverable_tests(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files,
+                                    const HeatmapOutput& heatmaps) {
+  const course::Checkpoint& k = *d.checkpoint;
+  std::vector<json> tests = {frames_test(c, d, files, heatmaps)};
+  if (k.applies(DeliverableTest::code) || d.code) tests.push_back(code_test(c, d, files, heatmaps));
+  if (k.applies(DeliverableTest::probe)) tests.push_back(probe_test(d));
+  if (k.applies(DeliverableTest::match) || (d.code && d.frames.any())) tests.push_back(match_test(d));
+  return tests;
+}
+
+}  // namespace shadelab::cli
