@@ -63,6 +63,8 @@ class SheetTest : public ::testing::Test {
     frag.replace(frag.find("fragColor = color;"), 18, "fragColor = color * undefinedThing;");
     std::ofstream(*dir_ / "HW2/src/shaders/phong_frag.js") << frag;
     error_line_ = line_of(frag, "fragColor = color * undefinedThing;");
+    // The normals deliverable's saved frames, at the canvas's size, beside its code.
+    made_.push_back(run(std::string(SHADELAB_CLI) + " render --preset normals --frames-dir " + (*dir_ / "HW2/images").string()));
     // The diffuse deliverable as the browser saved it: nine frames, no code.
     made_.push_back(run(std::string(SHADELAB_CLI) + " render --preset diffuse --size 96x96 --frames-dir " + (*dir_ / "HW2/images").string()));
     for (const auto& [name, red] : {std::pair{"camera_25.png", 200}, {"camera_50.png", 150}, {"eevee0001.png", 100}})
@@ -147,6 +149,35 @@ TEST_F(SheetTest, TheGridIsDrawnOnThePageOfItsCode) {
   }
   EXPECT_GT(black, width * height / 10) << "the grid's black background";
   EXPECT_GT(coloured, 500) << "the bunnies";
+}
+
+// A deliverable with code and saved frames: the saved frames' grid beside the code's, the lag found
+// and both verdicts (against the reference, against the code) in the text; the first page has the
+// normal-coloured bunnies in both halves of the page.
+TEST_F(SheetTest, SavedFramesAreShownBesideTheCodesGridWithTheirVerdicts) {
+  const std::string page1 = pdf_text(1, 1);
+  for (const std::string expected : {"the frames the student saved", "rendered from the student's code",
+                                     "saved frames: 1 / 1: matches the reference", "at their nominal angles",
+                                     "saved frames against the code: the saved frames are what your code renders"})
+    EXPECT_NE(page1.find(expected), std::string::npos) << expected << "\n" << page1;
+  // The diffuse frames were saved at 96 x 96: graded, and the size named.
+  EXPECT_NE(pdf_text().find("hw2_diffuse_0.png is 96 x 96; the course's canvas is 512 x 512"), std::string::npos);
+  ASSERT_EQ(run("pdftoppm -r 36 -f 1 -l 1 " + (*dir_ / "a.pdf").string() + " " + (*dir_ / "halves").string()).status, 0);
+  std::string ppm;
+  for (const auto& e : fs::directory_iterator(*dir_))
+    if (e.path().filename().string().starts_with("halves")) ppm = testkit::read_text(e.path());
+  int width = 0, height = 0, max = 0, header = 0;
+  ASSERT_EQ(std::sscanf(ppm.c_str(), "P6 %d %d %d%n", &width, &height, &max, &header), 3);
+  const std::string pixels = ppm.substr(static_cast<size_t>(header) + 1);
+  int left = 0, right = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
+      const int r = static_cast<unsigned char>(pixels[i]), g = static_cast<unsigned char>(pixels[i + 1]), b = static_cast<unsigned char>(pixels[i + 2]);
+      if (std::max({r, g, b}) - std::min({r, g, b}) > 80) (x < width / 2 ? left : right) += 1;
+    }
+  EXPECT_GT(left, 300) << "the saved frames' bunnies";
+  EXPECT_GT(right, 300) << "the code's bunnies";
 }
 
 TEST_F(SheetTest, TheSameFolderGivesTheSameBytes) {

@@ -98,22 +98,80 @@ CheckpointSection from_saved_frames(const course::Course& course, const course::
   return s;
 }
 
-Expected<CheckpointSection> section(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input,
-                                    const course::Checkpoint& checkpoint, const std::optional<course::CheckpointFiles>& c,
-                                    const std::string& reference_store) {
-  if (!c || !c->pair) return from_saved_frames(course, checkpoint, input);
+// The deliverable's saved frames graded at their lags, with the code when the section has some
+// (`pair`), and shown beside the code's grid; nothing when none were saved.
+Status add_saved_frames(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input, const course::Checkpoint& checkpoint,
+                        const std::optional<std::pair<fs::path, fs::path>>& pair, const std::string& reference_store, CheckpointSection& s) {
+  worker::FramesPayload payload;
+  std::vector<std::pair<std::string, std::string>> shown;
+  std::vector<std::string> missing;
+  for (int k = 0; k < course.frames; ++k) {
+    const std::string name = course.frame_file(checkpoint.prefix, k, "png");
+    if (const SubmittedFile* f = image_named(input, name)) {
+      payload.saved.push_back({name, f->text});
+      shown.emplace_back(f->path.string(), f->text);
+    } else {
+      missing.push_back(name);
+    }
+  }
+  if (payload.saved.empty()) return Ok{};
+  if (pair)
+    if (auto grid_png = saved_frames_grid(shown)) s.saved_grid_png = std::move(*grid_png);
+  const grade::GradeOptions options{.max_score = checkpoint.points};
+  if (!missing.empty()) {
+    std::string names;
+    for (const auto& m : missing) names += (names.empty() ? "" : ", ") + m;
+    s.frames_report = grade::failed_submission(make_error(ErrorCode::frames_invalid, "missing: " + names), checkpoint.name, checkpoint.points);
+    return Ok{};
+  }
+  worker::Job job = worker::course_job(course, worker::JobKind::grade_frames);
+  (void)worker::attach_course_mesh(course, course.default_mesh, job, payload.mesh);  // the default mesh is the course's own
+  job.grade = course.frames_grade_spec(checkpoint, options);
+  job.grade.reference_store = reference_store;
+  if (pair) {
+    job.request = course.render_request({pair->first.filename().string(), text_of(input, pair->first)},
+                                        {pair->second.filename().string(), text_of(input, pair->second)});
+    if (!render::check_sources(job.request, render::RenderLimits{})) job.request = course.render_request({}, {});  // its section says why
+  } else {
+    job.request = course.render_request({}, {});
+  }
+  auto answered = worker::grade_frames(pool, job, payload);
+  if (!answered) {
+    if (!info(answered.error().code).submission_caused) return answered.take_error();
+    s.frames_report = grade::failed_submission(answered.error(), checkpoint.name, checkpoint.points);
+    return Ok{};
+  }
+  s.frames_report = std::move(answered->result.frames);
+  s.match_report = std::move(answered->result.code);
+  return Ok{};
+}
+
+// A deliverable with code: its grade, the grid it renders and its listings.
+Expected<CheckpointSection> code_section(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input,
+                                         const course::Checkpoint& checkpoint, const std::pair<fs::path, fs::path>& pair,
+                                         const std::string& reference_store) {
   CheckpointSection s{checkpoint.name, checkpoint.title};
   s.graded = true;
-  auto report = graded(pool, course, checkpoint, job_for(course, worker::JobKind::grade, input, c->pair->first, c->pair->second),
-                       reference_store);
+  auto report = graded(pool, course, checkpoint, job_for(course, worker::JobKind::grade, input, pair.first, pair.second), reference_store);
   if (!report) return report.take_error();
   s.report = std::move(*report);
-  auto png = grid(pool, job_for(course, worker::JobKind::render, input, c->pair->first, c->pair->second));
+  auto png = grid(pool, job_for(course, worker::JobKind::render, input, pair.first, pair.second));
   if (!png) return png.take_error();
   s.grid_png = std::move(*png);
   s.grid_caption = "rendered from the student's code";
-  for (const auto& path : {c->pair->first, c->pair->second})
+  for (const auto& path : {pair.first, pair.second})
     s.code.push_back({path.string(), text_of(input, path), lines_pointed_at(s.report, path.string())});
+  return s;
+}
+
+Expected<CheckpointSection> section(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input,
+                                    const course::Checkpoint& checkpoint, const std::optional<course::CheckpointFiles>& c,
+                                    const std::string& reference_store) {
+  const std::optional<std::pair<fs::path, fs::path>> pair = c ? c->pair : std::nullopt;
+  Expected<CheckpointSection> s = pair ? code_section(pool, course, input, checkpoint, *pair, reference_store)
+                                       : Expected<CheckpointSection>(from_saved_frames(course, checkpoint, input));
+  if (!s) return s;
+  if (auto added = add_saved_frames(pool, course, input, checkpoint, pair, reference_store, *s); !added) return added.take_error();
   return s;
 }
 

@@ -1,5 +1,6 @@
 #include "sheet/sheet.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace shadelab::sheet {
@@ -14,6 +15,21 @@ std::string verdict(const grade::Report& report) {
 std::string section_verdict(const CheckpointSection& s) {
   if (s.graded || s.report.messages.empty()) return verdict(s.report);
   return s.report.messages.front();
+}
+
+std::vector<std::string> frames_lines(const CheckpointSection& s) {
+  std::vector<std::string> out;
+  if (!s.frames_report) return out;
+  const grade::Report& r = *s.frames_report;
+  double lo = 1e9, hi = -1e9;
+  for (size_t k = 1; k < r.frames.size(); ++k)
+    if (r.frames[k].lag_degrees) lo = std::min(lo, *r.frames[k].lag_degrees), hi = std::max(hi, *r.frames[k].lag_degrees);
+  char lags[96] = "";
+  if (hi >= lo && hi < 0.005) std::snprintf(lags, sizeof lags, " (drawn at their nominal angles)");
+  else if (hi >= lo) std::snprintf(lags, sizeof lags, " (drawn %.2f to %.2f degrees behind their nominal angles)", lo, hi);
+  out.push_back("saved frames: " + verdict(r) + lags);
+  if (s.match_report) out.push_back("saved frames against the code: " + (s.match_report->messages.empty() ? verdict(*s.match_report) : s.match_report->messages[0]));
+  return out;
 }
 
 std::set<int> lines_pointed_at(const grade::Report& report, const std::string& file_name) {

@@ -13,6 +13,7 @@
 // | ImageSection       | an image the student hands in (camera_25.png, eevee0001.png)          |
 // | SceneSection       | a Blender-half render (the two objects, a dolly-zoom lens): the image |
 // |                    | with each object's framing box, the framing verdicts, the materials   |
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -37,6 +38,11 @@ struct CheckpointSection {
   std::string grid_caption;     // which of the two it is
   grade::Report report;         // when not graded, messages[0] says what was handed in
   std::vector<CodeListing> code;  // vertex, then fragment
+  // The frames the student saved (images/hw2_{prefix}_*.png), shown beside the grid their code
+  // renders, and how they were graded (grade/grade_session.h's grade_frames).
+  std::string saved_grid_png;                  // set when there is code to show them beside
+  std::optional<grade::Report> frames_report;  // against the reference, at their lags
+  std::optional<grade::Report> match_report;   // against what the code renders
 };
 
 // An image the course asks for beside the frames, as the student handed it in.
@@ -70,6 +76,9 @@ struct Sheet {
 std::string verdict(const grade::Report& report);
 // A section's line: the verdict when its code was graded, else what was handed in.
 std::string section_verdict(const CheckpointSection& section);
+// The saved frames' verdicts in words: "saved frames: 1 / 1: matches the reference ... (drawn 0.05
+// to 0.30 degrees behind their nominal angles)", then "saved frames against the code: ...".
+std::vector<std::string> frames_lines(const CheckpointSection& section);
 // The lines a report's diagnostics point at in `file_name` (its errors and warnings).
 std::set<int> lines_pointed_at(const grade::Report& report, const std::string& file_name);
 // "both objects fully in the image", or which are not: the checklist's framing requirement.

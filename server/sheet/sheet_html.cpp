@@ -48,6 +48,11 @@ void checkpoint(std::ostringstream& out, const CheckpointSection& s, size_t inde
   out << "<section id=\"" << escape(s.checkpoint) << "\">\n<h2>" << index << ". " << escape(s.title)
       << "</h2>\n<p class=\"" << (s.report.pass ? "pass" : s.graded ? "fail" : "note") << "\">" << escape(section_verdict(s)) << "</p>\n";
   for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) out << "<p class=\"note\">" << escape(s.report.messages[k]) << "</p>\n";
+  for (const auto& line : frames_lines(s))
+    out << "<p class=\"" << (s.frames_report && s.frames_report->pass ? "pass" : "fail") << "\">" << escape(line) << "</p>\n";
+  if (!s.saved_grid_png.empty())
+    out << "<p class=\"note\">the frames the student saved</p>\n<img alt=\"3x3 grid of the saved " << escape(s.checkpoint)
+        << " frames\" src=\"data:image/png;base64," << base64_encode(s.saved_grid_png) << "\">\n";
   if (s.grid_png.empty())
     out << "<p class=\"note\">" << (s.graded ? "(no grid: the shaders did not render)" : "(no grid)") << "</p>\n";
   else

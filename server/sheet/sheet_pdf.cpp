@@ -112,6 +112,37 @@ class PageWriter {
     y_ += height;
   }
 
+  // Two PNGs side by side, each at half the page's width (less a gutter), captioned above.
+  void image_pair(const std::string& left, const std::string& left_caption, const std::string& right, const std::string& right_caption) {
+    constexpr double kGutter = 12;
+    const double half = (kWidth - kGutter) / 2;
+    Surface a = decode_png(left), b = decode_png(right);
+    const auto height_of = [&](const Surface& s) {
+      return s ? cairo_image_surface_get_height(s.get()) * half / cairo_image_surface_get_width(s.get()) : 0.0;
+    };
+    const double height = std::max(height_of(a), height_of(b));
+    font(kSans, 8.5, false);
+    room_for(height + 8.5 * 1.35);
+    draw(left_caption, kMargin, y_ + 8.5, kGrey);
+    draw(right_caption, kMargin + half + kGutter, y_ + 8.5, kGrey);
+    y_ += 8.5 * 1.35;
+    const auto paint = [&](Surface& s, double x) {
+      if (!s) return;
+      cairo_surface_t* img = at_most(s.release(), kMaxImageWidth);
+      const double scale = half / cairo_image_surface_get_width(img);
+      cairo_save(cr_);
+      cairo_translate(cr_, x, y_);
+      cairo_scale(cr_, scale, scale);
+      cairo_set_source_surface(cr_, img, 0, 0);
+      cairo_paint(cr_);
+      cairo_restore(cr_);
+      cairo_surface_destroy(img);
+    };
+    paint(a, kMargin);
+    paint(b, kMargin + half + kGutter);
+    y_ += height;
+  }
+
   // Monospaced code with line numbers, wrapped to the width; marked lines on a yellow band.
   void code(const CodeListing& listing) {
     constexpr double kSize = 7, kLine = 8.6;
@@ -203,9 +234,14 @@ void checkpoint(PageWriter& w, const CheckpointSection& s, size_t index) {
   w.text(std::to_string(index) + ". " + s.title, kSans, 13, kInk, true);
   w.text(section_verdict(s), kSans, 9.5, s.report.pass ? kPass : s.graded ? kFail : kGrey);
   for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) w.text(s.report.messages[k], kSans, 8.5, kGrey);
+  for (const auto& line : frames_lines(s)) w.text(line, kSans, 9, s.frames_report && s.frames_report->pass ? kPass : kFail);
   w.gap(4);
-  if (!s.grid_caption.empty()) w.text(s.grid_caption, kSans, 8.5, kGrey);
-  w.image(s.grid_png, {}, s.graded ? "(no image: it did not render)" : "(no grid)");
+  if (!s.saved_grid_png.empty() && !s.grid_png.empty()) {
+    w.image_pair(s.saved_grid_png, "the frames the student saved", s.grid_png, s.grid_caption);
+  } else {
+    if (!s.grid_caption.empty()) w.text(s.grid_caption, kSans, 8.5, kGrey);
+    w.image(s.grid_png, {}, s.graded ? "(no image: it did not render)" : "(no grid)");
+  }
   w.gap(10);
   for (const auto& listing : s.code) {
     w.code(listing);
