@@ -97,19 +97,26 @@ class PageWriter {
       text(missing, kSans, 9, kGrey);
       return;
     }
-    cairo_surface_t* img = at_most(decoded.release(), kMaxImageWidth);
-    const double scale = kWidth / cairo_image_surface_get_width(img);
-    const double height = cairo_image_surface_get_height(img) * scale;
+    const double scale = kWidth / cairo_image_surface_get_width(decoded.get());
+    const double height = cairo_image_surface_get_height(decoded.get()) * scale;
     room_for(height);
+    paint(std::move(decoded), kMargin, kWidth);
+    framing_boxes(boxes, scale, height);
+    y_ += height;
+  }
+
+  // A decoded PNG drawn at (x, y_), `width` points wide.
+  void paint(Surface decoded, double x, double width) {
+    if (!decoded) return;
+    cairo_surface_t* img = at_most(decoded.release(), kMaxImageWidth);
+    const double scale = width / cairo_image_surface_get_width(img);
     cairo_save(cr_);
-    cairo_translate(cr_, kMargin, y_);
+    cairo_translate(cr_, x, y_);
     cairo_scale(cr_, scale, scale);
     cairo_set_source_surface(cr_, img, 0, 0);
     cairo_paint(cr_);
     cairo_restore(cr_);
     cairo_surface_destroy(img);
-    framing_boxes(boxes, scale, height);
-    y_ += height;
   }
 
   // Two PNGs side by side, each at half the page's width (less a gutter), captioned above.
@@ -126,20 +133,8 @@ class PageWriter {
     draw(left_caption, kMargin, y_ + 8.5, kGrey);
     draw(right_caption, kMargin + half + kGutter, y_ + 8.5, kGrey);
     y_ += 8.5 * 1.35;
-    const auto paint = [&](Surface& s, double x) {
-      if (!s) return;
-      cairo_surface_t* img = at_most(s.release(), kMaxImageWidth);
-      const double scale = half / cairo_image_surface_get_width(img);
-      cairo_save(cr_);
-      cairo_translate(cr_, x, y_);
-      cairo_scale(cr_, scale, scale);
-      cairo_set_source_surface(cr_, img, 0, 0);
-      cairo_paint(cr_);
-      cairo_restore(cr_);
-      cairo_surface_destroy(img);
-    };
-    paint(a, kMargin);
-    paint(b, kMargin + half + kGutter);
+    paint(std::move(a), kMargin, half);
+    paint(std::move(b), kMargin + half + kGutter, half);
     y_ += height;
   }
 
