@@ -167,9 +167,32 @@ def request_seeds():
         write("request_fields", name, data)
 
 
+def png(width, height, colour_type, depth, rows, palette=None):
+    """A PNG written by hand: the encodings a browser or an image tool may hand in."""
+    import zlib
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
+    raw = b"".join(b"\x00" + r for r in rows)
+    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, depth, colour_type, 0, 0, 0))
+    if palette:
+        out += chunk(b"PLTE", palette)
+    return out + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+
+
+def png_seeds():
+    rgba = png(4, 3, 6, 8, [b"".join(bytes([x * 60, y * 80, 128, 255]) for x in range(4)) for y in range(3)])
+    write("saved_png", "rgba8.png", rgba)
+    write("saved_png", "rgb8.png", png(3, 2, 2, 8, [bytes([10, 20, 30] * 3), bytes([200, 100, 0] * 3)]))
+    write("saved_png", "grey16.png", png(2, 2, 0, 16, [b"\x12\x34\xff\xff", b"\x00\x00\x80\x00"]))
+    write("saved_png", "palette.png", png(4, 1, 3, 8, [bytes([0, 1, 2, 1])], palette=bytes([0, 0, 0, 255, 0, 0, 0, 0, 255])))
+    write("saved_png", "truncated.png", rgba[: len(rgba) // 2])
+    write("saved_png", "too_wide.png", png(100000, 1, 0, 8, [b"\x00"]))
+
+
 if __name__ == "__main__":
     shader_seeds()
     scene_seeds()
     mesh_seeds()
     request_seeds()
+    png_seeds()
     print("seeds written under", CORPUS, file=sys.stderr)
