@@ -16,7 +16,7 @@ namespace {
 
 Error bad(std::string message) { return make_error(ErrorCode::invalid_argument, std::move(message)); }
 
-// A string from a form: JSON literal where it is one ("640", "true", "[1,2]"), else the string.
+// A string from a form: JSON literal where it is one ("9", "true", "[1,2]"), else the string.
 json form_value(const std::string& text) {
   json parsed = json::parse(text, nullptr, false);
   if (!parsed.is_discarded() && !parsed.is_string()) return parsed;
