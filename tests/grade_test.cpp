@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base64.h"
 #include "core/lru_cache.h"
 #include "grade/reference_cache.h"
 #include "grade/starter_constants.h"
@@ -283,6 +284,52 @@ TEST_F(GradeTest, BadGradeRequestsAreProblems) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 400);
   testkit::expect_conforms(*r, "/api/grade", "post");
+}
+
+// The frames a student saved, over HTTP in both forms: multipart (one `frames` part per file, as
+// curl -F and the page send them) with the code beside them, and JSON (`savedFrames`, base64).
+TEST_F(GradeTest, SavedFramesAreGradedOverHttpInBothForms) {
+  const auto frames = testkit::saved_frames("specular", "specular", {0, 0.2, 0.1, 0.3, 0.05, 0.25, 0.15, 0.2, 0.1});
+  ASSERT_EQ(frames.size(), 9u);
+  const auto code = *testkit::course().preset("specular");
+  httplib::MultipartFormDataItems items = {{"reference", "specular", "", ""},
+                                           {"vertex", code.vertex.text, "phong_vert.js", ""},
+                                           {"fragment", code.fragment.text, "phong_frag.js", ""},
+                                           {"frames", "not a frame", "notes.txt", ""}};
+  for (auto it = frames.rbegin(); it != frames.rend(); ++it) items.push_back({"frames", it->bytes, it->name, "image/png"});  // any order
+  auto r = server_->client().Post("/api/grade", items);
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  testkit::expect_conforms(*r, "/api/grade", "post");
+  json j = json::parse(r->body);
+  EXPECT_EQ(j["deliverable"], "specular");
+  EXPECT_TRUE(j["frames"]["pass"]) << j["frames"]["messages"];
+  EXPECT_TRUE(j["code"]["pass"]) << j["code"]["messages"];
+  EXPECT_NEAR(j["frames"]["frames"][3]["lagDegrees"].get<double>(), 0.3, 0.05);
+  ASSERT_EQ(j["frames"]["warnings"].size(), 1u);
+  EXPECT_NE(j["frames"]["warnings"][0].get<std::string>().find("notes.txt is not one of the specular deliverable's frames"), std::string::npos);
+
+  // JSON, one frame short: the frames' grade names it (a student's mistake, not a bad request).
+  json body = {{"reference", "specular"}, {"savedFrames", json::array()}};
+  for (size_t k = 0; k + 1 < frames.size(); ++k) body["savedFrames"].push_back({{"name", frames[k].name}, {"png", base64_encode(frames[k].bytes)}});
+  r = server_->client().Post("/api/grade", body.dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  testkit::expect_conforms(*r, "/api/grade", "post");
+  j = json::parse(r->body);
+  EXPECT_FALSE(j["frames"]["pass"]);
+  EXPECT_EQ(j["frames"]["diagnosis"], "frames_invalid");
+  EXPECT_NE(j["frames"]["messages"][0].get<std::string>().find("hw2_specular_8.png is missing"), std::string::npos) << j["frames"]["messages"];
+  EXPECT_FALSE(j.contains("code"));
+
+  // What is not a student's mistake is a problem: no deliverable named, frames not base64, Gradescope's format.
+  for (const json& wrong : {json{{"savedFrames", body["savedFrames"]}}, json{{"reference", "specular"}, {"savedFrames", {{{"name", "a.png"}, {"png", "%%"}}}}},
+                            json{{"reference", "specular"}, {"format", "gradescope"}, {"savedFrames", body["savedFrames"]}}}) {
+    r = server_->client().Post("/api/grade", wrong.dump(), "application/json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 400) << r->body;
+    testkit::expect_conforms(*r, "/api/grade", "post");
+  }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "grade/report.h"
 #include "render/render_request.h"
 #include "worker/course_job.h"
+#include "worker/frames_job.h"
 
 namespace shadelab::cli {
 
@@ -85,73 +86,34 @@ namespace {
 // A saved frame as a browser wrote it is ~0.1-1 MB at 512 x 512; a file far larger is not one.
 constexpr std::uintmax_t kMaxFrameBytes = 32u << 20;
 
-// The frames' grade when the set cannot be sent: each problem named, with what the set should be.
-GradedFrames unsendable(const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f, const std::string& why,
-                        bool with_code) {
-  const Error e = make_error(ErrorCode::frames_invalid, why);
-  GradedFrames out{{grade::failed_submission(e, checkpoint.name, f.max_score), std::nullopt, {}}, 0};
-  out.result.frames.messages.push_back("the deliverable is " + c.frame_file(checkpoint.prefix, 0, "png") + " to " +
-                                       c.frame_file(checkpoint.prefix, c.frames - 1, "png") + ", as the page saves them");
-  if (with_code)
-    out.result.code = grade::failed_submission(make_error(ErrorCode::frames_invalid, "not compared: " + why), checkpoint.name, f.max_score);
-  return out;
-}
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t i = 0; i < names.size(); ++i) out += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
-  return out;
-}
+worker::FramesGradeSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, f.cache_dir}; }
 
 }  // namespace
 
 Expected<GradedFrames> grade_frame_set(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
                                        const course::Checkpoint& checkpoint, std::vector<grade::SavedFrame> saved,
                                        const std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>>& code) {
-  grade::GradeOptions options;
-  options.max_score = f.max_score;
-  worker::Job job = worker::course_job(c, worker::JobKind::grade_frames);
-  worker::FramesPayload payload{{}, std::move(saved)};
-  if (auto s = worker::attach_course_mesh(c, f.mesh.empty() ? c.default_mesh : f.mesh, job, payload.mesh); !s) return s.take_error();
-  job.grade = c.frames_grade_spec(checkpoint, options);
-  job.grade.reference_store = f.cache_dir;
-  job.request = code ? c.render_request(code->first, code->second) : c.render_request({}, {});
-  if (code)
-    if (auto sources = render::check_sources(job.request, render::RenderLimits{}); !sources) {
-      if (!info(sources.error().code).submission_caused) return sources.take_error();
-      // Code that cannot be sent is the code's grade; the frames are graded without it.
-      auto without = grade_frame_set(pool, c, f, checkpoint, std::move(payload.saved), std::nullopt);
-      if (without) without->result.code = grade::failed_submission(sources.error(), checkpoint.name, f.max_score);
-      return without;
-    }
-  auto answered = worker::grade_frames(pool, job, payload);
-  if (!answered) {
-    if (!info(answered.error().code).submission_caused) return answered.take_error();
-    return unsendable(c, checkpoint, f, answered.error().message, code.has_value());
-  }
-  return GradedFrames{std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
+  return worker::grade_frame_set(pool, c, checkpoint, {std::move(saved), {}, {}, code}, frames_settings(f));
 }
 
 Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
                                           const course::Checkpoint& checkpoint, const fs::path& root, const course::SavedFrameFiles& files,
                                           const std::optional<std::pair<fs::path, fs::path>>& code) {
-  const auto missing = files.missing(c, checkpoint);
-  if (!missing.empty())
-    return unsendable(c, checkpoint, f, joined(missing) + (missing.size() == 1 ? " is" : " are") + " missing", code.has_value());
-  std::vector<grade::SavedFrame> saved;
+  worker::FramesSubmission submission{{}, files.missing(c, checkpoint), {}, std::nullopt};
+  if (code)
+    submission.code = std::pair{shader::ShaderFile{code->first.filename().string(), read_text(root / code->first)},
+                                shader::ShaderFile{code->second.filename().string(), read_text(root / code->second)}};
   for (const auto& frame : files.frames) {
+    if (!frame || !submission.missing.empty()) break;
     std::error_code ec;
     const auto bytes = fs::file_size(root / *frame, ec);
-    if (ec || bytes > kMaxFrameBytes)
-      return unsendable(c, checkpoint, f, frame->filename().string() + (ec ? " cannot be read" : " is larger than a saved frame can be (32 MB)"),
-                        code.has_value());
-    saved.push_back({frame->filename().string(), read_text(root / *frame)});
+    if (ec || bytes > kMaxFrameBytes) {
+      submission.unreadable = frame->filename().string() + (ec ? " cannot be read" : " is larger than a saved frame can be (32 MB)");
+      break;
+    }
+    submission.saved.push_back({frame->filename().string(), read_text(root / *frame)});
   }
-  std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>> shaders;
-  if (code)
-    shaders = std::pair{shader::ShaderFile{code->first.filename().string(), read_text(root / code->first)},
-                        shader::ShaderFile{code->second.filename().string(), read_text(root / code->second)}};
-  return grade_frame_set(pool, c, f, checkpoint, std::move(saved), shaders);
+  return worker::grade_frame_set(pool, c, checkpoint, std::move(submission), frames_settings(f));
 }
 
 void add_cache_option(CLI::App* command, std::string& folder) {

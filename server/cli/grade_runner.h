@@ -14,6 +14,7 @@
 #include "course/submission_files.h"
 #include "grade/reference_store.h"
 #include "worker/client.h"
+#include "worker/frames_job.h"
 
 namespace shadelab::cli {
 
@@ -56,10 +57,7 @@ Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& cour
 // A deliverable's saved frames (`files`, relative to `root`) graded against `checkpoint`'s
 // reference and, with `code` (vertex, fragment; relative to `root`), against what that code
 // renders. A frame missing, unreadable or too large is the frames' grade, 0 with the file named.
-struct GradedFrames {
-  worker::FramesGradeResult result;
-  double seconds = 0;
-};
+using worker::GradedFrames;
 Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f,
                                           const course::Checkpoint& checkpoint, const std::filesystem::path& root,
                                           const course::SavedFrameFiles& files,

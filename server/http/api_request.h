@@ -22,6 +22,7 @@ struct UploadedFile {
 struct RawRequest {
   nlohmann::json fields = nlohmann::json::object();
   std::map<std::string, UploadedFile> files;  // "vertex", "fragment", "mesh"
+  std::vector<UploadedFile> frames;           // multipart parts named "frames", in the order sent
 };
 
 struct ParsedJob {

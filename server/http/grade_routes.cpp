@@ -1,5 +1,6 @@
 // POST /api/grade: a submission against a checkpoint or a custom reference, through a worker.
 #include "core/base64.h"
+#include "http/frames_request.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -16,9 +17,31 @@ T field_or(const json& fields, const char* name, T fallback) {
   else return v.is_number() ? v.get<T>() : fallback;
 }
 
+// Saved frames, and the code beside them: {"frames": report, "code": report, "heatmap"}; a frame
+// missing, not a PNG or the wrong size is the frames' grade (0, the file named), as on Gradescope.
+void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& course, const httplib::Request& req,
+                 httplib::Response& res) {
+  auto parsed = parse_frames_grade(raw, course);
+  if (!parsed) return send_problem(res, parsed.error(), req.path);
+  parsed->settings.reference_store = c.config.reference_store;
+  auto graded = worker::grade_frame_set(c.pool, course, *parsed->checkpoint, std::move(parsed->submission), parsed->settings);
+  if (!graded) return send_problem(res, graded.error(), req.path);
+  auto& result = graded->result;
+  result.frames.warnings.insert(result.frames.warnings.end(), parsed->warnings.begin(), parsed->warnings.end());
+  json body = {{"deliverable", parsed->checkpoint->name}, {"frames", grade::to_json(result.frames)}, {"seconds", graded->seconds}};
+  if (result.code) body["code"] = grade::to_json(*result.code);
+  if (!result.heatmap_png.empty()) body["heatmap"] = base64_encode(result.heatmap_png);
+  send_json(res, 200, body);
+}
+
 void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
+  if (has_saved_frames(*raw)) {
+    auto course = course_of(*raw, c.courses);
+    if (!course) return send_problem(res, course.error(), req.path);
+    return grade_saved(c, *raw, **course, req, res);
+  }
   // Read without throwing: parse_grade_job type-checks these, but its error path below still
   // needs them, whatever the client sent.
   const std::string checkpoint = field_or<std::string>(raw->fields, "reference", "custom");

@@ -8,11 +8,15 @@ Expected<RawRequest> read_request(const httplib::Request& req) {
   if (req.is_multipart_form_data()) {
     std::multimap<std::string, std::string> fields;
     std::map<std::string, UploadedFile> files;
+    std::vector<UploadedFile> frames;  // a part name that repeats: one per saved frame
     for (const auto& [name, part] : req.files) {
       if (part.filename.empty()) fields.emplace(name, part.content);
+      else if (name == "frames") frames.push_back({part.filename, part.content});
       else files[name] = {part.filename, part.content};
     }
-    return from_form(fields, std::move(files));
+    RawRequest raw = from_form(fields, std::move(files));
+    raw.frames = std::move(frames);
+    return raw;
   }
   if (req.method == "GET") return from_form(req.params, {});
   const std::string type = req.get_header_value("Content-Type");

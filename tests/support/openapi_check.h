@@ -2,12 +2,13 @@
 // Checks a response against docs/openapi.json (the one the server serves): the status is
 // documented for the route, the content type is one the document lists, and a JSON body matches
 // its schema (the subset of JSON Schema the document uses: type, required, properties, items,
-// enum, $ref).
+// enum, $ref, oneOf).
 #include <gtest/gtest.h>
 #include <httplib.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/embedded_files.h"
 
@@ -35,8 +36,22 @@ inline bool type_matches(const nlohmann::json& value, const std::string& type) {
   return true;
 }
 
-inline void validate(const nlohmann::json& value, const nlohmann::json& raw_schema, const std::string& where) {
+// What in `value` does not match the schema, each with where it is; empty when it conforms.
+inline void problems(const nlohmann::json& value, const nlohmann::json& raw_schema, const std::string& where, std::vector<std::string>& out) {
   const nlohmann::json& schema = resolve(raw_schema);
+  if (schema.contains("oneOf")) {  // at least one alternative must fit (the document's are disjoint by their required fields)
+    std::vector<std::string> why;
+    for (const auto& alternative : schema["oneOf"]) {
+      std::vector<std::string> p;
+      problems(value, alternative, where, p);
+      if (p.empty()) return;
+      why.push_back(p.front());
+    }
+    std::string all;
+    for (const auto& w : why) all += "\n  " + w;
+    out.push_back(where + ": matches none of oneOf:" + all);
+    return;
+  }
   if (schema.contains("type")) {
     const auto& t = schema["type"];
     bool ok = false;
@@ -45,23 +60,28 @@ inline void validate(const nlohmann::json& value, const nlohmann::json& raw_sche
     } else {
       ok = type_matches(value, t);
     }
-    EXPECT_TRUE(ok) << where << ": " << value.dump().substr(0, 80) << " is not " << t.dump();
-    if (!ok) return;
+    if (!ok) return out.push_back(where + ": " + value.dump().substr(0, 80) + " is not " + t.dump());
   }
   if (schema.contains("enum")) {
     bool found = false;
     for (const auto& e : schema["enum"]) found |= e == value;
-    EXPECT_TRUE(found) << where << ": " << value.dump() << " not in " << schema["enum"].dump();
+    if (!found) out.push_back(where + ": " + value.dump() + " not in " + schema["enum"].dump());
   }
   if (value.is_object()) {
     for (const auto& r : schema.value("required", nlohmann::json::array()))
-      EXPECT_TRUE(value.contains(r.get<std::string>())) << where << ": missing required '" << r.get<std::string>() << "'";
+      if (!value.contains(r.get<std::string>())) out.push_back(where + ": missing required '" + r.get<std::string>() + "'");
     const nlohmann::json properties = schema.value("properties", nlohmann::json::object());  // outlives items()
     for (const auto& [k, sub] : properties.items())
-      if (value.contains(k)) validate(value[k], sub, where + "." + k);
+      if (value.contains(k)) problems(value[k], sub, where + "." + k, out);
   }
   if (value.is_array() && schema.contains("items"))
-    for (size_t i = 0; i < value.size(); ++i) validate(value[i], schema["items"], where + "[" + std::to_string(i) + "]");
+    for (size_t i = 0; i < value.size(); ++i) problems(value[i], schema["items"], where + "[" + std::to_string(i) + "]", out);
+}
+
+inline void validate(const nlohmann::json& value, const nlohmann::json& schema, const std::string& where) {
+  std::vector<std::string> found;
+  problems(value, schema, where, found);
+  for (const auto& p : found) ADD_FAILURE() << p;
 }
 
 inline void expect_conforms(const httplib::Response& res, const std::string& path, const std::string& method) {

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "course/course_reader.h"
+#include "image/encode.h"
 
 namespace shadelab::testkit {
 
@@ -40,6 +41,21 @@ render::RenderRequest preset_request(const std::string& name) {
   EXPECT_NE(p, nullptr) << name;
   if (!p) return course().render_request({}, {});
   return course().render_request(p->vertex, p->fragment);
+}
+
+std::vector<grade::SavedFrame> saved_frames(const std::string& preset, const std::string& prefix, const std::vector<double>& lags) {
+  render::RenderRequest request = preset_request(preset);
+  request.angles.clear();
+  for (size_t k = 0; k < lags.size(); ++k) request.angles.push_back(static_cast<double>(k) * request.degrees_per_frame - lags[k]);
+  auto rendered = render_frames(request, builtin(course().default_mesh));
+  std::vector<grade::SavedFrame> out;
+  if (!rendered) return out;
+  for (size_t k = 0; k < rendered->frames.size(); ++k) {
+    auto png = image::encode_png(rendered->frames[k]);
+    EXPECT_TRUE(png.ok());
+    out.push_back({course().frame_file(prefix, static_cast<int>(k), "png"), std::string(png->begin(), png->end())});
+  }
+  return out;
 }
 
 const scene::Mesh& builtin(const std::string& name) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "course/course.h"
+#include "grade/grade_spec.h"
 #include "image/image.h"
 #include "render/renderer.h"
 
@@ -26,6 +27,10 @@ const course::Course& course();
 render::RenderRequest preset_request(const std::string& preset);
 // One of the course's meshes, parsed once per test binary.
 const scene::Mesh& builtin(const std::string& name);
+
+// What a student's page saves: `preset` drawn on the course's default mesh at each frame's
+// nominal angle minus its lag (degrees), as PNGs named as the page names them under `prefix`.
+std::vector<grade::SavedFrame> saved_frames(const std::string& preset, const std::string& prefix, const std::vector<double>& lags);
 
 // A request whose vertex shader covers the viewport with one triangle and whose fragment shader
 // is `fragment_body` inside main() writing `out vec4 c`.
