@@ -1,7 +1,7 @@
 // GradeSession::grade_frames: the frames a student saved from their browser, graded against the
 // reference at the lag each was drawn with, and against their own code at the same angles.
 //
-// The work, for a deliverable of 9 frames: the reference at the lag grid's angles (57 frames,
+// The work, for a deliverable of 9 frames: the reference at the lag grid's angles (65 frames,
 // once per course: the store and the worker's memory keep it), the lags fitted against it, then
 // the reference rendered once at the fitted angles (one render of the job) and compared. Only a
 // failing set pays for more: each known mistake rendered at the same angles, for the diagnosis.
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "core/words.h"
 #include "grade/grade_session.h"
 #include "grade/lag_fit.h"
 #include "image/encode.h"
@@ -33,9 +34,9 @@ std::string percent(double v) {
 }
 
 std::string frame_list(const std::vector<int>& frames) {
-  std::string out;
-  for (size_t i = 0; i < frames.size(); ++i) out += (i == 0 ? "" : i + 1 == frames.size() ? " and " : ", ") + std::to_string(frames[i]);
-  return out;
+  std::vector<std::string> numbers;
+  for (int k : frames) numbers.push_back(std::to_string(k));
+  return and_list(numbers);
 }
 
 // The saved frames decoded, each the canvas's size; frames_invalid naming the file otherwise.
@@ -247,9 +248,12 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   auto reference = at_angles(ref, **mesh, angles);
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
 
-  // Frames from another rasteriser (the student's browser): an edge may fall a pixel away.
+  // Frames from another rasteriser (the student's browser): an edge may fall a pixel away, and
+  // the outline's pixels be covered differently.
   GradeOptions options = spec.options;
   options.compare.spatial_tolerance = true;
+  options.compare.outline_tolerance = true;
+  options.closer_than_reference = 0.25;
   GradeResult result = grade::grade(*frames, {}, *reference, {}, options);
   std::vector<LagFit> diagnosed_fits = fits;
   if (!result.pass) {

@@ -114,10 +114,11 @@ GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinit
   // Which known mistake explains the frames best, if one explains them at all?
   const RenderedMistake* best = nullptr;
   double best_failing = mean_failing(student, reference, options);
+  const double reference_failing = best_failing;
   for (const auto& m : mistakes) {
-    if (frames_matching(student, m.frames, options) < 1.0) continue;
     const double failing = mean_failing(student, m.frames, options);
-    if (failing < best_failing) best = &m, best_failing = failing;
+    const bool explains = frames_matching(student, m.frames, options) == 1.0 || failing < options.closer_than_reference * reference_failing;
+    if (explains && failing < best_failing) best = &m, best_failing = failing;
   }
   if (best) {
     if (r.diagnosis.empty()) r.diagnosis = best->id;

@@ -13,6 +13,12 @@ struct GradeOptions {
   image::CompareOptions compare;        // per-channel threshold 0.016, spatial tolerance off
   double max_failing_fraction = 0.01;   // a frame fails past 1% failing object pixels (Blender's tests: 1%)
   double max_score = 1.0;
+  // A known mistake explains frames when every frame matches its render. Frames from another
+  // rasteriser (a student's saved frames) may not match a mistake whose pixels are each a
+  // triangle's own colour (flat shading on a mesh of pixel-sized triangles), so for them a mistake
+  // also explains frames its render is this much closer to than the reference is (in mean failing
+  // pixels); 0 keeps the strict rule. Grader-side only: not on the wire.
+  double closer_than_reference = 0;
 };
 
 struct FrameGrade {

@@ -53,6 +53,17 @@ double refined_step(const std::vector<double>& error, int best) {
   return std::clamp(vertex, std::max(0.0, best - 0.5), std::min<double>(last, best + 0.5));
 }
 
+// Whether the differences at the window's last three steps turn upward before its edge: the frame
+// was drawn inside the window, a little short of the edge (a 30 Hz clock's 0.67 degrees in a
+// 0.7-degree window), not beyond it.
+bool turns_before_edge(const std::vector<double>& error) {
+  const size_t n = error.size();
+  if (n < 3) return false;
+  const double left = error[n - 3], mid = error[n - 2], right = error[n - 1];
+  const double curvature = left - 2 * mid + right;
+  return curvature > 0 && 0.5 * (left - right) / curvature < 1.0;
+}
+
 LagFit fit_one(int k, const image::Image& frame, const SharedFrames& grid_frames, const LagGrid& grid) {
   LagFit fit{k, grid.index(k, 0), 0, false, std::nullopt, 0};
   if (k == 0) {
@@ -64,7 +75,7 @@ LagFit fit_one(int k, const image::Image& frame, const SharedFrames& grid_frames
   const int best = static_cast<int>(std::min_element(error.begin(), error.end()) - error.begin());
   fit.best = grid.index(k, best);
   fit.lag_degrees = refined_step(error, best) * grid.step;
-  fit.beyond_window = best + 1 == grid.steps();
+  fit.beyond_window = best + 1 == grid.steps() && !turns_before_edge(error);
   fit.residual = error[static_cast<size_t>(best)];
   return fit;
 }

@@ -6,7 +6,7 @@
 // student's frame by 1-2% of its pixels; at the right lag, by ~0.1%.
 //
 // So the reference is rendered at a grid of angles: each frame's nominal angle and more behind it,
-// `step` degrees apart (0.1 degrees over a 0.6-degree window: 7 angles a frame, 57 for the job).
+// `step` degrees apart (0.1 degrees over a 0.7-degree window: 8 angles a frame, 65 for the job).
 // Each saved frame is compared with its own frame's angles, the best refined by a parabola through
 // its neighbours (0.1 degrees turns the bunny's outline by a third of a pixel at 512 x 512, where
 // the difference still grows with the square of the angle), and with every other frame's nominal
@@ -22,10 +22,12 @@ namespace shadelab::grade {
 struct LagGrid {
   int frames = 9;
   double degrees_per_frame = 20;
-  double window = 0.6;  // degrees behind the nominal angle searched
+  // Degrees behind the nominal angle searched: one frame interval of a 30 Hz clock (0.67 degrees),
+  // a slow machine's page, not only a 60 Hz one's (0.33).
+  double window = 0.7;
   double step = 0.1;
 
-  int steps() const;  // angles a frame k >= 1 is searched at (7)
+  int steps() const;  // angles a frame k >= 1 is searched at (8)
   // The grid's angles: frame 0's, then each later frame's, nominal first, lag growing.
   std::vector<double> angles() const;
   // The index in angles() of frame k at lag step j (j = 0 for frame 0).
@@ -37,7 +39,7 @@ struct LagFit {
   int frame = 0;
   size_t best = 0;            // index in the grid of the closest render
   double lag_degrees = 0;     // nominal minus the fitted angle, refined between grid steps
-  bool beyond_window = false; // the best fit is at the window's far edge: the frame may lag more
+  bool beyond_window = false; // the best fit is the window's far edge, and the fit does not turn before it: the frame may lag more
   std::optional<int> looks_like;  // another frame's nominal angle fits it better
   double residual = 0;        // squared_difference at the best grid angle
 };

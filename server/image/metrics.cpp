@@ -15,6 +15,23 @@ int channel_diff(const std::uint8_t* a, const std::uint8_t* b) {
   return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
 }
 
+// CompareOptions::outline_tolerance: whether `a` is a blend the expected neighbourhood of (x, y)
+// allows, where that neighbourhood holds the clear background.
+bool blend_on_outline(const std::uint8_t* a, const Image& expected, int x, int y, int limit) {
+  int lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
+  bool background = false;
+  for (int ny = std::max(0, y - 1); ny <= std::min(expected.height - 1, y + 1); ++ny)
+    for (int nx = std::max(0, x - 1); nx <= std::min(expected.width - 1, x + 1); ++nx) {
+      const std::uint8_t* e = expected.bytes.data() + (static_cast<std::size_t>(ny) * expected.width + nx) * 4;
+      background |= e[0] == 0 && e[1] == 0 && e[2] == 0;
+      for (int c = 0; c < 3; ++c) lo[c] = std::min<int>(lo[c], e[c]), hi[c] = std::max<int>(hi[c], e[c]);
+    }
+  if (!background) return false;
+  for (int c = 0; c < 3; ++c)
+    if (a[c] < lo[c] - limit || a[c] > hi[c] + limit) return false;
+  return true;
+}
+
 // Mean SSIM of luma over 7 x 7 windows, from summed-area tables (O(pixels)).
 double mean_ssim(const Image& a, const Image& b) {
   const int w = a.width, h = a.height, r = 3;
@@ -84,6 +101,7 @@ FrameMetrics compare(const Image& actual, const Image& expected, const CompareOp
           if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
           matched = channel_diff(a, expected.bytes.data() + (static_cast<std::size_t>(ny) * w + nx) * 4) <= limit;
         }
+      if (!matched && options.outline_tolerance) matched = blend_on_outline(a, expected, x, y, limit);
       if (!matched) ++failing;
     }
   const double pixels = static_cast<double>(w) * h;

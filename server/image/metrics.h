@@ -14,6 +14,12 @@ struct CompareOptions {
   // Accept a pixel that matches some reference pixel within one pixel of it: edge rasterisation
   // differs between GPUs and drivers, and a student should not fail for it.
   bool spatial_tolerance = false;
+  // Accept a pixel on the object's outline (the expected frame's clear black within one pixel)
+  // whose channels each lie within what the expected 3 x 3 neighbourhood spans, give or take the
+  // threshold: an outline pixel is its coverage's blend of object and background, and rasterisers
+  // that snap vertices differently (SwiftShader to 1/16 pixel, llvmpipe and GPUs to 1/256) cover
+  // it differently. For frames from another rasteriser (a student's saved frames).
+  bool outline_tolerance = false;
 };
 
 struct FrameMetrics {
