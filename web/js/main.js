@@ -6,6 +6,7 @@ import { Editor } from "./editor.js";
 import { courseUniforms, GlView } from "./gl_view.js";
 import { api } from "./api.js";
 import { parseObj } from "./obj.js";
+import { groupByDeliverable, saveLikeTheCoursePage } from "./saved_frames.js";
 import { glslFromFile } from "./shader_module.js";
 
 const $ = (id) => document.getElementById(id);
@@ -184,6 +185,93 @@ async function compareFrame(k = 0) {
   return { frame: k, fractionOver: result.fractionOver, meanAbsError: result.meanAbsError, interior: result.interior };
 }
 
+// ---- saved frames: the check a student runs before handing them in ---------------------------
+const element = (tag, props = {}, children = []) => {
+  const e = Object.assign(document.createElement(tag), props);
+  e.append(...children);
+  return e;
+};
+
+// One deliverable's frames graded by the server; with `withCode`, against the editors' shaders too.
+async function gradeSavedFrames(checkpoint, files, withCode) {
+  const form = new FormData();
+  form.append("reference", checkpoint.name);
+  if (state.course.id) form.append("course", state.course.id);
+  form.append("mesh", state.mesh);
+  if (withCode) {
+    form.append("vertex", new Blob([editors.vertex.text]), editors.vertex.name);
+    form.append("fragment", new Blob([editors.fragment.text]), editors.fragment.name);
+  }
+  for (const f of files) form.append("frames", f, f.name);
+  const response = await api("/api/grade", { method: "POST", body: form });
+  const body = await response.json();
+  if (!response.ok) throw new Error(`${checkpoint.name}: ${body.detail} [${body.code}]`);
+  return body;
+}
+
+function verdictOf(report, what) {
+  return element("p", { className: `verdict ${report.pass ? "pass" : "fail"}`,
+                        textContent: `${what}: ${report.pass ? "pass" : "fail"}${report.pass ? "" : ` (${report.diagnosis})`}` });
+}
+
+function showSavedResult(checkpoint, result) {
+  const lags = result.frames.frames.map((f) => (f.lagDegrees ?? 0).toFixed(2));
+  const parts = [element("h3", { textContent: checkpoint.title }),
+                 verdictOf(result.frames, "Your saved frames"),
+                 element("ul", {}, result.frames.messages.map((m) => element("li", { textContent: m })))];
+  if (lags.length) parts.push(element("p", { className: "lags", textContent: `Drawn behind each frame's angle by ${lags.join(", ")} degrees` }));
+  if (result.code) parts.push(verdictOf(result.code, "Made by the editors' code"),
+                              element("ul", {}, result.code.messages.map((m) => element("li", { textContent: m }))));
+  for (const w of result.frames.warnings ?? []) parts.push(element("p", { className: "lags", textContent: w }));
+  if (result.heatmap) parts.push(element("img", { src: `data:image/png;base64,${result.heatmap}`, alt: `${checkpoint.name}: where the frames differ from the reference` }));
+  const article = element("article", { className: "saved-result" }, parts);
+  article.dataset.checkpoint = checkpoint.name;
+  $("saved-results").append(article);
+}
+
+// Files dropped or chosen: each deliverable's frames graded; what is no deliverable's frame is said.
+async function checkSavedFrames(files) {
+  const course = state.course;
+  const { groups, strays } = groupByDeliverable([...files], course);
+  $("saved-results").innerHTML = "";
+  const names = Object.keys(groups);
+  if (!names.length) {
+    status("saved-status", `None of these is a saved frame (${course.frames.fileName.replace("{prefix}", "normals").replace("{k}", "0")}.png and the like).`, true);
+    return [];
+  }
+  status("saved-status", `Grading ${names.join(", ")}…`);
+  const results = [];
+  for (const name of names) {
+    const checkpoint = course.checkpoints.find((c) => c.name === name);
+    const result = await gradeSavedFrames(checkpoint, groups[name], $("saved-code").value === name);
+    showSavedResult(checkpoint, result);
+    results.push(result);
+  }
+  const stray = strays.length ? ` Not frames of any deliverable, not graded: ${strays.map((f) => f.name).join(", ")}.` : "";
+  status("saved-status", `Graded ${names.join(", ")}.${stray}`);
+  return results;
+}
+
+// The deliverables whose code the editors can hold; the one the current preset is the reference of first.
+function fillSavedCode(course, preset) {
+  const select = $("saved-code");
+  select.innerHTML = "";
+  select.append(new Option("none (the frames alone)", ""));
+  for (const c of course.checkpoints.filter((c) => c.code)) select.append(new Option(c.name, c.name, false, c.reference === preset));
+}
+
+function wireSavedFrames() {
+  const drop = $("saved-drop");
+  drop.addEventListener("dragover", (e) => { e.preventDefault(); drop.classList.add("over"); });
+  drop.addEventListener("dragleave", () => drop.classList.remove("over"));
+  drop.addEventListener("drop", (e) => {
+    e.preventDefault();
+    drop.classList.remove("over");
+    reportTo("saved-status", checkSavedFrames(e.dataTransfer.files));
+  });
+  $("saved-files").addEventListener("change", (e) => reportTo("saved-status", checkSavedFrames(e.target.files)));
+}
+
 // ---- wiring -------------------------------------------------------------------------------
 async function choosePreset(name, presets) {
   const p = presets.find((x) => x.name === name);
@@ -195,6 +283,7 @@ async function choosePreset(name, presets) {
   editors.fragment.text = p.fragment.source;
   // A deliverable's reference saves its frames under the deliverable's prefix (hw2_normals_*).
   $("prefix").value = state.course.checkpoints.find((c) => c.reference === name)?.prefix ?? name;
+  fillSavedCode(state.course, name);
   state.last = null;
   await applyLocally();
 }
@@ -212,6 +301,7 @@ async function uploadMesh(file) {
 }
 
 const report = (p) => p.catch((e) => { if (!e.problem) status("server-status", e.message, true); });
+const reportTo = (id, p) => p.catch((e) => status(id, e.message, true));
 
 // The controls start at the course's values.
 function fillControls(course) {
@@ -253,13 +343,16 @@ async function init() {
   $("render-server").addEventListener("click", () => report(renderOnServer()));
   $("download-frames").addEventListener("click", () => report(downloadFrames()));
   $("compare").addEventListener("click", () => report(compareFrame(0)));
+  wireSavedFrames();
   document.addEventListener("keydown", (e) => {
     if (e.key === "Enter" && (e.ctrlKey || e.metaKey)) report(renderOnServer());
   });
 
   // Hooks for the browser tests (tests/browser), which drive the page as a student would.
   window.shadelab = {
-    course, view: state.view, editors, state, renderOnServer, compareFrame, applyLocally, frameFile,
+    course, view: state.view, editors, state, renderOnServer, compareFrame, applyLocally, frameFile, checkSavedFrames,
+    // What the course's page would save for the shaders now applied, on a clock of `hz` (see saved_frames.js).
+    saveLikeTheCoursePage: (prefix, clock) => saveLikeTheCoursePage(state.view, course, prefix, clock),
     choosePreset: (name) => choosePreset(name, presets),
     chooseMesh: async (name) => { $("mesh").value = name; await loadMesh(name); state.last = null; },
   };
