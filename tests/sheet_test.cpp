@@ -15,6 +15,7 @@
 
 #include "core/base64.h"
 #include "image/encode.h"
+#include "sheet/notebook.h"
 #include "sheet/sheet.h"
 #include "support/files.h"
 #include "support/http_fixture.h"
@@ -213,6 +214,32 @@ TEST(SheetTextTest, PrintableTextAndThePointedLines) {
   EXPECT_EQ(sheet::verdict(r), "0 / 1: specular highlight missing");
 }
 
+// The notebook read for answers: the cells under each question, in any of the ways students write them.
+TEST(NotebookTest, AnswersAreTheCellsUnderEachQuestion) {
+  const auto& questions = testkit::course().questions;
+  const nlohmann::json nb = {{"nbformat", 4}, {"cells", {
+      {{"cell_type", "markdown"}, {"source", "# HW2"}},
+      {{"cell_type", "markdown"}, {"source", {"**Q1.** Why are the surfaces facing you blue?\n"}}},
+      {{"cell_type", "code"}, {"source", "show_grid('normals')"}},
+      {{"cell_type", "markdown"}, {"source", {"Because +z points at the viewer,\n", "and z is blue."}}},
+      {{"cell_type", "markdown"}, {"source", "**Q2.** A purple bunny?"}},
+      {{"cell_type", "markdown"}, {"source", "Ambient (0.15, 0, 0.2); uDiffuseColor = vec4(0.6, 0.1, 0.7, 1.0); specular: 80, 140, 255"}},
+      {{"cell_type", "markdown"}, {"source", "## Blender\nWhat does doubling the focal length and the distance do?\n\nThe subject keeps its size."}}}}};
+  auto answers = sheet::notebook_answers(nb.dump(), questions);
+  ASSERT_TRUE(answers.ok()) << answers.error().message;
+  ASSERT_EQ(answers->size(), 3u);
+  EXPECT_EQ((*answers)[0], "Because +z points at the viewer,\nand z is blue.");  // the code cell between is skipped
+  EXPECT_EQ((*answers)[2], "The subject keeps its size.");                       // written in the question's own cell
+  const auto colours = sheet::colours_in((*answers)[1]);
+  ASSERT_TRUE(colours.has_value()) << (*answers)[1];
+  EXPECT_EQ(colours->ambient, (std::array<double, 3>{0.15, 0, 0.2}));
+  EXPECT_EQ(colours->diffuse, (std::array<double, 3>{0.6, 0.1, 0.7}));  // not the 4 of vec4
+  EXPECT_NEAR(colours->specular[1], 140 / 255.0, 1e-12);                 // 0-255 values scaled
+  EXPECT_FALSE(sheet::colours_in("ambient purple, diffuse purple, specular blue").has_value());
+  EXPECT_FALSE(sheet::notebook_answers("{\"not\": \"a notebook\"}", questions).ok());
+  EXPECT_FALSE(sheet::notebook_answers("\x89PNG", questions).ok());
+}
+
 // POST /api/sheet: the same sheet from files sent with their paths, through the real server.
 class SheetApiTest : public ::testing::Test {
  protected:
@@ -234,6 +261,46 @@ class SheetApiTest : public ::testing::Test {
   static testkit::RunningService* server_;
 };
 testkit::RunningService* SheetApiTest::server_ = nullptr;
+
+// The answers come from the student's HW2.ipynb, the purple bunny rendered in the colours they wrote.
+TEST_F(SheetApiTest, TheNotebooksAnswersAndThePurpleBunnyInTheStudentsColours) {
+  nlohmann::json f = files();
+  const nlohmann::json nb = {{"cells", {
+      {{"cell_type", "markdown"}, {"source", "Why is the bunny blue where it faces you?"}},
+      {{"cell_type", "markdown"}, {"source", "The normal's z is blue."}},
+      {{"cell_type", "markdown"}, {"source", "How do you make a purple bunny with blue-ish highlights?"}},
+      {{"cell_type", "markdown"}, {"source", "ambient = (0.2, 0.0, 0.25), diffuse = (0.6, 0.1, 0.7), specular = (0.3, 0.5, 1.0)"}}}}};
+  f["HW2/HW2.ipynb"] = nb.dump();
+  auto r = post({{"files", f}, {"format", "html"}});
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const std::string& html = r->body;
+  const size_t blue = html.find("The normal's z is blue."), purple = html.find("ambient = (0.2, 0.0, 0.25)");
+  ASSERT_NE(blue, std::string::npos) << html.substr(html.find("id=\"questions\""), 1500);
+  ASSERT_NE(purple, std::string::npos);
+  EXPECT_LT(blue, purple);
+  EXPECT_NE(html.find("the bunny in your colours: ambient (0.20, 0.00, 0.25), diffuse (0.60, 0.10, 0.70), specular (0.30, 0.50, 1.00)"),
+            std::string::npos);
+  EXPECT_NE(html.find("(no answer under this question in HW2.ipynb)"), std::string::npos) << "the Blender question, unanswered";
+  // The render: a purple bunny (red and blue over green) on the page's black.
+  const std::string marker = "alt=\"the bunny in the answer's colours\" src=\"data:image/png;base64,";
+  const size_t at = html.find(marker);
+  ASSERT_NE(at, std::string::npos);
+  const size_t begin = at + marker.size();
+  const auto png = base64_decode(html.substr(begin, html.find('"', begin) - begin));
+  ASSERT_TRUE(png.has_value());
+  const image::Image img = testkit::decode(std::vector<std::uint8_t>(png->begin(), png->end()));
+  double sum[3] = {0, 0, 0};
+  int lit = 0;
+  for (size_t i = 0; i < img.bytes.size(); i += 4)
+    if (img.bytes[i] + img.bytes[i + 1] + img.bytes[i + 2] > 30) {
+      ++lit;
+      for (int c = 0; c < 3; ++c) sum[c] += img.bytes[i + c];
+    }
+  ASSERT_GT(lit, img.width * img.height / 50) << "the bunny is drawn";
+  EXPECT_GT(sum[0], 1.5 * sum[1]);
+  EXPECT_GT(sum[2], 1.5 * sum[1]);
+}
 
 TEST_F(SheetApiTest, AJsonBodyGivesThePdfAndTheHtmlPage) {
   auto pdf = post({{"files", files()}, {"answers", "Phong lights each fragment."}, {"title", "HW2: Grace Hopper"}});

@@ -51,7 +51,7 @@ Expected<sheet::SceneInput> scene_input(const fs::path& file) {
 int run_sheet(const SheetFlags& f) {
   auto loaded = load_course(f.grade.course);
   if (!loaded) return fail(loaded.error());
-  sheet::SheetInput input{f.title, "", {}};
+  sheet::SheetInput input{f.title, "", "", {}};
   if (!f.answers.empty()) {
     if (!fs::is_regular_file(f.answers)) {
       std::cerr << "error: cannot read the answers file '" << f.answers << "'\n";
@@ -62,6 +62,7 @@ int run_sheet(const SheetFlags& f) {
   for (const auto& path : submitted_files(f.folder)) {
     if (path.extension() == ".js") input.files.push_back({path, read_text(fs::path(f.folder) / path)});
     if (path.extension() == ".png") input.images.push_back({path, read_text(fs::path(f.folder) / path)});
+    if (path.extension() == ".ipynb" && input.notebook.empty()) input.notebook = read_text(fs::path(f.folder) / path);  // the shallowest
   }
   for (const auto& file : f.scenes) {
     auto scene = scene_input(file);

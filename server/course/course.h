@@ -94,6 +94,12 @@ struct PageUniform {
 struct Question {
   std::string id;    // blue, purple, camera
   std::string text;  // in the course's words, or a paraphrase of them
+  // Words the notebook's question cell holds (case ignored): the student's answer is the cells
+  // under it. Empty: the question is not looked for in the notebook.
+  std::string cell;
+  // A preset whose shaders render the colours the answer gives (ambient, diffuse, specular RGB),
+  // shown beside it; empty: none.
+  std::string render_colours;
 };
 
 // An image the student hands in beside the page's frames (the Blender half's renders), by its

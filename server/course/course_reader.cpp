@@ -338,9 +338,11 @@ class Parser {
     const JsonReader n = r.object("notebook");
     n.only({"questions", "images"});
     for (const JsonReader& q : n.objects("questions")) {
-      q.only({"id", "text"});
+      q.only({"id", "text", "cell", "renderColours"});
       q.require("id") && q.require("text");
-      course_.questions.push_back({q.text("id", ""), q.text("text", "")});
+      course_.questions.push_back({q.text("id", ""), q.text("text", ""), q.text("cell", ""), q.text("renderColours", "")});
+      const std::string& renders = course_.questions.back().render_colours;
+      if (!renders.empty() && !course_.preset(renders)) q.fail_at(q.at("renderColours"), "'" + renders + "' is not one of the course's presets");
     }
     for (const JsonReader& i : n.objects("images")) {
       i.only({"file", "title"});
@@ -472,7 +474,12 @@ json to_json(const Course& c, bool portable) {
   if (!c.source.empty()) out["source"] = c.source;
   if (!c.questions.empty() || !c.images.empty()) {
     json questions = json::array(), images = json::array();
-    for (const auto& q : c.questions) questions.push_back({{"id", q.id}, {"text", q.text}});
+    for (const auto& q : c.questions) {
+      json one = {{"id", q.id}, {"text", q.text}};
+      if (!q.cell.empty()) one["cell"] = q.cell;
+      if (!q.render_colours.empty()) one["renderColours"] = q.render_colours;
+      questions.push_back(one);
+    }
     for (const auto& i : c.images) images.push_back({{"file", i.file}, {"title", i.title}});
     out["notebook"] = {{"questions", questions}, {"images", images}};
   }

@@ -6,7 +6,7 @@
 // | JSON      | "files": {"src/shaders/starter_vert.js": "<source>"}, | answers, title, format,    |
 // |           | "images": {"images/camera_25.png": "<base64>"}        | scenes, course             |
 // | multipart | a file part per file, the part's name its path        | answers, title, format,    |
-// |           | (.png parts are images)                               | course                     |
+// |           | (.png parts are images, an .ipynb the notebook)       | course                     |
 //
 // format: pdf (default) or html. scenes: [{"name": "two_objects", "scene": {...}}], Blender-half
 // scenes on built-in meshes, each rendered with its framing report. Each checkpoint found is
@@ -60,8 +60,17 @@ Status add_image(sheet::SheetInput& input, const std::string& path, std::string 
   return Ok{};
 }
 
+// The student's notebook (HW2.ipynb): its answers are read, never run. Outputs make it large.
+Status add_notebook(sheet::SheetInput& input, const std::string& path, const std::string& text) {
+  if (text.size() > kMaxImageBytes) return make_error(ErrorCode::payload_too_large, "files: '" + path + "' is over " + std::to_string(kMaxImageBytes) + " bytes");
+  if (!input.notebook.empty()) return make_error(ErrorCode::invalid_argument, "files: one notebook per submission; '" + path + "' is a second");
+  input.notebook = text;
+  return Ok{};
+}
+
 Status add_file(sheet::SheetInput& input, const std::string& path, const std::string& text, const Limits& limits) {
   if (path.ends_with(".png")) return add_image(input, path, text);
+  if (path.ends_with(".ipynb") && safe_path(path)) return add_notebook(input, path, text);
   if (!safe_path(path))
     return make_error(ErrorCode::invalid_argument, "files: '" + path.substr(0, kMaxPath) + "' is not a path inside the submission");
   if (text.size() > limits.render.max_source_bytes)

@@ -1,12 +1,14 @@
 #include "sheet/assemble.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <future>
 #include <optional>
 
 #include "course/submission_files.h"
 #include "image/png_info.h"
 #include "render/render_request.h"
+#include "sheet/notebook.h"
 #include "sheet/saved_grid.h"
 #include "scene/scene_description.h"
 #include "worker/client.h"
@@ -218,6 +220,55 @@ Expected<SceneSection> scene_section(worker::WorkerPool& pool, SceneInput input)
 
 }  // namespace
 
+std::string rgb_words(const std::array<double, 3>& c) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "(%.2f, %.2f, %.2f)", c[0], c[1], c[2]);
+  return buf;
+}
+
+// The course's page drawing its default mesh with `preset`'s shaders in the colours an answer gives.
+Expected<std::string> colours_render(worker::WorkerPool& pool, const course::Course& course, const std::string& preset,
+                                     const AnswerColours& colours) {
+  const course::Preset* p = course.preset(preset);
+  if (!p) return std::string();
+  CourseJob job{worker::course_job(course, worker::JobKind::render), {}};
+  (void)worker::attach_course_mesh(course, course.default_mesh, job.job, job.payload);
+  job.job.request = course.render_request(p->vertex, p->fragment);
+  job.job.request.frames = 1;
+  for (const auto& [role, rgb] : {std::pair{"ambient", colours.ambient}, {"diffuse", colours.diffuse}, {"specular", colours.specular}})
+    if (const course::PageUniform* u = course.uniform_with_role(role))
+      for (const auto& name : u->names) job.job.request.uniforms.push_back({name, {rgb[0], rgb[1], rgb[2], 1.0}});
+  return grid(pool, std::move(job));
+}
+
+// Each question with the cells under it in the student's notebook; the colours a question asks
+// for rendered beside the answer.
+Status add_answers(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input, Sheet& sheet) {
+  if (input.notebook.empty()) return Ok{};
+  auto answers = notebook_answers(input.notebook, course.questions);
+  if (!answers) {
+    sheet.notebook_problem = answers.error().message;
+    return Ok{};
+  }
+  for (size_t i = 0; i < course.questions.size(); ++i) {
+    const course::Question& q = course.questions[i];
+    AnswerSection a{q.text, (*answers)[i], {}, {}};
+    if (!q.render_colours.empty() && !a.answer.empty()) {
+      if (const auto colours = colours_in(a.answer)) {
+        auto png = colours_render(pool, course, q.render_colours, *colours);
+        if (!png) return png.take_error();
+        a.render_png = std::move(*png);
+        a.render_caption = "the bunny in your colours: ambient " + rgb_words(colours->ambient) + ", diffuse " + rgb_words(colours->diffuse) +
+                           ", specular " + rgb_words(colours->specular);
+      } else {
+        a.render_caption = "no ambient, diffuse and specular RGB values found in the answer to render";
+      }
+    }
+    sheet.answered.push_back(std::move(a));
+  }
+  return Ok{};
+}
+
 // Every section's jobs are in the pool at once (its workers take them in parallel); the sections
 // are collected in the sheet's order, so the result does not depend on which finishes first.
 Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input, const std::string& reference_store) {
@@ -254,6 +305,7 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course,
     else if (!failed) failed = s.error();
   }
   if (failed) return *failed;
+  if (auto s = add_answers(pool, course, input, sheet); !s) return s.take_error();
   return sheet;
 }
 

@@ -34,6 +34,7 @@ struct SceneInput {
 struct SheetInput {
   std::string title = "HW2 submission";
   std::string answers;
+  std::string notebook;               // HW2.ipynb's text; empty when not handed in
   std::vector<SubmittedFile> files;   // the shader modules (text)
   std::vector<SubmittedFile> images;  // the PNG files: saved frames, the Blender half's renders
   std::vector<SceneInput> scenes;

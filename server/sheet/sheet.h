@@ -9,7 +9,8 @@
 // | CheckpointSection  | the 3x3 grid the student's shaders render (or, for a deliverable      |
 // |                    | handed in as images, the frames they saved), its grade and diagnosis, |
 // |                    | and the shader code (line numbers; lines the grader points at marked) |
-// | questions, answers | the notebook's questions, then the student's answers as written       |
+// | questions, answers | the notebook's questions, each with the cells under it in the         |
+// |                    | student's HW2.ipynb (the purple bunny rendered in their colours)     |
 // | ImageSection       | an image the student hands in (camera_25.png, eevee0001.png)          |
 // | SceneSection       | a Blender-half render (the two objects, a dolly-zoom lens): the image |
 // |                    | with each object's framing box, the framing verdicts, the materials   |
@@ -63,11 +64,22 @@ struct SceneSection {
   std::vector<std::pair<std::string, scene::Material>> materials;  // per object, in the scene's order
 };
 
+// One of the notebook's questions with the student's answer read from their HW2.ipynb, and, for a
+// question that asks for colours, the bunny rendered in the colours they gave.
+struct AnswerSection {
+  std::string question;
+  std::string answer;          // the cells under the question; empty: not found in the notebook
+  std::string render_png;      // empty: no colours to render (render_caption says why, when it matters)
+  std::string render_caption;  // "ambient (0.30, 0.10, 0.40), ..., as the page renders them"
+};
+
 struct Sheet {
   std::string title = "HW2 submission";
   std::vector<CheckpointSection> checkpoints;  // in the course's (the notebook's) order
   std::vector<std::string> questions;          // the notebook's
-  std::string answers;                         // as the student wrote them; may be empty
+  std::vector<AnswerSection> answered;         // from the student's notebook; empty when none was handed in
+  std::string notebook_problem;                // why the notebook gave no answers ("not a Jupyter notebook")
+  std::string answers;                         // an answers file as the student wrote it; may be empty
   std::vector<ImageSection> images;            // the course's hand-in images, in its order
   std::vector<SceneSection> scenes;
 };

@@ -93,6 +93,23 @@ void scene(std::ostringstream& out, const SceneSection& s) {
   out << "</ul>\n</section>\n";
 }
 
+// Each question with the answer under it in the student's notebook, the colours it gives rendered.
+void answered(std::ostringstream& out, const Sheet& sheet) {
+  out << "<section id=\"questions\">\n<h2>Questions</h2>\n<ol>\n";
+  for (const auto& a : sheet.answered) {
+    out << "<li><p class=\"note\">" << escape(a.question) << "</p>\n";
+    if (a.answer.empty()) out << "<p class=\"note\">(no answer under this question in HW2.ipynb)</p>\n";
+    std::istringstream paragraphs(a.answer);
+    for (std::string p; std::getline(paragraphs, p);)
+      if (!p.empty()) out << "<p>" << escape(p) << "</p>\n";
+    if (!a.render_caption.empty()) out << "<p class=\"note\">" << escape(a.render_caption) << "</p>\n";
+    if (!a.render_png.empty())
+      out << "<img style=\"width:50%\" alt=\"the bunny in the answer's colours\" src=\"data:image/png;base64," << base64_encode(a.render_png) << "\">\n";
+    out << "</li>\n";
+  }
+  out << "</ol>\n</section>\n";
+}
+
 }  // namespace
 
 std::string render_html(const Sheet& sheet) {
@@ -100,8 +117,12 @@ std::string render_html(const Sheet& sheet) {
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escape(sheet.title)
       << "</title>\n<style>" << kStyle << "</style>\n</head>\n<body>\n<h1>" << escape(sheet.title) << "</h1>\n";
   for (size_t i = 0; i < sheet.checkpoints.size(); ++i) checkpoint(out, sheet.checkpoints[i], i + 1);
-  if (!sheet.questions.empty() || !sheet.answers.empty()) {
-    out << "<section id=\"questions\">\n<h2>Questions</h2>\n<ol>\n";
+  if (!sheet.answered.empty()) {
+    answered(out, sheet);
+  } else if (!sheet.questions.empty() || !sheet.answers.empty()) {
+    out << "<section id=\"questions\">\n<h2>Questions</h2>\n";
+    if (!sheet.notebook_problem.empty()) out << "<p class=\"fail\">HW2.ipynb: " << escape(sheet.notebook_problem) << "</p>\n";
+    out << "<ol>\n";
     for (const auto& q : sheet.questions) out << "<li>" << escape(q) << "</li>\n";
     out << "</ol>\n<h3>Answers</h3>\n";
     if (sheet.answers.empty()) out << "<p class=\"note\">(no answers given)</p>\n";

@@ -89,18 +89,18 @@ class PageWriter {
     }
   }
 
-  // The PNG at the page's width; `boxes` (in the image's pixels) stroked over it, each labelled.
+  // The PNG at the page's width (or `width` points); `boxes` (in the image's pixels) stroked over it, each labelled.
   void image(const std::string& png, const std::vector<scene_render::ObjectFraming>& boxes = {},
-             const char* missing = "(no image: it did not render)") {
+             const char* missing = "(no image: it did not render)", double width = kWidth) {
     Surface decoded = decode_png(png);
     if (!decoded) {
       text(missing, kSans, 9, kGrey);
       return;
     }
-    const double scale = kWidth / cairo_image_surface_get_width(decoded.get());
+    const double scale = width / cairo_image_surface_get_width(decoded.get());
     const double height = cairo_image_surface_get_height(decoded.get()) * scale;
     room_for(height);
-    paint(std::move(decoded), kMargin, kWidth);
+    paint(std::move(decoded), kMargin, width);
     framing_boxes(boxes, scale, height);
     y_ += height;
   }
@@ -262,10 +262,25 @@ void scene(PageWriter& w, const SceneSection& s) {
   for (const auto& [name, material] : s.materials) w.paragraph(printable(name) + ": " + material_line(material), 8.5, kGrey);
 }
 
-// The notebook's questions, then the student's answers as they wrote them.
+// Each question with the answer under it in the student's notebook, the colours it gives rendered.
+void answered(PageWriter& w, const Sheet& sheet) {
+  for (size_t i = 0; i < sheet.answered.size(); ++i) {
+    const AnswerSection& a = sheet.answered[i];
+    w.paragraph(std::to_string(i + 1) + ". " + printable(a.question), 9.5, kGrey);
+    w.gap(2);
+    w.paragraph(a.answer.empty() ? "(no answer under this question in HW2.ipynb)" : printable(a.answer), 10, a.answer.empty() ? kGrey : kInk);
+    if (!a.render_caption.empty()) w.paragraph(printable(a.render_caption), 8.5, kGrey);
+    if (!a.render_png.empty()) w.image(a.render_png, {}, "(no image: it did not render)", kWidth / 2);
+    w.gap(8);
+  }
+}
+
+// The notebook's questions, then the student's answers: from their notebook, else as written in an answers file.
 void questions(PageWriter& w, const Sheet& sheet) {
   w.text("Questions", kSans, 13, kInk, true);
   w.gap(4);
+  if (!sheet.answered.empty()) return answered(w, sheet);
+  if (!sheet.notebook_problem.empty()) w.paragraph("HW2.ipynb: " + printable(sheet.notebook_problem), 9.5, kFail);
   for (size_t i = 0; i < sheet.questions.size(); ++i) w.paragraph(std::to_string(i + 1) + ". " + printable(sheet.questions[i]), 9.5, kGrey);
   w.gap(6);
   w.text("Answers", kSans, 11, kInk, true);

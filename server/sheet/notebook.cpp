@@ -1,0 +1,114 @@
+#include "sheet/notebook.h"
+
+#include <algorithm>
+#include <cctype>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+
+namespace shadelab::sheet {
+
+namespace {
+
+using nlohmann::json;
+
+struct Cell {
+  std::string type;  // markdown, raw, code
+  std::string text;
+};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// nbformat keeps a cell's source as one string or as its lines.
+std::string source_of(const json& cell) {
+  const json& s = cell.value("source", json());
+  if (s.is_string()) return s.get<std::string>();
+  std::string out;
+  if (s.is_array())
+    for (const auto& line : s)
+      if (line.is_string()) out += line.get<std::string>();
+  return out;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+bool is_heading(const Cell& c) { return c.type == "markdown" && trimmed(c.text).starts_with("#"); }
+
+std::optional<size_t> question_cell(const std::vector<Cell>& cells, const std::string& words) {
+  for (size_t i = 0; i < cells.size(); ++i)
+    if (cells[i].type == "markdown" && lower(cells[i].text).find(lower(words)) != std::string::npos) return i;
+  return std::nullopt;
+}
+
+}  // namespace
+
+Expected<std::vector<std::string>> notebook_answers(const std::string& ipynb, const std::vector<course::Question>& questions) {
+  const json nb = json::parse(ipynb, nullptr, false);
+  if (nb.is_discarded() || !nb.is_object() || !nb.contains("cells") || !nb["cells"].is_array())
+    return make_error(ErrorCode::invalid_argument, "the notebook is not a Jupyter notebook (JSON with \"cells\")");
+  std::vector<Cell> cells;
+  for (const auto& c : nb["cells"])
+    if (c.is_object()) cells.push_back({c.value("cell_type", std::string()), source_of(c)});
+  std::vector<std::optional<size_t>> at;
+  for (const auto& q : questions) at.push_back(q.cell.empty() ? std::nullopt : question_cell(cells, q.cell));
+  std::vector<std::string> out;
+  for (size_t qi = 0; qi < questions.size(); ++qi) {
+    std::string answer;
+    if (at[qi]) {
+      for (size_t i = *at[qi] + 1; i < cells.size(); ++i) {
+        const bool another_question = std::find(at.begin(), at.end(), std::optional<size_t>(i)) != at.end();
+        if (another_question || is_heading(cells[i])) break;
+        if (cells[i].type == "code" || trimmed(cells[i].text).empty()) continue;
+        answer += (answer.empty() ? "" : "\n\n") + trimmed(cells[i].text);
+      }
+      if (answer.empty()) {  // written into the question's own cell, after the question
+        const std::string& own = cells[*at[qi]].text;
+        const size_t line_end = own.find('\n', lower(own).find(lower(questions[qi].cell)));
+        if (line_end != std::string::npos) answer = trimmed(own.substr(line_end));
+      }
+    }
+    out.push_back(answer);
+  }
+  return out;
+}
+
+std::optional<AnswerColours> colours_in(const std::string& answer) {
+  const std::string text = lower(answer);
+  const std::regex role_name("ambient|diffuse|specular");
+  const std::regex number(R"([-+]?(\d+\.?\d*|\.\d+))");
+  struct Found {
+    std::string role;
+    size_t begin, end;
+  };
+  std::vector<Found> roles;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), role_name); it != std::sregex_iterator(); ++it)
+    roles.push_back({it->str(), static_cast<size_t>(it->position()), static_cast<size_t>(it->position() + it->length())});
+  AnswerColours out;
+  bool have[3] = {false, false, false};
+  for (size_t i = 0; i < roles.size(); ++i) {
+    const size_t stop = i + 1 < roles.size() ? roles[i + 1].begin : text.size();
+    // Words out first: the 4 of "vec4" is not a colour.
+    const std::string span = std::regex_replace(text.substr(roles[i].end, stop - roles[i].end), std::regex("[a-z_][a-z0-9_]*"), " ");
+    std::vector<double> values;
+    for (auto it = std::sregex_iterator(span.begin(), span.end(), number); it != std::sregex_iterator() && values.size() < 3; ++it)
+      values.push_back(std::stod(it->str()));
+    const int slot = roles[i].role == "ambient" ? 0 : roles[i].role == "diffuse" ? 1 : 2;
+    if (values.size() < 3 || have[slot]) continue;
+    const bool bytes = std::any_of(values.begin(), values.end(), [](double v) { return v > 1; });
+    std::array<double, 3> rgb{};
+    for (size_t c = 0; c < 3; ++c) rgb[c] = std::clamp(bytes ? values[c] / 255.0 : values[c], 0.0, 1.0);
+    (slot == 0 ? out.ambient : slot == 1 ? out.diffuse : out.specular) = rgb;
+    have[slot] = true;
+  }
+  if (!have[0] || !have[1] || !have[2]) return std::nullopt;
+  return out;
+}
+
+}  // namespace shadelab::sheet
