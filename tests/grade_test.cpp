@@ -363,6 +363,13 @@ TEST_F(GradeTest, MetricsReportWhatEachWorkerKeeps) {
   const double bunny = double(scene::bytes_of(testkit::builtin("bunny")));
   EXPECT_GT(std::max(mesh_bytes[0], mesh_bytes[1]), bunny) << "the parsed bunny and its buffers";
   EXPECT_LE(std::max(mesh_bytes[0], mesh_bytes[1]), double((384u + 256u) << 20) + 2 * bunny);
+  // Which kind of job needed it: a grade's peak is at least what a worker holds after it.
+  const std::string peak = "shadelab_job_peak_resident_bytes{kind=\"grade\"} ";
+  const size_t at = r->body.find(peak);
+  ASSERT_NE(at, std::string::npos) << r->body;
+  const double grade_peak = std::stod(r->body.substr(at + peak.size()));
+  EXPECT_GT(grade_peak, 10e6);
+  EXPECT_LE(grade_peak, double(testkit::test_config().pool.memory_limit_bytes));
 }
 
 // The reference cache keeps what fits its byte budget, the least recently used out first, so a

@@ -37,6 +37,12 @@ void render_worker_memory(std::ostringstream& out, const std::vector<worker::Wor
   gauge("shadelab_worker_cached_meshes", &worker::WorkerMemory::cached_meshes);
   gauge("shadelab_worker_cached_mesh_bytes", &worker::WorkerMemory::cached_mesh_bytes);
 }
+
+// Which kind of job needs the memory: the most a worker held during a job of each kind.
+void render_peak_by_kind(std::ostringstream& out, const std::map<std::string, std::uint64_t>& peaks) {
+  out << "# TYPE shadelab_job_peak_resident_bytes gauge\n";
+  for (const auto& [kind, bytes] : peaks) out << "shadelab_job_peak_resident_bytes{kind=\"" << kind << "\"} " << bytes << "\n";
+}
 }  // namespace
 
 std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
@@ -69,6 +75,7 @@ std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
       << "# TYPE shadelab_workers gauge\nshadelab_workers " << pool.workers << "\n"
       << "# TYPE shadelab_workers_ready gauge\nshadelab_workers_ready " << pool.workers_ready << "\n";
   render_worker_memory(out, pool.memory);
+  render_peak_by_kind(out, pool.peak_resident_by_kind);
   return out.str();
 }
 

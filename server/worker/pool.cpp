@@ -263,6 +263,20 @@ struct WorkerPool::Slot {
                             " this shader (" + how + "); other requests are not affected");
   }
 
+  // The most a worker held during one job, recorded for its kind when the job ends (however it ends).
+  struct PeakResident {
+    WorkerPool& pool;
+    std::string kind;
+    size_t bytes = 0;
+    void observe(size_t b) { bytes = std::max(bytes, b); }
+    ~PeakResident() {
+      if (bytes == 0) return;
+      std::lock_guard lock(pool.mutex_);
+      auto& peak = pool.peak_resident_by_kind_[kind.empty() ? "unknown" : kind];
+      peak = std::max<std::uint64_t>(peak, bytes);
+    }
+  };
+
   JobResult run_job(const Message& job) {
     JobResult result;
     const std::string kind = text_field(job.header, "kind");
@@ -282,6 +296,7 @@ struct WorkerPool::Slot {
     }
     const PoolConfig& c = pool.config_;
     PhaseBudget budget("compile", c.compile_deadline, pid, c.wall_clock_factor);
+    PeakResident peak(pool, kind);
     while (true) {
       Message in;
       // Short slices: the memory watchdog and the CPU clock are read while the worker is busy.
@@ -298,12 +313,15 @@ struct WorkerPool::Slot {
         cached_programs = count_field(caches, "programs");
         cached_meshes = count_field(caches, "meshes");
         cached_mesh_bytes = count_field(caches, "meshBytes");
+        peak.observe(resident_bytes(pid));
         result.answered = true;
         result.answer = std::move(in);
         return result;
       }
       if (status == ReadStatus::timeout) {
-        if (!cgroup_capped && resident_bytes(pid) > c.memory_limit_bytes) {
+        const size_t resident = resident_bytes(pid);
+        peak.observe(resident);
+        if (!cgroup_capped && resident > c.memory_limit_bytes) {
           result.error = death(reap(true), budget.phase, true, kind);
           return result;
         }
@@ -430,7 +448,7 @@ PoolStats WorkerPool::stats() const {
                       slot->cached_meshes, slot->cached_mesh_bytes});
   }
   return {queue_.size(), crashes_.load(), timeouts_.load(), restarts_.load(), out_of_memory_.load(), ready, slots_.size(),
-          std::move(memory)};
+          std::move(memory), peak_resident_by_kind_};
 }
 
 std::string WorkerPool::renderer() const {

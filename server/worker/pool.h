@@ -17,6 +17,7 @@
 #include <deque>
 #include <functional>
 #include <future>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -79,6 +80,9 @@ struct PoolStats {
   size_t workers_ready = 0;  // holding a context and waiting for or running a job
   size_t workers = 0;        // configured: the pool is whole when every one is ready
   std::vector<WorkerMemory> memory;  // one per slot
+  // The most any worker held while running a job of each kind (its resident set, read every 50 ms
+  // of the job and at its answer): which kind of job needs the memory.
+  std::map<std::string, std::uint64_t> peak_resident_by_kind;
 };
 
 class WorkerPool {
@@ -117,6 +121,7 @@ class WorkerPool {
   bool stopping_ = false;
   std::string renderer_;
   std::atomic<std::uint64_t> crashes_{0}, timeouts_{0}, restarts_{0}, out_of_memory_{0};
+  std::map<std::string, std::uint64_t> peak_resident_by_kind_;  // under mutex_
   std::vector<std::unique_ptr<Slot>> slots_;
 };
 
