@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# A class of 24 specular submissions graded in one process, against rendering the canonical job
+# once per student (issue: "a class graded at the speed of rendering"). docs/performance.md keeps
+# the figures. The class: 8 correct, 8 with a mistake the catalogue holds (its own edits, from the
+# course profile), 8 with one it does not (another exponent, the light's colour ignored, ...).
+# Every fragment shader differs in an expression (Mesa caches programs by their IR), so no student
+# is served from another's compile. The reference store is warmed first (`course warm`, as a
+# Gradescope image is built), then both sides run on an idle machine, whole processes counted.
+#   bench/class_bench.sh [repeats, default 1]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+repeats=${1:-1}
+bin=$root/build/shadelab
+work=$(mktemp -d -t shadelab-class.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+
+python3 - "$root" "$work/class" <<'PY'
+import json, os, sys, random
+root, out = sys.argv[1], sys.argv[2]
+course = json.load(open(os.path.join(root, "courses/cs148-summer2022.json")))
+vert = open(os.path.join(root, "shaders/specular_vert.js")).read()
+frag = open(os.path.join(root, "shaders/specular_frag.js")).read()
+spec = next(c for c in course["checkpoints"] if c["name"] == "specular")
+catalogued = [m for m in spec["mistakes"] if "edits" in m]
+uncatalogued = [("float specularAlpha = 6.0;", "float specularAlpha = 12.0;"),
+                ("float specularAlpha = 6.0;", "float specularAlpha = 3.0;"),
+                ("uDiffuseColor * uLightColor", "uDiffuseColor"),
+                ("uDiffuseColor * uLightColor", "0.5 * uDiffuseColor * uLightColor")]
+salt = random.randrange(1, 1 << 30)
+def student(i, v, f):
+    d = os.path.join(out, "s%02d" % i, "shaders")
+    os.makedirs(d)
+    f = f.replace("void main(void) {", "void main(void) {\n    if (gl_FragCoord.x < -%d.0) discard;" % (salt + i), 1)
+    open(os.path.join(d, "phong_vert.js"), "w").write(v)
+    open(os.path.join(d, "phong_frag.js"), "w").write(f)
+for i in range(24):
+    v, f = vert, frag
+    if 8 <= i < 16:
+        for e in catalogued[(i - 8) % len(catalogued)]["edits"]:
+            if e["stage"] == "vertex": v = v.replace(e["find"], e["replace"])
+            else: f = f.replace(e["find"], e["replace"])
+    elif i >= 16:
+        find, repl = uncatalogued[(i - 16) % len(uncatalogued)]
+        assert find in f, find
+        f = f.replace(find, repl)
+    student(i, v, f)
+PY
+
+seconds() { local start=$EPOCHREALTIME; "$@" >/dev/null 2>&1; awk -v a="$start" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.2f", b - a }'; }
+export SHADELAB_CACHE_DIR=$work/store
+"$bin" course warm >/dev/null 2>&1
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); renderer: $("$bin" info 2>/dev/null | grep -m1 -i renderer | sed 's/^ *//')"
+for ((r = 0; r < repeats; r++)); do
+  render_s=0
+  for d in "$work"/class/s*; do
+    s=$(seconds "$bin" render --vert "$d/shaders/phong_vert.js" --frag "$d/shaders/phong_frag.js" --grid "$work/grid.png")
+    render_s=$(awk -v a="$render_s" -v b="$s" 'BEGIN { printf "%.2f", a + b }')
+  done
+  rm -rf "$work/grades"
+  grade_s=$(seconds "$bin" grade --submissions "$work/class" --reference specular --out "$work/grades")
+  echo "24 renders of the job, one process each: ${render_s} s; the class graded: ${grade_s} s ($(awk -v g="$grade_s" -v r="$render_s" 'BEGIN { printf "%.2f", g / r }')x)"
+done
+echo "passed: $(grep -c ',true,' "$work/grades/summary.csv") of 24 (8 are correct)"
+awk -F, 'NR > 1 { print $0 }' "$work/grades/summary.csv" | cut -d, -f1-5 | sort | head -24
