@@ -77,8 +77,27 @@ describe("saved frames, made as the course's page makes them", () => {
         for (const [k, lag] of lags.entries())
           assert.ok(Math.abs(found[k] - lag) <= LAG_TOLERANCE, `${checkpoint.name} frame ${k}: lag ${found[k]} found, ${lag} drawn`);
       }
+      // What the student sees: a verdict per deliverable, each a pass.
+      const shown = await page.$$eval("#saved-results article", (all) => all.map((a) => [a.dataset.checkpoint, a.querySelector(".verdict").className]));
+      assert.deepEqual(shown, course.checkpoints.map((c) => [c.name, "verdict pass"]));
       await page.screenshot({ path: path.join(artifacts, `saved_frames_${clock.hz}hz.png`), fullPage: true });
     });
+
+  test("frames chosen with the file input are checked, and a stray file is named", async () => {
+    const specular = course.checkpoints.find((c) => c.name === "specular");
+    await useShaders(specular.reference);
+    const files = await page.evaluate(async ([prefix]) => {
+      const saved = await window.shadelab.saveLikeTheCoursePage(prefix, { hz: 60, phaseMs: 9 });
+      const out = [];
+      for (const f of saved) out.push({ name: f.name, mimeType: "image/png", buffer: Array.from(new Uint8Array(await f.blob.arrayBuffer())) });
+      return out;
+    }, [specular.prefix]);
+    await page.setInputFiles("#saved-files", [...files.map((f) => ({ ...f, buffer: Buffer.from(f.buffer) })),
+                                              { name: "notes.txt", mimeType: "text/plain", buffer: Buffer.from("not a frame") }]);
+    await page.waitForFunction(() => document.querySelector("#saved-status").textContent.startsWith("Graded"), null, { timeout: 60000 });
+    assert.match(await page.textContent("#saved-status"), /Graded specular\. Not frames of any deliverable, not graded: notes\.txt\./);
+    assert.equal(await page.getAttribute("#saved-results article .verdict", "class"), "verdict pass");
+  });
 
   // Each mistake of the catalogue, as a student's page would have saved it at 60 Hz. Two change
   // too little for any frame the page saves to show them, and pass; what finds them is said.
