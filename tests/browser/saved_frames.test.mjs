@@ -97,6 +97,8 @@ describe("saved frames, made as the course's page makes them", () => {
     await page.waitForFunction(() => document.querySelector("#saved-status").textContent.startsWith("Graded"), null, { timeout: 60000 });
     assert.match(await page.textContent("#saved-status"), /Graded specular\. Not frames of any deliverable, not graded: notes\.txt\./);
     assert.equal(await page.getAttribute("#saved-results article .verdict", "class"), "verdict pass");
+    const example = course.frames.fileName.replaceAll("{prefix}", course.checkpoints.at(-1).prefix).replaceAll("{k}", "0");
+    assert.equal(await page.textContent("#saved-example"), `${example}.png`, "the hint names the course's own files");
   });
 
   // Each mistake of the catalogue, as a student's page would have saved it at 60 Hz. Two change

@@ -317,6 +317,8 @@ function fillControls(course) {
   $("width").value = course.canvas.width;
   $("height").value = course.canvas.height;
   for (const p of course.presets) $("preset").append(new Option(p.name, p.name, false, p.name === course.defaultPreset));
+  const last = course.checkpoints.at(-1);
+  if (last) $("saved-example").textContent = frameFile(last.prefix, 0);
 }
 
 async function init() {
