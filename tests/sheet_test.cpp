@@ -236,6 +236,15 @@ TEST(NotebookTest, AnswersAreTheCellsUnderEachQuestion) {
   EXPECT_EQ(colours->diffuse, (std::array<double, 3>{0.6, 0.1, 0.7}));  // not the 4 of vec4
   EXPECT_NEAR(colours->specular[1], 140 / 255.0, 1e-12);                 // 0-255 values scaled
   EXPECT_FALSE(sheet::colours_in("ambient purple, diffuse purple, specular blue").has_value());
+  // The purple question's cell holds "blue" too ("blue-ish highlights"): it is still the purple
+  // question's, and the blue question, not asked in this notebook, has no answer.
+  const nlohmann::json only_purple = {{"cells", {
+      {{"cell_type", "markdown"}, {"source", "How would you get a purple bunny with blue-ish highlights? RGB values."}},
+      {{"cell_type", "markdown"}, {"source", "Ambient: [0.25, 0.05, 0.3]"}}}}};
+  auto purple_only = sheet::notebook_answers(only_purple.dump(), questions);
+  ASSERT_TRUE(purple_only.ok());
+  EXPECT_EQ((*purple_only)[0], "");
+  EXPECT_EQ((*purple_only)[1], "Ambient: [0.25, 0.05, 0.3]");
   EXPECT_FALSE(sheet::notebook_answers("{\"not\": \"a notebook\"}", questions).ok());
   EXPECT_FALSE(sheet::notebook_answers("\x89PNG", questions).ok());
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <regex>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -41,10 +42,41 @@ std::string trimmed(const std::string& s) {
 
 bool is_heading(const Cell& c) { return c.type == "markdown" && trimmed(c.text).starts_with("#"); }
 
-std::optional<size_t> question_cell(const std::vector<Cell>& cells, const std::string& words) {
-  for (size_t i = 0; i < cells.size(); ++i)
-    if (cells[i].type == "markdown" && lower(cells[i].text).find(lower(words)) != std::string::npos) return i;
-  return std::nullopt;
+std::set<std::string> words_of(const std::string& text) {
+  std::set<std::string> out;
+  const std::string t = lower(text);
+  static const std::regex word("[a-z0-9]{4,}");
+  for (auto it = std::sregex_iterator(t.begin(), t.end(), word); it != std::sregex_iterator(); ++it) out.insert(it->str());
+  return out;
+}
+
+// Which cell asks each question: a markdown cell holding the question's `cell` words, each cell
+// for one question. Where words fit more than one cell or question ("blue" is also in "blue-ish
+// highlights", and in an answer that says "z is blue"), the pair sharing the most words wins, a
+// cell that asks something (a '?') counting as kAsks words more, then the earlier cell.
+constexpr size_t kAsks = 3;
+std::vector<std::optional<size_t>> question_cells(const std::vector<Cell>& cells, const std::vector<course::Question>& questions) {
+  struct Pair {
+    size_t shared, question, cell;
+  };
+  std::vector<Pair> pairs;
+  for (size_t q = 0; q < questions.size(); ++q) {
+    if (questions[q].cell.empty()) continue;
+    const auto asked = words_of(questions[q].text);
+    for (size_t i = 0; i < cells.size(); ++i) {
+      if (cells[i].type != "markdown" || lower(cells[i].text).find(lower(questions[q].cell)) == std::string::npos) continue;
+      const auto held = words_of(cells[i].text);
+      size_t shared = cells[i].text.find('?') != std::string::npos ? kAsks : 0;
+      for (const auto& w : held) shared += asked.count(w);
+      pairs.push_back({shared, q, i});
+    }
+  }
+  std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.shared > b.shared; });
+  std::vector<std::optional<size_t>> at(questions.size());
+  std::set<size_t> taken;
+  for (const auto& p : pairs)
+    if (!at[p.question] && !taken.count(p.cell)) at[p.question] = p.cell, taken.insert(p.cell);
+  return at;
 }
 
 }  // namespace
@@ -56,8 +88,7 @@ Expected<std::vector<std::string>> notebook_answers(const std::string& ipynb, co
   std::vector<Cell> cells;
   for (const auto& c : nb["cells"])
     if (c.is_object()) cells.push_back({c.value("cell_type", std::string()), source_of(c)});
-  std::vector<std::optional<size_t>> at;
-  for (const auto& q : questions) at.push_back(q.cell.empty() ? std::nullopt : question_cell(cells, q.cell));
+  const std::vector<std::optional<size_t>> at = question_cells(cells, questions);
   std::vector<std::string> out;
   for (size_t qi = 0; qi < questions.size(); ++qi) {
     std::string answer;

@@ -14,7 +14,8 @@
 namespace shadelab::sheet {
 
 // Each of `questions`' answer in the notebook's text, in the questions' order: the markdown and raw
-// cells after the first markdown cell that holds the question's `cell` words, up to the next
+// cells after the markdown cell that asks it (it holds the question's `cell` words; of several, the
+// one sharing most words with the question's text, each cell asking one question), up to the next
 // question's cell or the next heading; the question cell's own text after the question's words
 // when nothing follows. Empty for a question not found. invalid_argument when `ipynb` is not a notebook.
 Expected<std::vector<std::string>> notebook_answers(const std::string& ipynb, const std::vector<course::Question>& questions);
