@@ -112,6 +112,11 @@ def request_seeds():
                                        "spatialTolerance": 1, "maxScore": 10, "format": "gradescope"}),
         "grade_custom.json": (2, {"vertex": vert.decode(), "fragment": frag.decode(), "referenceVertex": vert.decode(),
                                    "referenceFragment": frag.decode()}),
+        # Saved frames: two named, one a stray, the code beside them (the PNG bytes need not decode here).
+        "grade_frames.json": (3, {"reference": "specular", "vertex": vert.decode(), "fragment": frag.decode(),
+                                   "savedFrames": [{"name": "hw2_specular_1.png", "png": "iVBORw0KGgo="},
+                                                   {"name": "hw2_specular_0.png", "png": "iVBORw0KGgo="},
+                                                   {"name": "notes.txt", "png": ""}]}),
     }
     for name, (selector, body) in bodies.items():
         write("api_json", name, bytes([selector]) + json.dumps(body).encode())

@@ -1,13 +1,16 @@
 // The JSON body of POST /api/render, /api/compile and /api/grade without the HTTP around it, so
-// the fuzzer spends its time in the field checks: from_json_body, then parse_job or
-// parse_grade_job with the service's limits (the selector byte picks the route). Invariants: every
-// rejection says why; a job that passes is within the limits and crosses the worker wire unchanged.
+// the fuzzer spends its time in the field checks: from_json_body, then parse_job, parse_grade_job
+// or (saved frames) parse_frames_grade with the service's limits (the selector byte picks the
+// route). Invariants: every rejection says why; a job that passes is within the limits and crosses
+// the worker wire unchanged; saved frames come out in the deliverable's order, each by its own
+// name, and every frame is either handed in or named missing.
 #include <string>
 
 #include "fuzz_check.h"
 #include "wire_round_trip.h"
 #include "course/course_reader.h"
 #include "http/api_request.h"
+#include "http/frames_request.h"
 
 namespace {
 
@@ -22,6 +25,13 @@ void check_job(const worker::Job& job, const http::Limits& limits) {
   fuzz::check_job_crosses_the_wire(job);
 }
 
+void check_frames(const http::ParsedFramesGrade& g, const course::Course& c) {
+  FUZZ_CHECK(g.checkpoint != nullptr);
+  FUZZ_CHECK(g.submission.saved.size() + g.submission.missing.size() == static_cast<size_t>(c.frames));
+  for (size_t k = 0; k < g.submission.saved.size() && g.submission.missing.empty(); ++k)
+    FUZZ_CHECK(g.submission.saved[k].name == c.frame_file(g.checkpoint->prefix, static_cast<int>(k), "png"));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
@@ -33,13 +43,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     return 0;
   }
   const http::Limits limits;
-  if (selector % 3 == 2) {
+  if (selector % 4 == 3) {
+    auto frames = http::parse_frames_grade(*raw, course::builtin_course());
+    if (frames) check_frames(*frames, course::builtin_course());
+    else FUZZ_CHECK(!frames.error().message.empty());
+    return 0;
+  }
+  if (selector % 4 == 2) {
     auto grade = http::parse_grade_job(std::move(*raw), limits, course::builtin_course());
     if (grade) check_job(grade->parsed.job, limits);
     else FUZZ_CHECK(!grade.error().message.empty());
     return 0;
   }
-  auto parsed = http::parse_job(*raw, selector % 3 == 0 ? worker::JobKind::render : worker::JobKind::compile, limits, course::builtin_course());
+  auto parsed = http::parse_job(*raw, selector % 4 == 0 ? worker::JobKind::render : worker::JobKind::compile, limits, course::builtin_course());
   if (parsed) check_job(parsed->job, limits);
   else FUZZ_CHECK(!parsed.error().message.empty());
   return 0;
