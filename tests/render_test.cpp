@@ -426,3 +426,114 @@ TEST(ReadbackTest, PixelBuffersGiveTheSameBytesAsDirectReads) {
   renderer.set_readback(original);
   EXPECT_EQ(original, renderer.context_info().software ? gl::Readback::direct : gl::Readback::pixel_buffer);
 }
+
+// The grader's lights drawn together (Renderer::render_together, shader/uniform_variants.h).
+namespace {
+
+// `request` under the homework's light and under each of the specular checkpoint's probe lights.
+std::vector<render::RenderRequest> under_grader_lights(const render::RenderRequest& request) {
+  const auto spec = testkit::course().grade_spec(*testkit::course().checkpoint("specular")->checkpoint, {});
+  std::vector<render::RenderRequest> lit = {request};
+  for (const auto& probe : spec.probes) {
+    lit.push_back(request);
+    for (const auto& name : spec.light_position_uniforms)
+      lit.back().uniforms.push_back({name, {probe.light_position[0], probe.light_position[1], probe.light_position[2]}});
+  }
+  return lit;
+}
+
+struct Together {
+  std::vector<std::vector<image::Image>> frames;  // per request
+  int passes = 0;
+};
+
+Together render_together(const std::vector<render::RenderRequest>& requests, render::FloatSemantics semantics) {
+  Together out;
+  out.frames.resize(requests.size());
+  auto report = testkit::shared_renderer().render_together(requests, testkit::builtin(testkit::course().default_mesh),
+                                                           [&](int i, int, const image::Image& f, bool) { out.frames[static_cast<size_t>(i)].push_back(f); },
+                                                           semantics);
+  EXPECT_TRUE(report) << report.error().format();
+  if (report) out.passes = report->passes;
+  return out;
+}
+
+std::vector<image::Image> render_alone(const render::RenderRequest& request, render::FloatSemantics semantics) {
+  std::vector<image::Image> frames;
+  auto report = testkit::shared_renderer().render(request, testkit::builtin(testkit::course().default_mesh),
+                                                  [&](int, const image::Image& f, bool) { frames.push_back(f); }, semantics);
+  EXPECT_TRUE(report) << report.error().format();
+  return frames;
+}
+
+bool same_bytes(const image::Image& a, const image::Image& b) {
+  return a.width == b.width && a.height == b.height && a.type == b.type && a.bytes == b.bytes;
+}
+
+// Every shader the course grades the specular checkpoint with: its reference and each catalogued mistake.
+std::vector<std::pair<std::string, render::RenderRequest>> graded_shaders(int frames) {
+  const auto spec = testkit::course().grade_spec(*testkit::course().checkpoint("specular")->checkpoint, {});
+  render::RenderRequest base = testkit::preset_request("specular");
+  base.frames = frames;
+  std::vector<std::pair<std::string, render::RenderRequest>> out = {{"reference", base}};
+  for (const auto& m : spec.mistakes) {
+    out.push_back({m.id, base});
+    out.back().second.vertex = m.vertex;
+    out.back().second.fragment = m.fragment;
+  }
+  return out;
+}
+
+}  // namespace
+
+// The course's job (3 of its frames), 8-bit with the canvas's 4x MSAA as graded, and float with
+// IEEE semantics as the float check renders it: one pass, the bytes of a pass each.
+TEST(RenderTogetherTest, OneDrawForEveryLightGivesTheBytesOfADrawEach) {
+  for (auto [name, request] : graded_shaders(3)) {
+    for (auto type : {image::PixelType::u8, image::PixelType::f32}) {
+      request.pixel_type = type;
+      request.msaa = type == image::PixelType::u8 ? request.msaa : 0;
+      const auto semantics = type == image::PixelType::u8 ? render::FloatSemantics::as_compiled : render::FloatSemantics::ieee;
+      const auto lit = under_grader_lights(request);
+      ASSERT_GE(lit.size(), 2u);
+      const Together together = render_together(lit, semantics);
+      EXPECT_EQ(together.passes, 1) << name;
+      for (size_t i = 0; i < lit.size(); ++i) {
+        const auto alone = render_alone(lit[i], semantics);
+        ASSERT_EQ(together.frames[i].size(), alone.size()) << name;
+        for (size_t k = 0; k < alone.size(); ++k)
+          EXPECT_TRUE(same_bytes(together.frames[i][k], alone[k])) << name << (type == image::PixelType::u8 ? " 8-bit" : " float")
+                                                                    << ", light " << i << ", frame " << k;
+      }
+    }
+  }
+}
+
+// The lights must change what is drawn: the probe light's frames are not the homework light's.
+TEST(RenderTogetherTest, EachLightGetsItsOwnValue) {
+  auto request = testkit::preset_request("specular");
+  request.frames = 1;
+  const Together together = render_together(under_grader_lights(request), render::FloatSemantics::as_compiled);
+  ASSERT_EQ(together.frames.size(), 2u);
+  EXPECT_FALSE(same_bytes(together.frames[0][0], together.frames[1][0]));
+}
+
+// What one pass cannot give the bytes of (a discard decides for every light at once) is drawn a
+// light at a time, and requests that differ in nothing the program reads are drawn once.
+TEST(RenderTogetherTest, ADiscardIsDrawnALightAtATimeAndTheSameRequestOnce) {
+  auto request = testkit::preset_request("specular");
+  request.frames = 1;
+  const std::string text = request.fragment.text;
+  request.fragment.text.replace(text.find("fragColor = color;"), 18, "if (color.r > 0.9) discard; fragColor = color;");
+  const auto lit = under_grader_lights(request);
+  const Together apart = render_together(lit, render::FloatSemantics::as_compiled);
+  EXPECT_EQ(apart.passes, 2);
+  for (size_t i = 0; i < lit.size(); ++i) EXPECT_TRUE(same_bytes(apart.frames[i][0], render_alone(lit[i], render::FloatSemantics::as_compiled)[0]));
+
+  auto normals = testkit::preset_request("normals");  // reads no light
+  normals.frames = 1;
+  const Together once = render_together(under_grader_lights(normals), render::FloatSemantics::as_compiled);
+  EXPECT_EQ(once.passes, 1);
+  ASSERT_EQ(once.frames.size(), 2u);
+  EXPECT_TRUE(same_bytes(once.frames[0][0], once.frames[1][0]));
+}

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "shader/invariant_outputs.h"
+#include "shader/uniform_variants.h"
 #include "shader/shader_source.h"
 
 using namespace shadelab;
@@ -163,4 +164,66 @@ TEST(InvariantOutputsTest, EveryGlobalOutputAndNothingElse) {
        {"void f(out vec3 x);\nvoid f(out vec3 x) { x = vec3(0); }", "void main() { vec4 out_ = vec4(0); }",
         "// out vec4 c;\n/* out vec4 d; */\n#define X out\n", "invariant out vec4 c;", "uniform vec4 outside;"})
     EXPECT_EQ(with_invariant_outputs(untouched, Stage::fragment), untouched);
+}
+
+// One pass for every light (shader/uniform_variants.h): the student's lines where they were, main
+// renamed, the light a plain global set from an array a run at a time, and what one pass cannot
+// give declined with the reason.
+namespace {
+
+shader::UnwrappedSource es300(const std::string& glsl, Stage stage) {
+  auto s = shader::unwrap({"shader.glsl", glsl}, stage);
+  EXPECT_TRUE(s) << s.error().format();
+  return s ? *s : shader::UnwrappedSource{};
+}
+
+const std::string kVertex = "#version 300 es\nin vec4 p;\nout vec3 v;\nvoid main() { v = p.xyz; gl_Position = p; }\n";
+
+Expected<std::string> variants(const std::string& fragment, int runs = 2) {
+  return shader::with_uniform_variants(es300(kVertex, Stage::vertex), es300(fragment, Stage::fragment), {"uLight"}, runs, 8);
+}
+
+}  // namespace
+
+TEST(UniformVariantsTest, TheStudentsLinesStayAndMainRunsOncePerValue) {
+  const std::string fragment =
+      "#version 300 es\nprecision highp float;\nuniform highp vec3 uLight;\nin vec3 v;\n"
+      "layout(location = 0) out vec4 fragColor;\nvoid main(void) {\n  fragColor = vec4(uLight * v, 1.0);\n}\n";
+  auto out = variants(fragment);
+  ASSERT_TRUE(out) << out.error().message;
+  const std::string head = out->substr(0, out->find("\n// One pass"));
+  EXPECT_EQ(std::count(head.begin(), head.end(), '\n'), std::count(fragment.begin(), fragment.end(), '\n'));
+  EXPECT_NE(head.find("        highp vec3 uLight;"), std::string::npos) << head;
+  EXPECT_NE(head.find("                        vec4 fragColor;"), std::string::npos) << head;
+  EXPECT_NE(head.find("void shadelab_run(void)"), std::string::npos) << head;
+  EXPECT_NE(out->find("uniform highp vec3 shadelab_variant_uLight[2];"), std::string::npos) << *out;
+  EXPECT_NE(out->find("layout(location = 1) out highp vec4 shadelab_output_1;"), std::string::npos) << *out;
+  EXPECT_NE(out->find("uLight = shadelab_variant_uLight[shadelab_k];"), std::string::npos) << *out;
+}
+
+TEST(UniformVariantsTest, WhatOnePassCannotGiveIsDeclinedWithTheReason) {
+  const auto declined = [](const Expected<std::string>& r, const std::string& why) {
+    EXPECT_FALSE(r) << why;
+    if (!r) {
+      EXPECT_NE(r.error().message.find(why), std::string::npos) << r.error().message;
+    }
+  };
+  const std::string head = "#version 300 es\nprecision highp float;\nuniform vec3 uLight;\nin vec3 v;\nout vec4 c;\n";
+  declined(variants(head + "void main() { if (v.x > 0.5) discard; c = vec4(uLight, 1); }"), "discard");
+  declined(variants(head + "void main() { gl_FragDepth = 0.5; c = vec4(uLight, 1); }"), "gl_FragDepth");
+  declined(variants(head + "vec3 lit;\nvoid main() { lit += uLight; c = vec4(lit, 1); }"), "the global lit");
+  declined(variants(head + "out vec4 d;\nvoid main() { c = vec4(uLight, 1); d = c; }"), "more than one vec4 output");
+  declined(variants("#version 300 es\nprecision highp float;\nuniform vec3 a, uLight;\nout vec4 c;\nvoid main() { c = vec4(uLight + a, 1); }"),
+           "not declared as a plain vec3 uniform");
+  declined(variants(head + "void main() { c = vec4(uLight, 1); }", 9), "9 runs, 8 outputs");
+  declined(shader::with_uniform_variants(es300(kVertex, Stage::vertex), es300("#version 100\nprecision highp float;\nuniform vec3 uLight;\n"
+                                                                                 "void main() { gl_FragColor = vec4(uLight, 1); }", Stage::fragment),
+                                         {"uLight"}, 2, 8),
+           "GLSL ES 1.00");
+  auto gouraud = kVertex;
+  gouraud.replace(gouraud.find("in vec4 p;"), 10, "in vec4 p; uniform vec3 uLight;");
+  declined(shader::with_uniform_variants(es300(gouraud, Stage::vertex), es300(head + "void main() { c = vec4(v, 1); }", Stage::fragment),
+                                         {"uLight"}, 2, 8),
+           "the vertex shader uses uLight");
+  EXPECT_TRUE(variants(head + "const float k = 2.0;\nfloat lit(vec3 l) { return k * l.x; }\nvoid main() { c = vec4(lit(uLight)); }"));
 }

@@ -1,5 +1,6 @@
 #include "gl/render_target.h"
 
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -31,33 +32,60 @@ int max_samples(PixelFormat format) {
   return n;
 }
 
-Expected<RenderTarget> RenderTarget::create(int width, int height, int samples, PixelFormat format) {
+int max_outputs() {
+  GLint n = 0;
+  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &n);
+  return n;
+}
+
+namespace {
+
+GLenum attachment(int k) { return static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + k); }
+
+// Draw buffers 0..outputs-1 to their attachments; with `only`, every slot but that one GL_NONE
+// (GLES lets slot k name attachment k or nothing).
+void set_draw_buffers(int outputs, int only = -1) {
+  std::vector<GLenum> buffers;
+  for (int k = 0; k < outputs; ++k) buffers.push_back(only < 0 || only == k ? attachment(k) : GL_NONE);
+  glDrawBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
+}
+
+}  // namespace
+
+Expected<RenderTarget> RenderTarget::create(int width, int height, int samples, PixelFormat format, int outputs) {
   const int max = max_samples(format);
   if (samples < 0 || samples > max)
     return make_error(ErrorCode::msaa_unsupported, "this renderer supports at most " + std::to_string(max) +
                                                        " samples per pixel; " + std::to_string(samples) +
                                                        " were asked for");
+  if (outputs < 1 || outputs > max_outputs())
+    return make_error(ErrorCode::gl_error, "this renderer draws at most " + std::to_string(max_outputs()) + " outputs at once");
   RenderTarget t;
   t.width_ = width;
   t.height_ = height;
   t.format_ = format;
-  t.color_ = make_renderbuffer(internal_format(format), width, height, samples);
-  t.depth_ = make_renderbuffer(GL_DEPTH24_STENCIL8, width, height, samples);
   t.draw_fbo_ = make_framebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, t.draw_fbo_.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color_.get());
+  for (int k = 0; k < outputs; ++k) {
+    t.color_.push_back(make_renderbuffer(internal_format(format), width, height, samples));
+    glBindFramebuffer(GL_FRAMEBUFFER, t.draw_fbo_.get());
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment(k), GL_RENDERBUFFER, t.color_.back().get());
+  }
+  t.depth_ = make_renderbuffer(GL_DEPTH24_STENCIL8, width, height, samples);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, t.depth_.get());
+  set_draw_buffers(outputs);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return make_error(ErrorCode::gl_error, "the driver rejected a " + std::to_string(width) + "x" +
                                                std::to_string(height) + " framebuffer");
-  glBindRenderbuffer(GL_RENDERBUFFER, t.color_.get());
+  glBindRenderbuffer(GL_RENDERBUFFER, t.color_.front().get());
   glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &t.samples_);
 
   if (samples > 0) {
-    t.resolve_color_ = make_renderbuffer(internal_format(format), width, height, 0);
     t.resolve_fbo_ = make_framebuffer();
-    glBindFramebuffer(GL_FRAMEBUFFER, t.resolve_fbo_.get());
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.resolve_color_.get());
+    for (int k = 0; k < outputs; ++k) {
+      t.resolve_color_.push_back(make_renderbuffer(internal_format(format), width, height, 0));
+      glBindFramebuffer(GL_FRAMEBUFFER, t.resolve_fbo_.get());
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment(k), GL_RENDERBUFFER, t.resolve_color_.back().get());
+    }
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       return make_error(ErrorCode::gl_error, "the driver rejected the resolve framebuffer");
   }
@@ -70,6 +98,7 @@ size_t RenderTarget::bytes_per_frame() const {
 
 void RenderTarget::begin_frame() const {
   glBindFramebuffer(GL_FRAMEBUFFER, draw_fbo_.get());
+  set_draw_buffers(outputs());
   glViewport(0, 0, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
@@ -87,13 +116,22 @@ void RenderTarget::resolve() const {
   if (!resolve_fbo_) return;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_.get());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.get());
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  for (int k = 0; k < outputs(); ++k) {  // a blit copies the read buffer to every draw buffer: one at a time
+    glReadBuffer(attachment(k));
+    set_draw_buffers(outputs(), k);
+    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
 }
 
 void RenderTarget::read_pixels(void* dst) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_ ? resolve_fbo_.get() : draw_fbo_.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, dst);
+  for (int k = 0; k < outputs(); ++k) {
+    glReadBuffer(attachment(k));
+    // `dst` is a pointer or, with a pack buffer bound, an offset into it.
+    void* at = reinterpret_cast<void*>(reinterpret_cast<std::uintptr_t>(dst) + static_cast<size_t>(k) * bytes_per_frame());
+    glReadPixels(0, 0, width_, height_, GL_RGBA, format_ == PixelFormat::rgba8 ? GL_UNSIGNED_BYTE : GL_FLOAT, at);
+  }
 }
 
 Fence Fence::after_queued_commands() {
@@ -132,7 +170,7 @@ void RenderTarget::start_read(Readback mode) {
     glGenBuffers(1, &id);
     pack_buffer_ = BufferName(id);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, id);
-    glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(bytes_per_frame()), nullptr, GL_STREAM_READ);
+    glBufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(bytes_per_read()), nullptr, GL_STREAM_READ);
   }
   glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_.get());
   read_pixels(nullptr);  // offset 0 in the bound pack buffer
@@ -149,7 +187,7 @@ Status RenderTarget::finish_read(void* dst) {
   read_done_ = Fence();
   if (!passed) return make_error(ErrorCode::gl_error, "the driver failed while waiting for a frame's readback");
   glBindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_.get());
-  const auto bytes = static_cast<GLsizeiptr>(bytes_per_frame());
+  const auto bytes = static_cast<GLsizeiptr>(bytes_per_read());
   const void* mapped = glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, bytes, GL_MAP_READ_BIT);
   if (mapped) {
     std::memcpy(dst, mapped, static_cast<size_t>(bytes));

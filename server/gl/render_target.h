@@ -1,6 +1,8 @@
 #pragma once
 // An offscreen target shaped like the browser's WebGL2 drawing buffer: colour + 24-bit depth,
 // optionally multisampled and resolved before readback, cleared to opaque black.
+#include <vector>
+
 #include "core/expected.h"
 #include "gl/gl_name.h"
 
@@ -35,14 +37,17 @@ class Fence {
 
 class RenderTarget {
  public:
-  // samples = 0 renders single-sampled. Errors when the driver cannot give the sample count.
-  static Expected<RenderTarget> create(int width, int height, int samples, PixelFormat format);
+  // samples = 0 renders single-sampled. `outputs` colour attachments of one format, drawn together
+  // (location k to attachment k). Errors when the driver cannot give the sample count or the outputs.
+  static Expected<RenderTarget> create(int width, int height, int samples, PixelFormat format, int outputs = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }  // what the driver actually allocated
   PixelFormat format() const { return format_; }
-  size_t bytes_per_frame() const;
+  int outputs() const { return static_cast<int>(color_.size()); }
+  size_t bytes_per_frame() const;                                     // one output's
+  size_t bytes_per_read() const { return bytes_per_frame() * color_.size(); }  // every output's
 
   // Binds the target and sets the homework's frame state: viewport, clear colour (0,0,0,1),
   // clear depth 1, depth test LEQUAL, no blending, no culling; then clears.
@@ -53,18 +58,20 @@ class RenderTarget {
   // Starts taking the resolved frame out. With Readback::pixel_buffer the copy is queued behind
   // the frame and this returns at once; with direct, nothing happens until finish_read.
   void start_read(Readback mode);
-  // Copies the frame that start_read began into `dst` (bytes_per_frame() bytes), bottom row first;
-  // waits only for the commands this target's frame depends on.
+  // Copies the frame that start_read began into `dst` (bytes_per_read() bytes: output 0's frame,
+  // then output 1's, ...), bottom row first; waits only for the commands this target's frame depends on.
   Status finish_read(void* dst);
 
  private:
-  // glReadPixels of the resolved frame into `dst`: memory, or an offset into a bound pack buffer.
+  // glReadPixels of each resolved output into `dst`, one after another: memory, or offsets into a
+  // bound pack buffer.
   void read_pixels(void* dst) const;
 
   int width_ = 0, height_ = 0, samples_ = 0;
   PixelFormat format_ = PixelFormat::rgba8;
   FramebufferName draw_fbo_, resolve_fbo_;
-  RenderbufferName color_, depth_, resolve_color_;
+  std::vector<RenderbufferName> color_, resolve_color_;  // one per output
+  RenderbufferName depth_;
   BufferName pack_buffer_;  // made on the first pixel_buffer read
   Fence read_done_;         // set while a pixel_buffer read is in flight
 };
@@ -75,5 +82,7 @@ FramebufferName make_framebuffer();
 
 // The largest sample count the driver offers for `format`.
 int max_samples(PixelFormat format);
+// How many outputs one draw can write (GL_MAX_DRAW_BUFFERS; at least 4 in GLES 3).
+int max_outputs();
 
 }  // namespace shadelab::gl

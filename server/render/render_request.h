@@ -72,6 +72,7 @@ struct RenderReport {
   std::vector<VariableInfo> attributes, uniforms;
   int samples = 0;            // what the driver allocated
   bool program_cached = false;
+  int passes = 1;             // over the geometry, a frame (Renderer::render_together may need several)
   PhaseTimes times;
 };
 

@@ -4,6 +4,7 @@
 #include "core/lru_cache.h"
 
 #include <chrono>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "render/homework_contract.h"
 #include "shader/driver_log.h"
 #include "shader/invariant_outputs.h"
+#include "shader/uniform_variants.h"
 #include "shader/webgl_rules.h"
 
 namespace shadelab::render {
@@ -39,6 +41,19 @@ std::vector<VariableInfo> describe(const std::vector<gl::ActiveVariable>& vars) 
   return out;
 }
 
+// What a set of requests for Renderer::render_together differ in.
+struct Variants {
+  enum class Kind {
+    identical,  // nothing: one render stands for all
+    uniforms,   // the values of some vec3 uniforms: one pass can render all (shader/uniform_variants.h)
+    apart,      // anything else: a render each
+  } kind = Kind::apart;
+  std::vector<std::string> names;          // the vec3 uniforms
+  std::vector<std::vector<float>> values;  // per request: each name's three floats, in order
+};
+
+using IndexedSink = Renderer::IndexedSink;
+
 }  // namespace
 
 struct Renderer::State {
@@ -58,7 +73,7 @@ struct Renderer::State {
     bool cached;
   };
   Expected<Built> build(const shader::ShaderFile& vf, const shader::ShaderFile& ff,
-                        FloatSemantics semantics = FloatSemantics::as_compiled) {
+                        FloatSemantics semantics = FloatSemantics::as_compiled, const Variants* variants = nullptr) {
     const shader::SourceLimits limits{kRendererHardLimits.max_source_bytes};
     auto vertex = shader::unwrap(vf, shader::Stage::vertex, limits);
     if (!vertex) return vertex.take_error();
@@ -67,6 +82,12 @@ struct Renderer::State {
     if (auto same = shader::check_same_version(*vertex, *fragment, ff); !same) return same.take_error();
     auto webgl = shader::apply_webgl_rules(*vertex, *fragment, vf, ff);
     if (!webgl) return webgl.take_error();
+    if (variants) {  // same lines, and the new main after them
+      auto rewritten = shader::with_uniform_variants(*vertex, *fragment, variants->names, static_cast<int>(variants->values.size()),
+                                                     gl::max_outputs());
+      if (!rewritten) return rewritten.take_error();
+      fragment->glsl = std::move(*rewritten);
+    }
     if (semantics == FloatSemantics::ieee) {  // same lines, so the line maps still hold
       vertex->glsl = shader::with_invariant_outputs(vertex->glsl, shader::Stage::vertex);
       fragment->glsl = shader::with_invariant_outputs(fragment->glsl, shader::Stage::fragment);
@@ -144,14 +165,14 @@ struct Renderer::State {
   }
 
   // The pair of targets for this request's size, samples and format, reused between jobs.
-  Expected<std::array<gl::RenderTarget*, 2>> render_targets(const RenderRequest& r) {
+  Expected<std::array<gl::RenderTarget*, 2>> render_targets(const RenderRequest& r, int outputs) {
     const auto format = r.pixel_type == image::PixelType::u8 ? gl::PixelFormat::rgba8 : gl::PixelFormat::rgba32f;
     const bool reusable = targets[0] && targets[0]->width() == r.width && targets[0]->height() == r.height &&
-                          targets[0]->format() == format && requested_samples == r.msaa;
+                          targets[0]->format() == format && requested_samples == r.msaa && targets[0]->outputs() == outputs;
     if (!reusable) {
       targets = {};
       for (auto& t : targets) {
-        auto created = gl::RenderTarget::create(r.width, r.height, r.msaa, format);
+        auto created = gl::RenderTarget::create(r.width, r.height, r.msaa, format, outputs);
         if (!created) return created.take_error();
         t = std::move(*created);
       }
@@ -160,6 +181,155 @@ struct Renderer::State {
     return std::array<gl::RenderTarget*, 2>{&*targets[0], &*targets[1]};
   }
   int requested_samples = -1;
+
+  // The frames of `request` (of every request in `variants`, one output each) with a program built for it.
+  Expected<RenderReport> draw(const RenderRequest& request, const scene::Mesh& mesh, const Built& built, const Variants* variants,
+                              Clock::time_point start, const IndexedSink& sink) {
+    RenderReport report;
+    report.program_cached = built.cached;
+    report.times.compile_ms = built.cached ? 0.0 : ms_since(start);
+    const gl::Program& program = *built.program;
+    for (auto* w : {&built.vertex.warnings, &built.fragment.warnings})
+      report.warnings.insert(report.warnings.end(), w->begin(), w->end());
+    report.attributes = describe(program.attributes());
+    report.uniforms = describe(program.uniforms());
+    auto plan = plan_uniforms(program.uniforms(), request.page.uniforms, request.uniforms);
+    if (!plan) return plan.take_error();
+    report.warnings.insert(report.warnings.end(), plan->warnings.begin(), plan->warnings.end());
+
+    int position_location = -1, normal_location = -1;
+    for (const auto& a : program.attributes()) {
+      if (a.name == kPositionAttribute) {
+        position_location = a.location;
+      } else if (a.name == kNormalAttribute) {
+        normal_location = a.location;
+      } else {
+        report.warnings.push_back("attribute '" + a.name + "' is not fed by the homework page (only " +
+                                  kPositionAttribute + " and " + kNormalAttribute + " are); it reads (0, 0, 0, 1)");
+      }
+    }
+
+    const int outputs = variants ? static_cast<int>(variants->values.size()) : 1;
+    auto pair = render_targets(request, outputs);
+    if (!pair) return pair.take_error();
+    report.samples = (*pair)[0]->samples();
+    if (request.msaa > 0 && report.samples != request.msaa)
+      report.warnings.push_back("the driver gave " + std::to_string(report.samples) + " samples per pixel for the " +
+                                std::to_string(request.msaa) + " asked for");
+
+    const auto upload_start = Clock::now();
+    bool mesh_cached = false;
+    const gl::MeshBuffer& buffer = mesh_buffer(mesh, mesh_cached);
+    report.times.upload_ms = mesh_cached ? 0.0 : ms_since(upload_start);
+
+    program.use();
+    for (const auto& c : plan->constant) program.set_uniform(*c.uniform, c.values);
+    if (variants) set_variants(program, *variants);
+
+    staging.resize((*pair)[0]->bytes_per_read());
+    const size_t frame_bytes = (*pair)[0]->bytes_per_frame();
+    image::Image frame = image::Image::blank(request.width, request.height, request.pixel_type);
+    const auto read_and_emit = [&](int k) {
+      const auto read_start = Clock::now();
+      if (auto read = (*pair)[static_cast<size_t>(k % 2)]->finish_read(staging.data()); !read) return read;
+      for (int o = 0; o < outputs; ++o) {
+        const auto convert_start = Clock::now();
+        const std::uint8_t* pixels = staging.data() + static_cast<size_t>(o) * frame_bytes;
+        bool opaque = false;
+        if (request.pixel_type == image::PixelType::u8)
+          opaque = image::canvas_blob_from_readback(pixels, frame);
+        else
+          image::float_from_readback(reinterpret_cast<const float*>(pixels), frame);
+        report.times.readback_ms += ms_since(o == 0 ? read_start : convert_start);
+        const auto sink_start = Clock::now();
+        sink(o, k, frame, opaque);
+        report.times.sink_ms += ms_since(sink_start);
+      }
+      return Status{Ok{}};
+    };
+
+    // Frame k is submitted, then frame k - 1 is read: llvmpipe rasterises k on its threads while
+    // this thread copies k - 1 out, and a GPU gets its next commands before the readback stalls.
+    const auto loop_start = Clock::now();
+    for (int k = 0; k < request.frames; ++k) {
+      const auto submit_start = Clock::now();
+      gl::RenderTarget& rt = *(*pair)[static_cast<size_t>(k % 2)];
+      const FrameTransforms t = homework_transforms(request.page.camera, request.width, request.height, frame_angle(request, k));
+      if (plan->world_to_clip) program.set_uniform(*plan->world_to_clip, {glm::value_ptr(t.world_to_clip), 16});
+      if (plan->mesh_to_world) program.set_uniform(*plan->mesh_to_world, {glm::value_ptr(t.mesh_to_world), 16});
+      if (plan->mesh_to_world_rot) program.set_uniform(*plan->mesh_to_world_rot, {glm::value_ptr(t.mesh_to_world_rot), 16});
+      rt.begin_frame();
+      buffer.draw(position_location, normal_location);
+      rt.resolve();
+      rt.start_read(readback);
+      // The draw call is where llvmpipe JIT-compiles the program's code for this state.
+      if (k == 0) report.times.first_frame_ms = ms_since(submit_start);
+      if (k > 0)
+        if (auto read = read_and_emit(k - 1); !read) return read.take_error();
+    }
+    if (auto read = read_and_emit(request.frames - 1); !read) return read.take_error();
+    report.times.render_ms = ms_since(loop_start) - report.times.readback_ms - report.times.sink_ms;
+    report.times.total_ms = ms_since(start);
+    return report;
+  }
+
+  // Each request's values for the uniforms it differs in, into the rewritten program's arrays.
+  static void set_variants(const gl::Program& program, const Variants& v) {
+    const auto active = [&](const std::string& name) -> const gl::ActiveVariable* {
+      for (const auto& u : program.uniforms())
+        if (u.name == name || u.name == name + "[0]") return &u;
+      return nullptr;
+    };
+    for (size_t n = 0; n < v.names.size(); ++n) {
+      std::vector<float> all;
+      for (const auto& values : v.values) all.insert(all.end(), values.begin() + static_cast<long>(3 * n), values.begin() + static_cast<long>(3 * n + 3));
+      if (const auto* u = active(shader::variant_uniform(v.names[n]))) program.set_uniform(*u, all);
+    }
+    if (const auto* count = active(shader::kVariantCount)) program.set_uniform(*count, std::vector<float>{static_cast<float>(v.values.size())});
+  }
+
+  // What `requests` differ in, judged on the uniform values each would upload to the program.
+  Expected<Variants> variants_of(const std::vector<RenderRequest>& requests) {
+    Variants v;
+    const auto all_but_uniforms = [](RenderRequest r) {
+      r.uniforms.clear();
+      return pixel_identity(r);
+    };
+    const std::string shared = all_but_uniforms(requests.front());
+    for (const auto& r : requests)
+      if (all_but_uniforms(r) != shared) return v;
+    if (auto valid = validate(requests.front(), kRendererHardLimits); !valid) return valid.take_error();
+    auto built = build(requests.front().vertex, requests.front().fragment);
+    if (!built) return built.take_error();
+    std::vector<UniformPlan> plans;
+    for (const auto& r : requests) {
+      auto plan = plan_uniforms(built->program->uniforms(), r.page.uniforms, r.uniforms);
+      if (!plan) return plan.take_error();
+      plans.push_back(std::move(*plan));
+    }
+    for (const auto& plan : plans)  // the frame's matrices fed by the renderer in one and set by the request in another
+      if (plan.world_to_clip != plans.front().world_to_clip || plan.mesh_to_world != plans.front().mesh_to_world ||
+          plan.mesh_to_world_rot != plans.front().mesh_to_world_rot)
+        return v;
+    v.values.resize(requests.size());
+    for (const auto& u : built->program->uniforms()) {
+      std::vector<std::vector<float>> each;  // an unset uniform reads 0, as in a render of its own
+      for (const auto& plan : plans) each.push_back(value_in(plan, u, 3));
+      if (std::all_of(each.begin(), each.end(), [&](const auto& e) { return e == each.front(); })) continue;
+      if (u.type.name != std::string_view("vec3") || u.array_size != 1) return v;
+      v.names.push_back(u.name);
+      for (size_t i = 0; i < each.size(); ++i) v.values[i].insert(v.values[i].end(), each[i].begin(), each[i].end());
+    }
+    v.kind = v.names.empty() ? Variants::Kind::identical : Variants::Kind::uniforms;
+    return v;
+  }
+
+  // What `plan` uploads to `u`, or `zeros` zeros when it leaves it unset.
+  static std::vector<float> value_in(const UniformPlan& plan, const gl::ActiveVariable& u, size_t zeros) {
+    for (const auto& c : plan.constant)
+      if (c.uniform == &u) return c.values;
+    return std::vector<float>(zeros, 0.f);
+  }
 };
 
 Renderer::Renderer(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -200,89 +370,37 @@ Expected<CompileReport> Renderer::compile(const shader::ShaderFile& vertex, cons
 Expected<RenderReport> Renderer::render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink,
                                         FloatSemantics semantics) {
   const auto start = Clock::now();
-  RenderReport report;
   if (auto valid = validate(request, kRendererHardLimits); !valid) return valid.take_error();
-
   auto built = state_->build(request.vertex, request.fragment, semantics);
   if (!built) return built.take_error();
-  report.program_cached = built->cached;
-  report.times.compile_ms = built->cached ? 0.0 : ms_since(start);
-  const gl::Program& program = *built->program;
-  for (auto* w : {&built->vertex.warnings, &built->fragment.warnings})
-    report.warnings.insert(report.warnings.end(), w->begin(), w->end());
-  report.attributes = describe(program.attributes());
-  report.uniforms = describe(program.uniforms());
+  return state_->draw(request, mesh, *built, nullptr, start, [&](int, int k, const image::Image& f, bool opaque) { sink(k, f, opaque); });
+}
 
-  auto plan = plan_uniforms(program.uniforms(), request.page.uniforms, request.uniforms);
-  if (!plan) return plan.take_error();
-  report.warnings.insert(report.warnings.end(), plan->warnings.begin(), plan->warnings.end());
-
-  int position_location = -1, normal_location = -1;
-  for (const auto& a : program.attributes()) {
-    if (a.name == kPositionAttribute) {
-      position_location = a.location;
-    } else if (a.name == kNormalAttribute) {
-      normal_location = a.location;
-    } else {
-      report.warnings.push_back("attribute '" + a.name + "' is not fed by the homework page (only " +
-                                kPositionAttribute + " and " + kNormalAttribute + " are); it reads (0, 0, 0, 1)");
+Expected<RenderReport> Renderer::render_together(const std::vector<RenderRequest>& requests, const scene::Mesh& mesh,
+                                                 const IndexedSink& sink, FloatSemantics semantics) {
+  const auto start = Clock::now();
+  if (requests.empty()) return RenderReport{};
+  auto variants = state_->variants_of(requests);
+  if (!variants) return variants.take_error();
+  const auto each_alone = [&](int only) -> Expected<RenderReport> {
+    RenderReport last;
+    for (size_t i = 0; i < requests.size(); ++i) {
+      auto r = render(requests[i], mesh, [&](int k, const image::Image& f, bool opaque) {
+        for (size_t to = 0; to < requests.size(); ++to)
+          if (only < 0 ? to == i : static_cast<int>(to) >= only) sink(static_cast<int>(to), k, f, opaque);
+      }, semantics);
+      if (!r) return r;
+      last = std::move(*r);
+      if (only >= 0) return last;  // one render stood for every request
     }
-  }
-
-  auto targets = state_->render_targets(request);
-  if (!targets) return targets.take_error();
-  report.samples = (*targets)[0]->samples();
-  if (request.msaa > 0 && report.samples != request.msaa)
-    report.warnings.push_back("the driver gave " + std::to_string(report.samples) + " samples per pixel for the " +
-                              std::to_string(request.msaa) + " asked for");
-
-  const auto upload_start = Clock::now();
-  bool mesh_cached = false;
-  const gl::MeshBuffer& buffer = state_->mesh_buffer(mesh, mesh_cached);
-  report.times.upload_ms = mesh_cached ? 0.0 : ms_since(upload_start);
-
-  program.use();
-  for (const auto& c : plan->constant) program.set_uniform(*c.uniform, c.values);
-
-  state_->staging.resize((*targets)[0]->bytes_per_frame());
-  image::Image frame = image::Image::blank(request.width, request.height, request.pixel_type);
-  const auto read_and_emit = [&](int k) {
-    const auto read_start = Clock::now();
-    if (auto read = (*targets)[static_cast<size_t>(k % 2)]->finish_read(state_->staging.data()); !read) return read;
-    bool opaque = false;
-    if (request.pixel_type == image::PixelType::u8)
-      opaque = image::canvas_blob_from_readback(state_->staging.data(), frame);
-    else
-      image::float_from_readback(reinterpret_cast<const float*>(state_->staging.data()), frame);
-    report.times.readback_ms += ms_since(read_start);
-    const auto sink_start = Clock::now();
-    sink(k, frame, opaque);
-    report.times.sink_ms += ms_since(sink_start);
-    return Status{Ok{}};
+    last.passes = static_cast<int>(requests.size());
+    return last;
   };
-
-  // Frame k is submitted, then frame k - 1 is read: llvmpipe rasterises k on its threads while
-  // this thread copies k - 1 out, and a GPU gets its next commands before the readback stalls.
-  const auto loop_start = Clock::now();
-  for (int k = 0; k < request.frames; ++k) {
-    const auto submit_start = Clock::now();
-    gl::RenderTarget& rt = *(*targets)[static_cast<size_t>(k % 2)];
-    const FrameTransforms t = homework_transforms(request.page.camera, request.width, request.height, frame_angle(request, k));
-    if (plan->world_to_clip) program.set_uniform(*plan->world_to_clip, {glm::value_ptr(t.world_to_clip), 16});
-    if (plan->mesh_to_world) program.set_uniform(*plan->mesh_to_world, {glm::value_ptr(t.mesh_to_world), 16});
-    if (plan->mesh_to_world_rot) program.set_uniform(*plan->mesh_to_world_rot, {glm::value_ptr(t.mesh_to_world_rot), 16});
-    rt.begin_frame();
-    buffer.draw(position_location, normal_location);
-    rt.resolve();
-    rt.start_read(state_->readback);
-    // The draw call is where llvmpipe JIT-compiles the program's code for this state.
-    if (k == 0) report.times.first_frame_ms = ms_since(submit_start);
-    if (k > 0)
-      if (auto read = read_and_emit(k - 1); !read) return read.take_error();
-  }
-  if (auto read = read_and_emit(request.frames - 1); !read) return read.take_error();
-  report.times.render_ms = ms_since(loop_start) - report.times.readback_ms - report.times.sink_ms;
-  report.times.total_ms = ms_since(start);
+  if (variants->kind == Variants::Kind::identical) return each_alone(0);
+  if (variants->kind == Variants::Kind::apart) return each_alone(-1);
+  auto built = state_->build(requests[0].vertex, requests[0].fragment, semantics, &*variants);
+  if (!built) return each_alone(-1);  // the rewrite declined, or the driver did not take it
+  auto report = state_->draw(requests[0], mesh, *built, &*variants, start, sink);
   return report;
 }
 

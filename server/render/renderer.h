@@ -1,7 +1,9 @@
 #pragma once
 // Turns a request into frames on one headless context. Owns the context and keeps compiled
 // programs and uploaded meshes warm between jobs (a worker process holds one Renderer).
+#include <functional>
 #include <memory>
+#include <vector>
 
 #include "core/expected.h"
 #include "egl/headless_context.h"
@@ -51,6 +53,15 @@ class Renderer {
   // Renders request.frames frames of `mesh`, handing each to `sink` as soon as it is read back.
   Expected<RenderReport> render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink,
                                 FloatSemantics semantics = FloatSemantics::as_compiled);
+
+  // Requests that differ only in the values of vec3 uniforms (the grader's lights), their frames
+  // handed to `sink` with the request's index: in one pass over the geometry, the fragment shader
+  // run once per request into outputs of its own (shader/uniform_variants.h), where the shaders
+  // allow it; else one request after another. The same bytes either way (tests/render_test.cpp).
+  // Requests that differ in nothing are rendered once. `report.passes` says how many it took.
+  using IndexedSink = std::function<void(int request, int frame, const image::Image& image, bool opaque)>;
+  Expected<RenderReport> render_together(const std::vector<RenderRequest>& requests, const scene::Mesh& mesh, const IndexedSink& sink,
+                                         FloatSemantics semantics = FloatSemantics::as_compiled);
 
  private:
   struct State;
