@@ -94,17 +94,39 @@ Status GradeSession::for_each_light(const GradeSpec& spec, const render::RenderR
   return Ok{};
 }
 
-// Every set of frames is rendered under the homework's light, then under each probe light.
-Expected<SharedFrames> GradeSession::render_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
-                                                         const scene::Mesh& mesh, const std::string* cache_key) {
-  SharedFrames all;
-  auto done = for_each_light(spec, base, [&](const render::RenderRequest& lit) -> Status {
-    auto frames = cache_key ? cached_frames(lit, mesh, *cache_key) : frames_of(lit, mesh);
-    if (!frames) return frames.take_error();
-    all.insert(all.end(), frames->begin(), frames->end());
+// `base` under the homework's light, then under each probe light.
+Expected<std::vector<render::RenderRequest>> GradeSession::under_lights(const GradeSpec& spec, const render::RenderRequest& base) {
+  std::vector<render::RenderRequest> lit;
+  auto done = for_each_light(spec, base, [&](const render::RenderRequest& r) -> Status {
+    lit.push_back(r);
     return Ok{};
   });
   if (!done) return done.take_error();
+  return lit;
+}
+
+// Every set of frames is rendered under the homework's light, then under each probe light. A
+// reference or a mistake goes through the caches light by light; the submission is drawn once for
+// every light (Renderer::render_together).
+Expected<SharedFrames> GradeSession::render_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
+                                                         const scene::Mesh& mesh, const std::string* cache_key) {
+  auto lit = under_lights(spec, base);
+  if (!lit) return lit.take_error();
+  SharedFrames all;
+  if (cache_key) {
+    for (const auto& r : *lit) {
+      auto frames = cached_frames(r, mesh, *cache_key);
+      if (!frames) return frames.take_error();
+      all.insert(all.end(), frames->begin(), frames->end());
+    }
+    return all;
+  }
+  std::vector<SharedFrames> each(lit->size());
+  auto rendered = renderer_.render_together(*lit, mesh, [&](int i, int, const image::Image& f, bool) {
+    each[static_cast<size_t>(i)].push_back(std::make_shared<const image::Image>(f));
+  });
+  if (!rendered) return rendered.take_error();
+  for (auto& frames : each) all.insert(all.end(), frames.begin(), frames.end());
   return all;
 }
 
@@ -112,14 +134,15 @@ Expected<SharedFrames> GradeSession::render_under_lights(const GradeSpec& spec, 
 // kept (4 floats a pixel: 38 MB a light for 9 frames at 512 x 512).
 Expected<std::vector<image::NonFinite>> GradeSession::non_finite_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
                                                                               const scene::Mesh& mesh, render::FloatSemantics semantics) {
+  auto lit = under_lights(spec, base);
+  if (!lit) return lit.take_error();
+  std::vector<std::vector<image::NonFinite>> each(lit->size());
+  auto rendered = renderer_.render_together(*lit, mesh, [&](int i, int, const image::Image& f, bool) {
+    each[static_cast<size_t>(i)].push_back(image::count_non_finite(f));
+  }, semantics);
+  if (!rendered) return rendered.take_error();
   std::vector<image::NonFinite> counts;
-  auto done = for_each_light(spec, base, [&](const render::RenderRequest& lit) -> Status {
-    auto rendered = renderer_.render(lit, mesh, [&](int, const image::Image& f, bool) { counts.push_back(image::count_non_finite(f)); },
-                                     semantics);
-    if (!rendered) return rendered.take_error();
-    return Ok{};
-  });
-  if (!done) return done.take_error();
+  for (auto& c : each) counts.insert(counts.end(), c.begin(), c.end());
   return counts;
 }
 

@@ -83,6 +83,7 @@ class GradeSession {
   // Calls `each` with `base` under the homework's light, then under each probe light.
   Status for_each_light(const GradeSpec& spec, const render::RenderRequest& base,
                         const std::function<Status(const render::RenderRequest&)>& each);
+  Expected<std::vector<render::RenderRequest>> under_lights(const GradeSpec& spec, const render::RenderRequest& base);
   Expected<SharedFrames> render_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
                                              const std::string* cache_key);
   Expected<std::vector<image::NonFinite>> float_check(const GradeSpec& spec, const render::RenderRequest& submission,
