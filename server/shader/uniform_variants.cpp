@@ -45,7 +45,13 @@ std::string applied(std::string_view glsl, std::vector<Edit> edits) {
   return out;
 }
 
-Edit blank(const GlslWord& w) { return {w.offset, w.text.size(), std::string(w.text.size(), ' ')}; }
+// Spaces over a span, its line breaks kept (a layout's parentheses may hold some).
+Edit blank(std::string_view glsl, size_t at, size_t length) {
+  std::string spaces(glsl.substr(at, length));
+  for (char& c : spaces)
+    if (c != '\n') c = ' ';
+  return {at, length, std::move(spaces)};
+}
 
 std::string epilogue(const std::vector<std::string>& names, const std::string& output, int runs) {
   const std::string n = std::to_string(runs);
@@ -94,15 +100,15 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
       if (!output.empty() || s.names.size() != 1 || s.has_brackets || !s.has("vec4")) return declined("more than one vec4 output");
       output = s.names.front();
       for (const auto& w : s.words)
-        if (w.text == "out" || w.text == "invariant") edits.push_back(blank(w));
-      if (s.layout_begin != s.layout_end) edits.push_back({s.layout_begin, s.layout_end - s.layout_begin, std::string(s.layout_end - s.layout_begin, ' ')});
+        if (w.text == "out" || w.text == "invariant") edits.push_back(blank(fragment.glsl, w.offset, w.text.size()));
+      if (s.layout_begin != s.layout_end) edits.push_back(blank(fragment.glsl, s.layout_begin, s.layout_end - s.layout_begin));
     }
     for (const auto& name : names) {
       if (std::find(s.names.begin(), s.names.end(), name) == s.names.end()) continue;
       if (!plain_vec3_uniform(s, name)) return declined(name + " is not declared as a plain vec3 uniform");
       ++declared[name];
       for (const auto& w : s.words)
-        if (w.text == "uniform") edits.push_back(blank(w));
+        if (w.text == "uniform") edits.push_back(blank(fragment.glsl, w.offset, w.text.size()));
     }
   }
   if (output.empty()) return declined("no output");

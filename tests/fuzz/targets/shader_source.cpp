@@ -1,11 +1,15 @@
 // shader::unwrap, as the HTTP edge and the workers call it on a student's file (raw GLSL or the
 // JS module the page imports). Invariant: the line map sends every GLSL line, and every location
-// a diagnostic may carry, back to a line and column inside the student's file.
+// a diagnostic may carry, back to a line and column inside the student's file. Then the grader's
+// rewrites of what unwrapped (shader/invariant_outputs.h, shader/uniform_variants.h): every line
+// of the student's GLSL stays where it was.
 #include <algorithm>
 #include <string>
 
 #include "fuzz_check.h"
+#include "shader/invariant_outputs.h"
 #include "shader/shader_source.h"
+#include "shader/uniform_variants.h"
 
 namespace {
 
@@ -53,6 +57,21 @@ void check_line_map(const shadelab::shader::UnwrappedSource& source, const FileS
     }
 }
 
+size_t lines_in(std::string_view s) { return static_cast<size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+void check_rewrites(const shadelab::shader::UnwrappedSource& source, shadelab::shader::Stage stage) {
+  FUZZ_CHECK(lines_in(shadelab::shader::with_invariant_outputs(source.glsl, stage)) == lines_in(source.glsl));
+  if (stage != shadelab::shader::Stage::fragment) return;
+  auto one_pass = shadelab::shader::with_uniform_variants(shadelab::shader::UnwrappedSource{}, source, {"uLightPosition"}, 2, 8);
+  if (!one_pass) {
+    FUZZ_CHECK(!one_pass.error().message.empty());
+    return;
+  }
+  const size_t epilogue = one_pass->rfind("\n// One pass for every light");
+  FUZZ_CHECK(epilogue != std::string::npos);
+  FUZZ_CHECK(lines_in(std::string_view(*one_pass).substr(0, epilogue)) == lines_in(source.glsl));
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
@@ -64,6 +83,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   auto unwrapped = shadelab::shader::unwrap(file, stage);
   if (unwrapped) {
     check_line_map(*unwrapped, shape);
+    check_rewrites(*unwrapped, stage);
     FUZZ_CHECK(unwrapped->glsl.find('\0') == std::string::npos);
   } else {
     for (const auto& d : unwrapped.error().diagnostics) FUZZ_CHECK(d.line == 0 || shape.holds(d.line, std::max(d.column, 1)));
