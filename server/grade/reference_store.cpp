@@ -1,5 +1,7 @@
 #include "grade/reference_store.h"
 
+#include <elf.h>
+#include <link.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -31,13 +33,53 @@ std::uint32_t get_u32(const std::string& in, size_t at) {
 
 std::string read_file(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
+  std::string out;
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  if (size <= 0) return out;
+  out.resize(static_cast<size_t>(size));
+  in.seekg(0);
+  in.read(out.data(), size);
+  out.resize(static_cast<size_t>(in.gcount()));
+  return out;
+}
+
+// The GNU build ID the linker wrote into the running executable (a hash of the whole output),
+// read from its loaded notes; empty when it has none.
+std::string gnu_build_id() {
+  std::string id;
+  dl_iterate_phdr([](dl_phdr_info* info, size_t, void* out) -> int {
+    for (int i = 0; i < info->dlpi_phnum; ++i) {
+      const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+      if (ph.p_type != PT_NOTE) continue;
+      const auto* at = reinterpret_cast<const unsigned char*>(info->dlpi_addr + ph.p_vaddr);
+      for (size_t offset = 0; offset + sizeof(ElfW(Nhdr)) <= ph.p_memsz;) {
+        ElfW(Nhdr) note;
+        std::memcpy(&note, at + offset, sizeof note);
+        const size_t name_at = offset + sizeof note, desc_at = name_at + ((note.n_namesz + 3) & ~3u);
+        if (desc_at + note.n_descsz > ph.p_memsz) break;
+        if (note.n_type == NT_GNU_BUILD_ID && note.n_namesz == 4 && std::memcmp(at + name_at, "GNU", 4) == 0) {
+          static_cast<std::string*>(out)->assign(reinterpret_cast<const char*>(at + desc_at), note.n_descsz);
+          return 1;
+        }
+        offset = desc_at + ((note.n_descsz + 3) & ~3u);
+      }
+    }
+    return 1;  // the first object is the executable: no further
+  }, &id);
+  return id;
 }
 
 }  // namespace
 
+// Reading and hashing the whole executable took ~0.4 s a process for a 150 MB build with debug
+// information: every worker and every Gradescope run paid it. The build ID is the linker's hash of
+// the same bytes, read from memory.
 const std::string& build_fingerprint() {
-  static const std::string fingerprint = sha256_hex(read_file("/proc/self/exe"));
+  static const std::string fingerprint = [] {
+    const std::string id = gnu_build_id();
+    return id.empty() ? sha256_hex(read_file("/proc/self/exe")) : "gnu-build-id:" + sha256_hex(id);
+  }();
   return fingerprint;
 }
 

@@ -41,7 +41,8 @@ class ReferenceStore {
   std::string renderer_;
 };
 
-// The running executable's SHA-256 (read once per process): part of every key.
+// What names this build (once per process): the linker's GNU build ID, else the executable's
+// SHA-256. Part of every key.
 const std::string& build_fingerprint();
 
 // The default folder: $SHADELAB_CACHE_DIR, else $XDG_CACHE_HOME/shadelab/references, else
