@@ -186,9 +186,8 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   auto reference = render_under_lights(spec, ref, **mesh, &mesh_key);
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
   // The catalogue only for a submission that fails: a passing one needs no diagnosis.
-  GradeResult result = grade::grade(*student, *student_non_finite, *reference, {}, spec.options);
-  if (!result.pass && !spec.mistakes.empty())
-    result = grade::grade(*student, *student_non_finite, *reference, rendered_mistakes(spec, ref, **mesh, mesh_key), spec.options);
+  GradeResult result = assess(*student, *student_non_finite, *reference, spec.options);
+  if (!result.pass) explain(result, *student, *reference, rendered_mistakes(spec, ref, **mesh, mesh_key), spec.options);
 
   std::vector<std::string> lights = {"homework"};
   for (const auto& p : spec.probes) lights.push_back(p.name);

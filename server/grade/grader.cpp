@@ -20,31 +20,33 @@ std::string percent(double f) {
 bool is_clear(const std::uint8_t* p) { return p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 255; }
 
 // Failing pixels over the pixels the object covers in either image (see FrameGrade).
-double failing_of_object(const image::Image& a, const image::Image& b, const image::FrameMetrics& m) {
+double failing_of_object(const image::Image& a, const image::Image& b, double failing_fraction) {
   std::size_t covered = 0;
   for (std::size_t i = 0; i < a.bytes.size(); i += 4) covered += !is_clear(&a.bytes[i]) || !is_clear(&b.bytes[i]);
   const double pixels = static_cast<double>(a.width) * a.height;
-  return covered == 0 ? 0.0 : m.failing_fraction * pixels / static_cast<double>(covered);
+  return covered == 0 ? 0.0 : failing_fraction * pixels / static_cast<double>(covered);
 }
 
-double frame_failing(const image::Image& a, const image::Image& b, const GradeOptions& options) {
-  return failing_of_object(a, b, image::compare(a, b, options.compare));
-}
+// How the student's frames fare with `candidate` standing in for the reference: each frame's
+// failing share of the object, counted once (compare()'s other metrics are not needed here).
+struct AgainstCandidate {
+  double matching = 0;  // share of frames that pass
+  double mean_failing = 0;
+};
 
-// Share of frames that pass when `candidate` stands in for the reference.
-double frames_matching(const SharedFrames& student, const SharedFrames& candidate,
-                       const GradeOptions& options) {
-  int matching = 0;
-  for (size_t k = 0; k < student.size(); ++k)
-    matching += frame_failing(*student[k], *candidate[k], options) <= options.max_failing_fraction;
-  return static_cast<double>(matching) / static_cast<double>(student.size());
-}
-
-double mean_failing(const SharedFrames& student, const SharedFrames& candidate,
-                    const GradeOptions& options) {
-  double sum = 0;
-  for (size_t k = 0; k < student.size(); ++k) sum += frame_failing(*student[k], *candidate[k], options);
-  return sum / static_cast<double>(student.size());
+AgainstCandidate against(const SharedFrames& student, const SharedFrames& candidate, const GradeOptions& options) {
+  AgainstCandidate out;
+  for (size_t k = 0; k < student.size(); ++k) {
+    const image::Image& a = *student[k];
+    const double pixels = static_cast<double>(a.width) * a.height;
+    const double failing = failing_of_object(a, *candidate[k], static_cast<double>(image::failing_pixels(a, *candidate[k], options.compare)) / pixels);
+    out.matching += failing <= options.max_failing_fraction;
+    out.mean_failing += failing;
+  }
+  const auto n = static_cast<double>(student.size());
+  out.matching /= n;
+  out.mean_failing /= n;
+  return out;
 }
 
 // The student's frames with RGB permuted: does some order other than R, G, B match the reference?
@@ -62,7 +64,7 @@ std::string swapped_channels(const SharedFrames& student, const SharedFrames& re
       }
       permuted.push_back(std::move(f));
     }
-    if (frames_matching(permuted, reference, options) == 1.0)
+    if (against(permuted, reference, options).matching == 1.0)
       return std::string("colour channels swapped: your (") + names[order[0]] + ", " + names[order[1]] + ", " +
              names[order[2]] + ") would match the reference's (R, G, B)";
   }
@@ -71,8 +73,8 @@ std::string swapped_channels(const SharedFrames& student, const SharedFrames& re
 
 }  // namespace
 
-GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite,
-                  const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes, const GradeOptions& options) {
+GradeResult assess(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite, const SharedFrames& reference,
+                   const GradeOptions& options) {
   SHADELAB_CHECK(!student.empty() && student.size() == reference.size(), "grade needs matching frame lists");
   GradeResult r;
   r.max_score = options.max_score;
@@ -81,7 +83,7 @@ GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinit
   for (size_t k = 0; k < student.size(); ++k) {
     FrameGrade f;
     f.metrics = image::compare(*student[k], *reference[k], options.compare);
-    f.failing_fraction_of_object = failing_of_object(*student[k], *reference[k], f.metrics);
+    f.failing_fraction_of_object = failing_of_object(*student[k], *reference[k], f.metrics.failing_fraction);
     if (k < student_non_finite.size()) f.non_finite = student_non_finite[k];
     f.pass = f.failing_fraction_of_object <= options.max_failing_fraction && f.non_finite.nan == 0 && f.non_finite.inf == 0;
     passing += f.pass;
@@ -96,7 +98,6 @@ GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinit
   r.score = options.max_score * passing / static_cast<double>(student.size());
   const auto& w = r.frames[static_cast<size_t>(worst)].metrics;
   const double worst_object = r.frames[static_cast<size_t>(worst)].failing_fraction_of_object;
-
   if (nan > 0) {
     r.diagnosis = "nan";
     r.messages.push_back("NaN in " + percent(static_cast<double>(nan) / pixels) +
@@ -109,16 +110,29 @@ GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinit
                                      : "matches the reference: at worst " + percent(worst_object) +
                                            " of the object's pixels differ by more than the tolerance (frame " +
                                            std::to_string(worst) + ")");
-    return r;
   }
+  return r;
+}
+
+void explain(GradeResult& r, const SharedFrames& student, const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes,
+             const GradeOptions& options) {
+  if (r.pass) return;
+  int worst = 0, passing = 0;
+  for (size_t k = 0; k < r.frames.size(); ++k) {
+    passing += r.frames[k].pass;
+    if (r.frames[k].failing_fraction_of_object > r.frames[static_cast<size_t>(worst)].failing_fraction_of_object) worst = static_cast<int>(k);
+  }
+  const double worst_object = r.frames[static_cast<size_t>(worst)].failing_fraction_of_object;
   // Which known mistake explains the frames best, if one explains them at all?
   const RenderedMistake* best = nullptr;
-  double best_failing = mean_failing(student, reference, options);
+  double failing_sum = 0;
+  for (const auto& f : r.frames) failing_sum += f.failing_fraction_of_object;
+  double best_failing = failing_sum / static_cast<double>(r.frames.size());
   const double reference_failing = best_failing;
   for (const auto& m : mistakes) {
-    const double failing = mean_failing(student, m.frames, options);
-    const bool explains = frames_matching(student, m.frames, options) == 1.0 || failing < options.closer_than_reference * reference_failing;
-    if (explains && failing < best_failing) best = &m, best_failing = failing;
+    const AgainstCandidate fit = against(student, m.frames, options);
+    const bool explains = fit.matching == 1.0 || fit.mean_failing < options.closer_than_reference * reference_failing;
+    if (explains && fit.mean_failing < best_failing) best = &m, best_failing = fit.mean_failing;
   }
   if (best) {
     if (r.diagnosis.empty()) r.diagnosis = best->id;
@@ -131,6 +145,12 @@ GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinit
                        " frames differ from the reference; worst frame " + std::to_string(worst) + ": " +
                        percent(worst_object) + " of the object's pixels off by more than " +
                        std::to_string(static_cast<int>(options.compare.threshold * 255 + 1e-9)) + "/255");
+}
+
+GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite,
+                  const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes, const GradeOptions& options) {
+  GradeResult r = assess(student, student_non_finite, reference, options);
+  explain(r, student, reference, mistakes, options);
   return r;
 }
 

@@ -55,4 +55,13 @@ struct GradeResult {
 GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite,
                   const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes, const GradeOptions& options);
 
+// grade() in two steps, for a caller that finds the known mistakes only for a submission that
+// fails (they cost renders or reads): `assess` compares with the reference alone and, for a
+// pass, says so; `explain` adds to a failing result which mistake explains it and how far off it
+// is. grade() is assess, then explain when it failed.
+GradeResult assess(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite, const SharedFrames& reference,
+                   const GradeOptions& options);
+void explain(GradeResult& result, const SharedFrames& student, const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes,
+             const GradeOptions& options);
+
 }  // namespace shadelab::grade

@@ -73,15 +73,48 @@ double mean_ssim(const Image& a, const Image& b) {
   return total / static_cast<double>(windows);
 }
 
-}  // namespace
+// Whether the pixel at (x, y), already known to differ by more than `limit`, still fails after
+// the spatial and outline allowances.
+bool fails_after_allowances(const std::uint8_t* a, const Image& expected, int x, int y, int limit, const CompareOptions& options) {
+  const int w = expected.width, h = expected.height;
+  for (int dy = -1; dy <= 1 && options.spatial_tolerance; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int nx = x + dx, ny = y + dy;
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+      if (channel_diff(a, expected.bytes.data() + (static_cast<std::size_t>(ny) * w + nx) * 4) <= limit) return false;
+    }
+  return !(options.outline_tolerance && blend_on_outline(a, expected, x, y, limit));
+}
 
-FrameMetrics compare(const Image& actual, const Image& expected, const CompareOptions& options) {
+int threshold_limit(const CompareOptions& options) { return static_cast<int>(std::floor(options.threshold * 255.0 + 1e-9)); }
+
+void check_comparable(const Image& actual, const Image& expected) {
   SHADELAB_CHECK(actual.type == PixelType::u8 && expected.type == PixelType::u8, "compare takes RGBA8");
   SHADELAB_CHECK(actual.width == expected.width && actual.height == expected.height, "compare needs equal sizes");
+}
+
+}  // namespace
+
+std::size_t failing_pixels(const Image& actual, const Image& expected, const CompareOptions& options) {
+  check_comparable(actual, expected);
+  if (actual.bytes == expected.bytes) return 0;
+  const int w = actual.width, h = actual.height, limit = threshold_limit(options);
+  std::size_t failing = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = (static_cast<std::size_t>(y) * w + x) * 4;
+      const std::uint8_t* a = actual.bytes.data() + i;
+      if (channel_diff(a, expected.bytes.data() + i) > limit && fails_after_allowances(a, expected, x, y, limit, options)) ++failing;
+    }
+  return failing;
+}
+
+FrameMetrics compare(const Image& actual, const Image& expected, const CompareOptions& options) {
+  check_comparable(actual, expected);
   FrameMetrics m;
   m.identical = actual.bytes == expected.bytes;
   const int w = actual.width, h = actual.height;
-  const int limit = static_cast<int>(std::floor(options.threshold * 255.0 + 1e-9));
+  const int limit = threshold_limit(options);
   double sum_sq = 0;
   int worst = 0;
   std::size_t failing = 0;
@@ -93,16 +126,7 @@ FrameMetrics compare(const Image& actual, const Image& expected, const CompareOp
       for (int c = 0; c < 3; ++c) sum_sq += (a[c] - e[c]) * (a[c] - e[c]) / (255.0 * 255.0);
       const int d = channel_diff(a, e);
       worst = std::max(worst, d);
-      if (d <= limit) continue;
-      bool matched = false;
-      for (int dy = -1; dy <= 1 && options.spatial_tolerance && !matched; ++dy)
-        for (int dx = -1; dx <= 1 && !matched; ++dx) {
-          const int nx = x + dx, ny = y + dy;
-          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-          matched = channel_diff(a, expected.bytes.data() + (static_cast<std::size_t>(ny) * w + nx) * 4) <= limit;
-        }
-      if (!matched && options.outline_tolerance) matched = blend_on_outline(a, expected, x, y, limit);
-      if (!matched) ++failing;
+      if (d > limit && fails_after_allowances(a, expected, x, y, limit, options)) ++failing;
     }
   const double pixels = static_cast<double>(w) * h;
   m.rmse = std::sqrt(sum_sq / (pixels * 3));

@@ -34,6 +34,10 @@ struct FrameMetrics {
 // Both RGBA8, the same size.
 FrameMetrics compare(const Image& actual, const Image& expected, const CompareOptions& options = {});
 
+// How many pixels compare() counts as failing, without the rest of its work (SSIM's summed-area
+// tables are most of it): what a grader comparing against many candidates needs.
+std::size_t failing_pixels(const Image& actual, const Image& expected, const CompareOptions& options = {});
+
 // NaN and infinite pixels of a float frame (any channel).
 struct NonFinite {
   std::size_t nan = 0, inf = 0;
