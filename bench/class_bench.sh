@@ -3,14 +3,15 @@
 # once per student (issue: "a class graded at the speed of rendering"). docs/performance.md keeps
 # the figures. The class: 8 correct, 8 with a mistake the catalogue holds (its own edits, from the
 # course profile), 8 with one it does not (another exponent, the light's colour ignored, ...).
-# Every fragment shader differs in an expression (Mesa caches programs by their IR), so no student
-# is served from another's compile. The reference store is warmed first (`course warm`, as a
+# Every fragment shader differs in a never-taken branch on its own constant (Mesa caches programs
+# by their IR), so no student is served from another's compile; the branch changes a colour, not a
+# `discard`, which would make a grade draw its lights one at a time (docs/grading.md). The reference store is warmed first (`course warm`, as a
 # Gradescope image is built), then both sides run on an idle machine, whole processes counted.
-#   bench/class_bench.sh [repeats, default 1]
+#   bench/class_bench.sh [repeats, default 1]      SHADELAB_BIN: another build's shadelab
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 repeats=${1:-1}
-bin=$root/build/shadelab
+bin=${SHADELAB_BIN:-$root/build/shadelab}
 work=$(mktemp -d -t shadelab-class.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 
@@ -30,7 +31,8 @@ salt = random.randrange(1, 1 << 30)
 def student(i, v, f):
     d = os.path.join(out, "s%02d" % i, "shaders")
     os.makedirs(d)
-    f = f.replace("void main(void) {", "void main(void) {\n    if (gl_FragCoord.x < -%d.0) discard;" % (salt + i), 1)
+    f = f.replace("    fragColor = color;", "    if (gl_FragCoord.x < -%d.0) color.r += 1.0;\n    fragColor = color;" % (salt + i), 1)
+    assert "gl_FragCoord" in f
     open(os.path.join(d, "phong_vert.js"), "w").write(v)
     open(os.path.join(d, "phong_frag.js"), "w").write(f)
 for i in range(24):
