@@ -382,26 +382,30 @@ Expected<RenderReport> Renderer::render_together(const std::vector<RenderRequest
   if (requests.empty()) return RenderReport{};
   auto variants = state_->variants_of(requests);
   if (!variants) return variants.take_error();
-  const auto each_alone = [&](int only) -> Expected<RenderReport> {
-    RenderReport last;
-    for (size_t i = 0; i < requests.size(); ++i) {
-      auto r = render(requests[i], mesh, [&](int k, const image::Image& f, bool opaque) {
-        for (size_t to = 0; to < requests.size(); ++to)
-          if (only < 0 ? to == i : static_cast<int>(to) >= only) sink(static_cast<int>(to), k, f, opaque);
-      }, semantics);
-      if (!r) return r;
-      last = std::move(*r);
-      if (only >= 0) return last;  // one render stood for every request
-    }
-    last.passes = static_cast<int>(requests.size());
-    return last;
+  // Request i's render, its frames handed on as those of the requests it stands for.
+  const auto render_for = [&](size_t i, size_t first, size_t last) {
+    return render(requests[i], mesh, [&](int k, const image::Image& f, bool opaque) {
+      for (size_t to = first; to <= last; ++to) sink(static_cast<int>(to), k, f, opaque);
+    }, semantics);
   };
-  if (variants->kind == Variants::Kind::identical) return each_alone(0);
-  if (variants->kind == Variants::Kind::apart) return each_alone(-1);
+  const auto a_pass_each = [&]() -> Expected<RenderReport> {
+    RenderReport report;
+    for (size_t i = 0; i < requests.size(); ++i) {
+      auto r = render_for(i, i, i);
+      if (!r) return r;
+      report = std::move(*r);
+    }
+    report.passes = static_cast<int>(requests.size());
+    return report;
+  };
+  switch (variants->kind) {
+    case Variants::Kind::identical: return render_for(0, 0, requests.size() - 1);
+    case Variants::Kind::apart: return a_pass_each();
+    case Variants::Kind::uniforms: break;
+  }
   auto built = state_->build(requests[0].vertex, requests[0].fragment, semantics, &*variants);
-  if (!built) return each_alone(-1);  // the rewrite declined, or the driver did not take it
-  auto report = state_->draw(requests[0], mesh, *built, &*variants, start, sink);
-  return report;
+  if (!built) return a_pass_each();  // the rewrite declined, or the driver did not take it
+  return state_->draw(requests[0], mesh, *built, &*variants, start, sink);
 }
 
 }  // namespace shadelab::render
