@@ -83,25 +83,14 @@ Expected<render::RenderRequest> GradeSession::with_light(const GradeSpec& spec, 
   return lit;
 }
 
-Status GradeSession::for_each_light(const GradeSpec& spec, const render::RenderRequest& base,
-                                    const std::function<Status(const render::RenderRequest&)>& each) {
-  if (auto s = each(base); !s) return s;
-  for (const auto& probe : spec.probes) {
-    auto lit = with_light(spec, base, probe.light_position);
-    if (!lit) return lit.take_error();
-    if (auto s = each(*lit); !s) return s;
-  }
-  return Ok{};
-}
-
 // `base` under the homework's light, then under each probe light.
 Expected<std::vector<render::RenderRequest>> GradeSession::under_lights(const GradeSpec& spec, const render::RenderRequest& base) {
-  std::vector<render::RenderRequest> lit;
-  auto done = for_each_light(spec, base, [&](const render::RenderRequest& r) -> Status {
-    lit.push_back(r);
-    return Ok{};
-  });
-  if (!done) return done.take_error();
+  std::vector<render::RenderRequest> lit = {base};
+  for (const auto& probe : spec.probes) {
+    auto moved = with_light(spec, base, probe.light_position);
+    if (!moved) return moved.take_error();
+    lit.push_back(std::move(*moved));
+  }
   return lit;
 }
 

@@ -80,9 +80,7 @@ class GradeSession {
                                   const std::vector<LagFit>& fits, const LagGrid& grid);
   // `request` rendered at `angles` (the grader's work, counted).
   Expected<SharedFrames> at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles);
-  // Calls `each` with `base` under the homework's light, then under each probe light.
-  Status for_each_light(const GradeSpec& spec, const render::RenderRequest& base,
-                        const std::function<Status(const render::RenderRequest&)>& each);
+  // `base` under the homework's light, then under each probe light.
   Expected<std::vector<render::RenderRequest>> under_lights(const GradeSpec& spec, const render::RenderRequest& base);
   Expected<SharedFrames> render_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
                                              const std::string* cache_key);

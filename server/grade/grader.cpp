@@ -71,6 +71,14 @@ std::string swapped_channels(const SharedFrames& student, const SharedFrames& re
   return "";
 }
 
+// The frame with the largest failing share of the object (the first of equals).
+size_t worst_frame(const GradeResult& r) {
+  size_t worst = 0;
+  for (size_t k = 1; k < r.frames.size(); ++k)
+    if (r.frames[k].failing_fraction_of_object > r.frames[worst].failing_fraction_of_object) worst = k;
+  return worst;
+}
+
 }  // namespace
 
 GradeResult assess(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite, const SharedFrames& reference,
@@ -79,7 +87,7 @@ GradeResult assess(const SharedFrames& student, const std::vector<image::NonFini
   GradeResult r;
   r.max_score = options.max_score;
   std::size_t nan = 0, inf = 0, pixels = 0;
-  int passing = 0, worst = 0;
+  int passing = 0;
   for (size_t k = 0; k < student.size(); ++k) {
     FrameGrade f;
     f.metrics = image::compare(*student[k], *reference[k], options.compare);
@@ -92,12 +100,11 @@ GradeResult assess(const SharedFrames& student, const std::vector<image::NonFini
     pixels += static_cast<std::size_t>(student[k]->width) * student[k]->height;
     r.frames.push_back(f);
   }
-  for (size_t k = 1; k < r.frames.size(); ++k)
-    if (r.frames[k].failing_fraction_of_object > r.frames[static_cast<size_t>(worst)].failing_fraction_of_object) worst = static_cast<int>(k);
+  const size_t worst = worst_frame(r);
   r.pass = passing == static_cast<int>(student.size());
   r.score = options.max_score * passing / static_cast<double>(student.size());
-  const auto& w = r.frames[static_cast<size_t>(worst)].metrics;
-  const double worst_object = r.frames[static_cast<size_t>(worst)].failing_fraction_of_object;
+  const auto& w = r.frames[worst].metrics;
+  const double worst_object = r.frames[worst].failing_fraction_of_object;
   if (nan > 0) {
     r.diagnosis = "nan";
     r.messages.push_back("NaN in " + percent(static_cast<double>(nan) / pixels) +
@@ -117,12 +124,9 @@ GradeResult assess(const SharedFrames& student, const std::vector<image::NonFini
 void explain(GradeResult& r, const SharedFrames& student, const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes,
              const GradeOptions& options) {
   if (r.pass) return;
-  int worst = 0, passing = 0;
-  for (size_t k = 0; k < r.frames.size(); ++k) {
-    passing += r.frames[k].pass;
-    if (r.frames[k].failing_fraction_of_object > r.frames[static_cast<size_t>(worst)].failing_fraction_of_object) worst = static_cast<int>(k);
-  }
-  const double worst_object = r.frames[static_cast<size_t>(worst)].failing_fraction_of_object;
+  const size_t worst = worst_frame(r);
+  const auto passing = std::count_if(r.frames.begin(), r.frames.end(), [](const FrameGrade& f) { return f.pass; });
+  const double worst_object = r.frames[worst].failing_fraction_of_object;
   // Which known mistake explains the frames best, if one explains them at all?
   const RenderedMistake* best = nullptr;
   double failing_sum = 0;

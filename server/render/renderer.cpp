@@ -314,7 +314,7 @@ struct Renderer::State {
     v.values.resize(requests.size());
     for (const auto& u : built->program->uniforms()) {
       std::vector<std::vector<float>> each;  // an unset uniform reads 0, as in a render of its own
-      for (const auto& plan : plans) each.push_back(value_in(plan, u, 3));
+      for (const auto& plan : plans) each.push_back(value_in(plan, u));
       if (std::all_of(each.begin(), each.end(), [&](const auto& e) { return e == each.front(); })) continue;
       if (u.type.name != std::string_view("vec3") || u.array_size != 1) return v;
       v.names.push_back(u.name);
@@ -324,11 +324,11 @@ struct Renderer::State {
     return v;
   }
 
-  // What `plan` uploads to `u`, or `zeros` zeros when it leaves it unset.
-  static std::vector<float> value_in(const UniformPlan& plan, const gl::ActiveVariable& u, size_t zeros) {
+  // What `plan` uploads to `u`, or a vec3's zeros when it leaves it unset.
+  static std::vector<float> value_in(const UniformPlan& plan, const gl::ActiveVariable& u) {
     for (const auto& c : plan.constant)
       if (c.uniform == &u) return c.values;
-    return std::vector<float>(zeros, 0.f);
+    return std::vector<float>(3, 0.f);
   }
 };
 
