@@ -72,6 +72,9 @@ TEST(SceneDescriptionTest, ErrorsNameTheField) {
   j["objects"][0]["location"] = {1, 2};
   EXPECT_EQ(error_of(j), "objects[0].location: expected [x, y, z]");
   j = minimal();
+  j["objects"][0]["mesh"] = "";
+  EXPECT_EQ(error_of(j), "objects[0].mesh: empty (name a built-in mesh, an uploaded mesh id or a file field)");
+  j = minimal();
   j["camera"] = {{"lens", 0.5}};
   EXPECT_EQ(error_of(j), "camera.lens: expected a number in [1, 5000]");
   j = minimal();

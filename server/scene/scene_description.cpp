@@ -42,8 +42,12 @@ Object read_object(const Reader& r, size_t index, std::string* error) {
   r.only({"name", "mesh", "location", "rotation", "scale", "shading", "material"});
   Object o;
   o.name = r.text("name", "Object." + std::to_string(index));
-  if (!r.has("mesh")) r.fail(r.at("mesh") + ": required (a built-in mesh, an uploaded mesh id or a file field)");
+  // The mesh names what the worker draws: an empty name is no mesh, said here rather than as a
+  // lookup of '' that finds nothing.
+  const std::string mesh_kinds = "a built-in mesh, an uploaded mesh id or a file field";
+  if (!r.has("mesh")) r.fail(r.at("mesh") + ": required (" + mesh_kinds + ")");
   o.mesh = r.text("mesh", "");
+  if (o.mesh.empty()) r.fail(r.at("mesh") + ": empty (name " + mesh_kinds + ")");  // the first error stands
   o.location = r.vec3("location", o.location, -kCoordinate, kCoordinate);
   o.rotation_degrees = r.vec3("rotation", o.rotation_degrees, -1e6, 1e6);
   o.scale = r.vec3("scale", o.scale, -1e6, 1e6, true);
