@@ -19,6 +19,7 @@
 #include "support/files.h"
 #include "support/local_cluster.h"
 #include "support/raw_socket.h"
+#include "support/test_support.h"
 
 namespace {
 
@@ -262,6 +263,45 @@ TEST_F(ClusterTest, AStoppedBatchResumesWithoutGradingAnyoneTwice) {
   const auto graded = journal_students(out);
   EXPECT_EQ(graded.size(), 60u);
   EXPECT_EQ(std::set<std::string>(graded.begin(), graded.end()).size(), 60u) << "a student was graded twice";
+}
+
+// The replicas stand for separate nodes (each its own reference folder, no shared volume): a
+// course's references rendered for a grade on one are read by a grade on another from Redis, and
+// kept on that node's disk for its next grade.
+TEST_F(ClusterTest, ReferencesRenderedOnOneReplicaServeAGradeOnAnother) {
+  const auto grade_on = [](int port, const std::string& student) {
+    auto p = *shadelab::testkit::course().preset("specular");
+    p.fragment.text.insert(p.fragment.text.find("void main"), "// " + student + "'s submission\n");  // another body, not a cached answer
+    const nlohmann::json job = {{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"reference", "specular"},
+                                {"width", 160}, {"height", 120}};
+    httplib::Client direct("127.0.0.1", port);
+    direct.set_read_timeout(120s);
+    const auto res = direct.Post("/api/grade", job.dump(), "application/json");
+    EXPECT_TRUE(res && res->status == 200) << (res ? res->body : "no answer");
+    return res ? nlohmann::json::parse(res->body, nullptr, false) : nlohmann::json();
+  };
+  const auto state = cluster_->state();
+  const int first = state.at("replica 1").port, second = state.at("replica 2").port;
+  const fs::path second_store = cluster_->dir() / "references-2";
+  const auto entries = [](const fs::path& folder) {
+    size_t n = 0;
+    for (std::error_code ec; const auto& e : fs::directory_iterator(folder, ec)) n += e.is_regular_file() ? 1 : 0;
+    return n;
+  };
+
+  const auto rendered = grade_on(first, "alice");
+  ASSERT_TRUE(rendered.is_object());
+  EXPECT_TRUE(rendered["pass"]) << rendered.dump();
+  EXPECT_EQ(rendered["graderWork"]["rendered"], 2) << "the reference, under the homework's light and the probe: " << rendered["graderWork"];
+  EXPECT_EQ(entries(second_store), 0u) << "the second replica has no references of its own yet";
+
+  const auto shared = grade_on(second, "bob");
+  ASSERT_TRUE(shared.is_object());
+  EXPECT_TRUE(shared["pass"]) << shared.dump();
+  EXPECT_EQ(shared["graderWork"]["rendered"], 0) << "rendered again on another node: " << shared["graderWork"];
+  EXPECT_EQ(shared["graderWork"]["fromStore"], 2) << shared["graderWork"];
+  EXPECT_EQ(shared["frames"], rendered["frames"]) << "the same verdicts from the shared references";
+  EXPECT_EQ(entries(second_store), 2u) << "kept on the second node's disk for its next grade";
 }
 
 TEST_F(ClusterTest, ARedisOutageCostsRecomputingNotRightAnswers) {

@@ -1,6 +1,7 @@
 // The shared store against a real redis-server (on a Unix socket in a folder of the test's own):
 // values round-trip, a dead or hung Redis is an error within the timeout and is then left alone,
-// and the store comes back by itself.
+// and the store comes back by itself. The reference store's cluster tier on it: one node's
+// references read by another, whole or not at all.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "grade/reference_store.h"
 #include "store/shared_store.h"
 
 namespace shadelab::store {
@@ -136,6 +138,57 @@ TEST_F(SharedStoreTest, ADeadRedisIsAnErrorAndARestartedOneIsUsedAgain) {
   auto after = store->get("k");
   ASSERT_TRUE(after);
   EXPECT_FALSE(*after) << "a restarted Redis holds nothing: a miss, recomputed";
+}
+
+grade::SharedFrames two_frames() {
+  grade::SharedFrames frames;
+  for (int k = 0; k < 2; ++k) {
+    auto f = std::make_shared<image::Image>(image::Image::blank(5, 3, image::PixelType::u8));
+    for (size_t i = 0; i < f->bytes.size(); ++i) f->bytes[i] = static_cast<std::uint8_t>(i * 7 + k);
+    frames.push_back(std::move(f));
+  }
+  return frames;
+}
+
+size_t files_in(const fs::path& folder) {
+  size_t n = 0;
+  for (std::error_code ec; const auto& e : fs::directory_iterator(folder, ec)) n += e.is_regular_file() ? 1 : 0;
+  return n;
+}
+
+TEST_F(SharedStoreTest, ReferencesSavedOnOneNodeAreReadOnAnotherAndKeptOnItsDisk) {
+  auto shared = open_store(redis.url());
+  const grade::ReferenceStore first(dir_ / "node-a", shared.get(), "llvmpipe"), second(dir_ / "node-b", shared.get(), "llvmpipe");
+  const std::string key = first.key({}, "mesh");
+  EXPECT_FALSE(second.load(key)) << "nothing saved yet";
+  first.save(key, two_frames());
+  const auto read = second.load(key);
+  ASSERT_TRUE(read);
+  ASSERT_EQ(read->size(), 2u);
+  EXPECT_EQ((*read)[1]->bytes, two_frames()[1]->bytes);
+  EXPECT_EQ(files_in(dir_ / "node-b"), 1u) << "kept on the second node's disk";
+
+  redis.pause();  // a hung Redis: the disk still answers, and a miss costs one timeout
+  const auto from_disk = second.load(key);
+  ASSERT_TRUE(from_disk);
+  EXPECT_EQ((*from_disk)[0]->bytes, two_frames()[0]->bytes);
+  const grade::ReferenceStore third(dir_ / "node-c", shared.get(), "llvmpipe");
+  const auto start = Clock::now();
+  EXPECT_FALSE(third.load(key)) << "Redis is down: a miss, rendered";
+  EXPECT_LT(Clock::now() - start, 2s);
+  redis.resume();
+}
+
+TEST_F(SharedStoreTest, APartReferenceInRedisIsAMiss) {
+  auto shared = open_store(redis.url());
+  const grade::ReferenceStore first(dir_ / "node-a", shared.get(), "llvmpipe"), second(dir_ / "node-b", shared.get(), "llvmpipe");
+  const std::string key = first.key({}, "mesh");
+  first.save(key, two_frames());
+  const auto whole = shared->get("shadelab:1:reference:" + key);
+  ASSERT_TRUE(whole && *whole) << "the entry is in Redis under the reference prefix";
+  ASSERT_TRUE(shared->put("shadelab:1:reference:" + key, (*whole)->substr(0, (*whole)->size() / 2)));
+  EXPECT_FALSE(second.load(key)) << "half an entry is no frames";
+  EXPECT_EQ(files_in(dir_ / "node-b"), 0u) << "and is not copied to disk";
 }
 
 TEST(RedisAddressTest, AddressesAreParsedOrRefused) {

@@ -5,7 +5,9 @@
 #
 #   tools/cluster.sh [--replicas N] [--port P] [--host H] [--workers W] [--dir DIR] [-- SERVE FLAGS...]
 #
-# DIR (default: a new temporary folder) holds the nginx and Redis configuration, every log, and
+# DIR (default: a new temporary folder) holds the nginx and Redis configuration, every log, each
+# replica's reference store (`references-I`: its own, as on separate nodes without a shared
+# volume; they share references through Redis; a --cache-dir among the serve flags overrides), and
 # `cluster.state`, one line per process ("nginx PID PORT", "redis PID SOCKET", "replica I PID
 # PORT"), rewritten whenever a process is restarted; tests and scripts read it.
 set -euo pipefail
@@ -91,8 +93,10 @@ start_replica() {
   local i=$1 log="$dir/replica-$1.log"
   local earlier=0  # lines an earlier run of this replica wrote: its port is not this one's
   [[ -f $log ]] && earlier=$(wc -l <"$log")
+  local store=(--cache-dir "$dir/references-$i")
+  [[ " ${serve_flags[*]} " == *" --cache-dir "* ]] && store=()
   "$bin" serve --host 127.0.0.1 --port "${replica_port[$i]:-0}" --workers "$workers" --lp-threads "$lp_threads" --redis "unix://$socket" \
-    --trusted-proxy 127.0.0.1 --max-connections-per-address 0 "${serve_flags[@]}" >>"$log" 2>&1 &
+    --trusted-proxy 127.0.0.1 --max-connections-per-address 0 "${store[@]}" "${serve_flags[@]}" >>"$log" 2>&1 &
   replica_pid[$i]=$!
   # The whole line: " with" follows the port, so a line still being written is not read short.
   wait_until 30 "replica $i" new_line_says "$log" "$earlier" "serving on http://[0-9.]*:[0-9]* with"

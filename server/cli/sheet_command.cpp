@@ -70,7 +70,7 @@ int run_sheet(const SheetFlags& f) {
     input.scenes.push_back(std::move(*scene));
   }
   worker::WorkerPool pool(pool_config(f.grade, 16));  // every section's jobs queued at once (sheet/assemble.h)
-  auto assembled = sheet::assemble(pool, **loaded, std::move(input), f.grade.cache_dir);
+  auto assembled = sheet::assemble(pool, **loaded, std::move(input), {.folder = f.grade.cache_dir});
   if (!assembled) return fail(assembled.error());
   const sheet::Sheet& sheet = *assembled;
   auto pdf = sheet::render_pdf(sheet);

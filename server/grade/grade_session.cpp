@@ -20,10 +20,19 @@ Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, c
 void GradeSession::begin(const GradeSpec& spec) {
   work_ = {};
   store_.reset();
-  if (!spec.reference_store.empty()) {
-    const auto& info = renderer_.context_info();
-    store_.emplace(spec.reference_store, info.gl_renderer + " | " + info.gl_version);
+  if (spec.reference_store.empty()) return;
+  const auto& info = renderer_.context_info();
+  store_.emplace(spec.reference_store.folder, shared_store(spec.reference_store.shared), info.gl_renderer + " | " + info.gl_version);
+}
+
+store::SharedStore* GradeSession::shared_store(const std::string& url) {
+  if (url.empty()) return nullptr;
+  if (!shared_ || shared_url_ != url) {
+    auto opened = store::SharedStore::open({.url = url});
+    shared_ = opened ? std::move(*opened) : nullptr;  // an address that does not parse: no sharing
+    shared_url_ = url;
   }
+  return shared_.get();
 }
 
 const std::string& GradeSession::mesh_address(const std::string& mesh_key, const scene::Mesh& mesh) {

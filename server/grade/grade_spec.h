@@ -37,6 +37,15 @@ struct StarterConstant {
   double value = 0;
 };
 
+// Where reference renders are kept across processes (grade/reference_store.h): a folder on this
+// machine and, in a cluster, the replicas' shared store, so a node renders a course's references
+// only when no replica has. Both empty: only in the worker's memory.
+struct ReferenceStorePlaces {
+  std::string folder;
+  std::string shared;  // a Redis URL (store/shared_store.h)
+  bool empty() const { return folder.empty() && shared.empty(); }
+};
+
 struct GradeSpec {
   std::string reference_name;  // a checkpoint, or "custom"
   shader::ShaderFile reference_vertex, reference_fragment;
@@ -46,9 +55,7 @@ struct GradeSpec {
   std::vector<std::string> light_position_uniforms;
   std::vector<StarterConstant> starter_constants;
   GradeOptions options;
-  // A folder where reference renders are kept across processes (grade/reference_store.h); empty:
-  // only in the worker's memory.
-  std::string reference_store;
+  ReferenceStorePlaces reference_store;
 };
 
 // A frame a student saved from their browser, as it arrived: its file name and its PNG bytes.

@@ -14,7 +14,7 @@
 // |              | lagDegrees for a frame the student saved                                   |
 // | diagnostics[]| compiler messages at the student's lines (ungradable submissions)          |
 // | warnings[]   | request fields ignored, uniforms the program does not use, ...             |
-// | graderWork   | the grader's own sets of frames: rendered, fromStore (disk), fromMemory    |
+// | graderWork   | the grader's own sets of frames: rendered, fromStore (disk/Redis), fromMemory    |
 #include <optional>
 #include <string>
 #include <vector>

@@ -23,7 +23,7 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
                  httplib::Response& res) {
   auto parsed = parse_frames_grade(raw, course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
-  parsed->settings.reference_store = c.config.reference_store;
+  parsed->settings.reference_store = c.config.reference_places();
   auto graded = worker::grade_frame_set(c.pool, course, *parsed->checkpoint, std::move(parsed->submission), parsed->settings);
   if (!graded) return send_problem(res, graded.error(), req.path);
   auto& result = graded->result;
@@ -59,7 +59,7 @@ void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res)
   } else {
     auto mesh = c.mesh_bytes(parsed->parsed);
     if (!mesh) return send_problem(res, mesh.error(), req.path);
-    parsed->parsed.job.grade.reference_store = c.config.reference_store;
+    parsed->parsed.job.grade.reference_store = c.config.reference_places();
     auto answered = worker::grade(c.pool, parsed->parsed.job, std::move(*mesh));
     if (!answered) return send_problem(res, answered.error(), req.path);
     graded = std::move(answered->result);

@@ -6,6 +6,7 @@
 
 #include "core/expected.h"
 #include "course/course_set.h"
+#include "grade/grade_spec.h"
 #include "http/connection_server.h"
 #include "http/limits.h"
 #include "http/tenants.h"
@@ -26,6 +27,9 @@ struct ServiceConfig {
   std::string web_root;  // served at /; empty: no static files
   course::CourseSet courses;  // what requests name by `course`; the first is the default (built-in unless given)
   std::string reference_store;  // where workers keep reference renders across restarts (grade/reference_store.h); empty: memory only
+
+  // Where a grade's workers keep the references: the folder, and Redis when the replicas share one.
+  grade::ReferenceStorePlaces reference_places() const { return {reference_store, shared_store.url}; }
 };
 
 class Service {

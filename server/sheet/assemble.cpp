@@ -53,7 +53,7 @@ Expected<std::string> grid(worker::WorkerPool& pool, CourseJob job) {
 }
 
 Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, CourseJob job,
-                               const std::string& reference_store) {
+                               const grade::ReferenceStorePlaces& reference_store) {
   job.job.grade = course.grade_spec(checkpoint, grade::GradeOptions{.max_score = checkpoint.points});
   job.job.grade.reference_store = reference_store;
   if (auto sources = render::check_sources(job.job.request, render::RenderLimits{}); !sources)
@@ -103,7 +103,7 @@ CheckpointSection from_saved_frames(const course::Course& course, const course::
 // The deliverable's saved frames graded at their lags, with the code when the section has some
 // (`pair`), and shown beside the code's grid; nothing when none were saved.
 Status add_saved_frames(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input, const course::Checkpoint& checkpoint,
-                        const std::optional<std::pair<fs::path, fs::path>>& pair, const std::string& reference_store, CheckpointSection& s) {
+                        const std::optional<std::pair<fs::path, fs::path>>& pair, const grade::ReferenceStorePlaces& reference_store, CheckpointSection& s) {
   worker::FramesPayload payload;
   std::vector<std::pair<std::string, std::string>> shown;
   std::vector<std::string> missing;
@@ -151,7 +151,7 @@ Status add_saved_frames(worker::WorkerPool& pool, const course::Course& course, 
 // A deliverable with code: its grade, the grid it renders and its listings.
 Expected<CheckpointSection> code_section(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input,
                                          const course::Checkpoint& checkpoint, const std::pair<fs::path, fs::path>& pair,
-                                         const std::string& reference_store) {
+                                         const grade::ReferenceStorePlaces& reference_store) {
   CheckpointSection s{checkpoint.name, checkpoint.title};
   s.graded = true;
   auto report = graded(pool, course, checkpoint, job_for(course, worker::JobKind::grade, input, pair.first, pair.second), reference_store);
@@ -168,7 +168,7 @@ Expected<CheckpointSection> code_section(worker::WorkerPool& pool, const course:
 
 Expected<CheckpointSection> section(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input,
                                     const course::Checkpoint& checkpoint, const std::optional<course::CheckpointFiles>& c,
-                                    const std::string& reference_store) {
+                                    const grade::ReferenceStorePlaces& reference_store) {
   const std::optional<std::pair<fs::path, fs::path>> pair = c ? c->pair : std::nullopt;
   Expected<CheckpointSection> s = pair ? code_section(pool, course, input, checkpoint, *pair, reference_store)
                                        : Expected<CheckpointSection>(from_saved_frames(course, checkpoint, input));
@@ -271,7 +271,7 @@ Status add_answers(worker::WorkerPool& pool, const course::Course& course, const
 
 // Every section's jobs are in the pool at once (its workers take them in parallel); the sections
 // are collected in the sheet's order, so the result does not depend on which finishes first.
-Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input, const std::string& reference_store) {
+Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input, const grade::ReferenceStorePlaces& reference_store) {
   Sheet sheet;
   sheet.title = input.title;
   sheet.answers = input.answers;

@@ -43,6 +43,7 @@ struct SheetInput {
 // Errors: only what the service could not do (the pool full, no worker): whatever the shaders
 // cause is their section's grade, and a scene that does not render has its error in its section.
 // `reference_store`: where reference renders are kept across processes (grade/reference_store.h).
-Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input, const std::string& reference_store = "");
+Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input,
+                         const grade::ReferenceStorePlaces& reference_store = {});
 
 }  // namespace shadelab::sheet

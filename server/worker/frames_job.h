@@ -26,7 +26,7 @@ struct FramesSubmission {
 struct FramesGradeSettings {
   std::string mesh;
   double max_score = 1;
-  std::string reference_store;  // grade/reference_store.h; empty: the worker's memory only
+  grade::ReferenceStorePlaces reference_store;  // grade/reference_store.h; empty: the worker's memory only
 };
 
 struct GradedFrames {

@@ -67,7 +67,7 @@ json grade_json(const grade::GradeSpec& g) {
   const auto& o = g.options;
   return {{"referenceName", g.reference_name}, {"referenceVertex", file_json(g.reference_vertex)},
           {"referenceFragment", file_json(g.reference_fragment)}, {"mistakes", mistakes}, {"probes", probes},
-          {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants}, {"referenceStore", g.reference_store},
+          {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants}, {"referenceStore", g.reference_store.folder}, {"sharedStore", g.reference_store.shared},
           {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
           {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}};
 }
@@ -81,7 +81,7 @@ grade::GradeSpec grade_from(const json& g) {
     spec.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
   for (const auto& p : g.at("probes")) spec.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>(), p.value("checks", "")});
   spec.light_position_uniforms = g.at("lightPositionUniforms").get<std::vector<std::string>>();
-  spec.reference_store = g.at("referenceStore");
+  spec.reference_store = {g.at("referenceStore"), g.at("sharedStore")};
   for (const auto& k : g.at("starterConstants")) spec.starter_constants.push_back({k.at("variable"), k.at("meaning"), k.at("value")});
   spec.options.compare.threshold = g.at("threshold");
   spec.options.compare.spatial_tolerance = g.at("spatialTolerance");
