@@ -189,6 +189,12 @@ TEST_F(SharedStoreTest, APartReferenceInRedisIsAMiss) {
   ASSERT_TRUE(shared->put("shadelab:1:reference:" + key, (*whole)->substr(0, (*whole)->size() / 2)));
   EXPECT_FALSE(second.load(key)) << "half an entry is no frames";
   EXPECT_EQ(files_in(dir_ / "node-b"), 0u) << "and is not copied to disk";
+  // A header claiming 16384 x 16384 x 3600 float frames over a few bytes: a miss, not an allocation.
+  std::string claim = whole->value().substr(0, 7);
+  for (std::uint32_t v : {16384u, 16384u, 3600u, 1u})
+    for (int i = 0; i < 4; ++i) claim += static_cast<char>((v >> (8 * i)) & 0xff);
+  ASSERT_TRUE(shared->put("shadelab:1:reference:" + key, claim + "xx"));
+  EXPECT_FALSE(second.load(key));
 }
 
 TEST(RedisAddressTest, AddressesAreParsedOrRefused) {

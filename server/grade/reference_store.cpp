@@ -101,6 +101,9 @@ std::optional<SharedFrames> decode_entry(const std::string& entry) {
   if (type > 1 || width == 0 || height == 0 || width > 16384 || height > 16384 || frames == 0 || frames > 3600) return std::nullopt;
   const auto pixel_type = type == 0 ? image::PixelType::u8 : image::PixelType::f32;
   const size_t frame_bytes = size_t{width} * height * (pixel_type == image::PixelType::u8 ? 4 : 16);
+  // zlib expands at most ~1032:1: a header claiming more pixels than its bytes can hold is not an
+  // entry, and must not size an allocation (a worker would die of it).
+  if (frame_bytes * frames / 1032 > entry.size()) return std::nullopt;
   std::string pixels(frame_bytes * frames, '\0');
   uLongf size = pixels.size();
   const auto* compressed = reinterpret_cast<const Bytef*>(entry.data() + kHeaderSize);
