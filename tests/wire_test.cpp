@@ -44,6 +44,9 @@ TEST(WireTest, AGradeJobCarriesItsWholeSpec) {
   job.fit = scene::Bounds{{-1, 0, -1}, {1, 4, 1}};
   job.grade = c.grade_spec(*c.checkpoint("specular")->checkpoint, {});
   job.grade.options.max_score = 7;
+  job.grade.reference_store = {"/var/cache/shadelab", {.url = "redis://cache:6380/1", .timeout = std::chrono::milliseconds(900),
+                                                       .retry_after = std::chrono::milliseconds(3000),
+                                                       .time_to_live = std::chrono::seconds(3600), .max_value_bytes = 1u << 20}};
   auto back = worker::job_from_message(worker::to_message(job, "mesh bytes"));
   ASSERT_TRUE(back) << back.error().message;
   EXPECT_EQ(back->kind, worker::JobKind::grade);
@@ -54,6 +57,8 @@ TEST(WireTest, AGradeJobCarriesItsWholeSpec) {
   EXPECT_EQ(back->grade.options.max_score, 7);
   EXPECT_EQ(back->grade.light_position_uniforms, job.grade.light_position_uniforms);
   EXPECT_EQ(back->grade.starter_constants.size(), 1u);
+  EXPECT_EQ(back->grade.reference_store.folder, "/var/cache/shadelab");
+  EXPECT_EQ(back->grade.reference_store.shared, job.grade.reference_store.shared) << "the operator's Redis deadlines and expiry reach the worker";
   EXPECT_EQ(back->request.page.uniforms.size(), job.request.page.uniforms.size());
   EXPECT_EQ(back->request.page.camera.mesh_translation, job.request.page.camera.mesh_translation);
   EXPECT_EQ(back->request.angles, job.request.angles);

@@ -25,12 +25,12 @@ void GradeSession::begin(const GradeSpec& spec) {
   store_.emplace(spec.reference_store.folder, shared_store(spec.reference_store.shared), info.gl_renderer + " | " + info.gl_version);
 }
 
-store::SharedStore* GradeSession::shared_store(const std::string& url) {
-  if (url.empty()) return nullptr;
-  if (!shared_ || shared_url_ != url) {
-    auto opened = store::SharedStore::open({.url = url});
+store::SharedStore* GradeSession::shared_store(const store::SharedStoreConfig& config) {
+  if (config.url.empty()) return nullptr;
+  if (!shared_ || shared_config_ != config) {
+    auto opened = store::SharedStore::open(config);
     shared_ = opened ? std::move(*opened) : nullptr;  // an address that does not parse: no sharing
-    shared_url_ = url;
+    shared_config_ = config;
   }
   return shared_.get();
 }

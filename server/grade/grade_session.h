@@ -70,8 +70,8 @@ class GradeSession {
   const std::string& mesh_address(const std::string& mesh_key, const scene::Mesh& mesh);
   // A grade's start: the counts zeroed, the store its spec names opened.
   void begin(const GradeSpec& spec);
-  // The cluster's store at `url`, connected once and kept for the next grade; null for none.
-  store::SharedStore* shared_store(const std::string& url);
+  // The cluster's store, connected once and kept for the next grade; null for none.
+  store::SharedStore* shared_store(const store::SharedStoreConfig& config);
   // The known mistakes a failing set of saved frames is compared with, each at the angles the
   // frames fit it at (`fits` says which mistake's, when not the reference's).
   struct MistakesAtLags {
@@ -100,7 +100,7 @@ class GradeSession {
   ReferenceCache references_;
   std::optional<ReferenceStore> store_;   // the current grade's (its spec names the places)
   std::unique_ptr<store::SharedStore> shared_;
-  std::string shared_url_;
+  store::SharedStoreConfig shared_config_;
   Report::GraderWork work_;               // the current grade's
   std::string address_of_, address_;      // the last mesh key's content address (the store's keys)
 };

@@ -9,6 +9,7 @@
 
 #include "grade/grader.h"
 #include "shader/shader_source.h"
+#include "store/shared_store.h"
 
 namespace shadelab::grade {
 
@@ -42,8 +43,8 @@ struct StarterConstant {
 // only when no replica has. Both empty: only in the worker's memory.
 struct ReferenceStorePlaces {
   std::string folder;
-  std::string shared;  // a Redis URL (store/shared_store.h)
-  bool empty() const { return folder.empty() && shared.empty(); }
+  store::SharedStoreConfig shared;  // Redis, with the operator's deadlines and expiry; empty url: none
+  bool empty() const { return folder.empty() && shared.url.empty(); }
 };
 
 struct GradeSpec {

@@ -29,7 +29,7 @@ struct ServiceConfig {
   std::string reference_store;  // where workers keep reference renders across restarts (grade/reference_store.h); empty: memory only
 
   // Where a grade's workers keep the references: the folder, and Redis when the replicas share one.
-  grade::ReferenceStorePlaces reference_places() const { return {reference_store, shared_store.url}; }
+  grade::ReferenceStorePlaces reference_places() const { return {reference_store, shared_store}; }
 };
 
 class Service {

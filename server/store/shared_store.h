@@ -35,6 +35,8 @@ struct SharedStoreConfig {
   std::chrono::milliseconds retry_after{2000};       // after a failure, before the next try
   std::chrono::seconds time_to_live{7 * 24 * 3600};  // each entry's expiry (Redis also evicts by LRU)
   size_t max_value_bytes = 32u << 20;                // larger values stay local only
+
+  bool operator==(const SharedStoreConfig&) const = default;
 };
 
 class SharedStore {

@@ -57,6 +57,21 @@ constexpr JobKind kKinds[] = {JobKind::render, JobKind::compile, JobKind::mesh_c
 json file_json(const shader::ShaderFile& f) { return {{"name", f.name}, {"text", f.text}}; }
 shader::ShaderFile file_from(const json& j) { return {j.at("name"), j.at("text")}; }
 
+json shared_store_json(const store::SharedStoreConfig& s) {
+  return {{"url", s.url}, {"timeoutMs", s.timeout.count()}, {"retryAfterMs", s.retry_after.count()},
+          {"timeToLiveS", s.time_to_live.count()}, {"maxValueBytes", s.max_value_bytes}};
+}
+
+store::SharedStoreConfig shared_store_from(const json& j) {
+  store::SharedStoreConfig s;
+  s.url = j.at("url");
+  s.timeout = std::chrono::milliseconds(j.at("timeoutMs").get<long long>());
+  s.retry_after = std::chrono::milliseconds(j.at("retryAfterMs").get<long long>());
+  s.time_to_live = std::chrono::seconds(j.at("timeToLiveS").get<long long>());
+  s.max_value_bytes = j.at("maxValueBytes");
+  return s;
+}
+
 json grade_json(const grade::GradeSpec& g) {
   json mistakes = json::array(), probes = json::array();
   for (const auto& m : g.mistakes)
@@ -67,7 +82,7 @@ json grade_json(const grade::GradeSpec& g) {
   const auto& o = g.options;
   return {{"referenceName", g.reference_name}, {"referenceVertex", file_json(g.reference_vertex)},
           {"referenceFragment", file_json(g.reference_fragment)}, {"mistakes", mistakes}, {"probes", probes},
-          {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants}, {"referenceStore", g.reference_store.folder}, {"sharedStore", g.reference_store.shared},
+          {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants}, {"referenceStore", g.reference_store.folder}, {"sharedStore", shared_store_json(g.reference_store.shared)},
           {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
           {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}};
 }
@@ -81,7 +96,7 @@ grade::GradeSpec grade_from(const json& g) {
     spec.mistakes.push_back({m.at("id"), m.at("message"), file_from(m.at("vertex")), file_from(m.at("fragment"))});
   for (const auto& p : g.at("probes")) spec.probes.push_back({p.at("name"), p.at("lightPosition").get<std::array<float, 3>>(), p.value("checks", "")});
   spec.light_position_uniforms = g.at("lightPositionUniforms").get<std::vector<std::string>>();
-  spec.reference_store = {g.at("referenceStore"), g.at("sharedStore")};
+  spec.reference_store = {g.at("referenceStore"), shared_store_from(g.at("sharedStore"))};
   for (const auto& k : g.at("starterConstants")) spec.starter_constants.push_back({k.at("variable"), k.at("meaning"), k.at("value")});
   spec.options.compare.threshold = g.at("threshold");
   spec.options.compare.spatial_tolerance = g.at("spatialTolerance");
