@@ -1,6 +1,7 @@
 #pragma once
 // An optional store shared by every replica behind a load balancer: Redis, holding uploaded
-// meshes and finished responses under content addresses, so any replica answers any request.
+// meshes, finished responses and a course's reference renders (grade/reference_store.h) under
+// content addresses, so any replica answers any request and no node renders what another has.
 // It is a cache, never the only copy of anything a replica needs to give a right answer: each
 // replica keeps its own copies too, Redis bounds its memory and evicts (maxmemory, allkeys-lru),
 // and an outage degrades to recomputing. After a failed command the store is left alone for

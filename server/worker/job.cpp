@@ -82,7 +82,8 @@ json grade_json(const grade::GradeSpec& g) {
   const auto& o = g.options;
   return {{"referenceName", g.reference_name}, {"referenceVertex", file_json(g.reference_vertex)},
           {"referenceFragment", file_json(g.reference_fragment)}, {"mistakes", mistakes}, {"probes", probes},
-          {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants}, {"referenceStore", g.reference_store.folder}, {"sharedStore", shared_store_json(g.reference_store.shared)},
+          {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants},
+          {"referenceStore", g.reference_store.folder}, {"sharedStore", shared_store_json(g.reference_store.shared)},
           {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
           {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}};
 }
