@@ -180,4 +180,24 @@ TEST_F(FaultTest, AMeshThatCrashesTheLoaderIsContainedInAWorker) {
   EXPECT_EQ(after->status, 200) << after->body;
 }
 
+// When a worker draws its warm-up (the built-in course's default job, its mesh parsed): after it
+// says it is ready, in a server; never in a command's pool (the CLI's), whose jobs are there at
+// once. What the worker's first answer says it holds tells which.
+TEST(WarmUpTest, AServersWorkerWarmsUpAfterReadyACommandsNever) {
+  const auto meshes_after_a_compile = [](worker::WarmUp warm_up) {
+    auto config = testkit::test_config();
+    config.pool.workers = 1;
+    config.pool.warm_up = warm_up;
+    testkit::RunningService server(config);
+    EXPECT_TRUE(server.ok()) << server.failure;
+    const json job = {{"vertex", shader("specular_vert.js")}, {"fragment", shader("specular_frag.js")}};
+    auto r = server.client().Post("/api/compile", job.dump(), "application/json");  // needs no mesh
+    EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no answer");
+    const auto memory = server.service->pool().stats().memory;
+    return memory.empty() ? ~std::uint64_t{0} : memory[0].cached_meshes;
+  };
+  EXPECT_EQ(meshes_after_a_compile(worker::WarmUp::after_ready), 1u) << "the warm-up parsed the default mesh";
+  EXPECT_EQ(meshes_after_a_compile(worker::WarmUp::none), 0u) << "no warm-up: the compile job loads no mesh";
+}
+
 }  // namespace

@@ -131,6 +131,7 @@ worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
   c.compile_deadline = c.render_deadline = std::chrono::milliseconds(f.timeout_ms);
   c.max_queue = static_cast<size_t>(std::max(jobs, 1));
   c.force_software = f.software;
+  c.warm_up = worker::WarmUp::none;  // the jobs are queued at once: a warm-up would only delay the first
   return c;
 }
 

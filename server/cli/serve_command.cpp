@@ -191,11 +191,13 @@ Command add_worker_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("worker", "");  // internal: started by `serve`, not listed in --help
   cmd->group("");
   cmd->add_option("--fd", *fd, "socket to the server");
-  auto warm_after = std::make_shared<bool>(false);
+  auto warm_after = std::make_shared<bool>(false), no_warm_up = std::make_shared<bool>(false);
   cmd->add_flag("--software", *software);
   cmd->add_flag("--warm-after-ready", *warm_after);
-  return [fd, software, warm_after] {
-    return worker::run_worker(*fd, {.force_software = *software}, *warm_after ? worker::WarmUp::after_ready : worker::WarmUp::before_ready);
+  cmd->add_flag("--no-warm-up", *no_warm_up);
+  return [fd, software, warm_after, no_warm_up] {
+    const auto warm_up = *no_warm_up ? worker::WarmUp::none : *warm_after ? worker::WarmUp::after_ready : worker::WarmUp::before_ready;
+    return worker::run_worker(*fd, {.force_software = *software}, warm_up);
   };
 }
 

@@ -29,8 +29,14 @@ struct Request {
   std::int32_t llvmpipe_threads;
   std::int32_t force_software;
   std::int32_t cpu_limit_seconds;
-  std::int32_t warm_before_ready;
+  std::int32_t warm_up;  // worker_main.h's WarmUp
 };
+WarmUp warm_up_of(std::int32_t sent) {
+  for (WarmUp w : {WarmUp::before_ready, WarmUp::after_ready, WarmUp::none})
+    if (sent == static_cast<std::int32_t>(w)) return w;
+  return WarmUp::after_ready;
+}
+
 struct Reply {
   std::int32_t pid;    // the worker's, or -1
   std::int32_t error;  // errno of what failed when pid is -1
@@ -94,7 +100,7 @@ ssize_t receive_with_fd(int socket, Request& request, int& fd) {
   ::close_range(4, ~0u, 0);  // the fork server's socket and anything else the server had open
   apply_worker_limits(r.cpu_limit_seconds);
   ::setenv("LP_NUM_THREADS", std::to_string(r.llvmpipe_threads).c_str(), 1);
-  const int status = run_worker(3, {.force_software = r.force_software != 0}, r.warm_before_ready ? WarmUp::before_ready : WarmUp::after_ready);
+  const int status = run_worker(3, {.force_software = r.force_software != 0}, warm_up_of(r.warm_up));
   std::fflush(nullptr);
   ::_exit(status);  // not exit(): the server's static objects, copied at the fork, are not ours to destroy
 }
@@ -212,7 +218,8 @@ ForkServer::~ForkServer() {
 
 Expected<pid_t> ForkServer::spawn(int worker_fd, const WorkerLaunch& launch) {
   std::lock_guard lock(mutex_);
-  const Request request{launch.llvmpipe_threads, launch.force_software ? 1 : 0, launch.cpu_limit_seconds, launch.warm_before_ready ? 1 : 0};
+  const Request request{launch.llvmpipe_threads, launch.force_software ? 1 : 0, launch.cpu_limit_seconds,
+                        static_cast<std::int32_t>(launch.warm_up)};
   if (!send_with_fd(socket_, request, worker_fd)) return fork_server_error(std::string("is gone: ") + std::strerror(errno));
   Reply reply{};
   ssize_t n;

@@ -13,6 +13,7 @@
 #include <mutex>
 
 #include "core/expected.h"
+#include "worker/worker_main.h"
 
 namespace shadelab::worker {
 
@@ -22,7 +23,7 @@ struct WorkerLaunch {
   int llvmpipe_threads = 1;
   bool force_software = false;
   int cpu_limit_seconds = 600;
-  bool warm_before_ready = true;  // worker_main.h's WarmUp
+  WarmUp warm_up = WarmUp::before_ready;
 };
 
 class ForkServer {

@@ -17,11 +17,12 @@ namespace shadelab::worker {
 
 namespace {
 
-Expected<pid_t> fork_and_exec(const PoolConfig& c, int child_fd, bool warm_before_ready) {
+Expected<pid_t> fork_and_exec(const PoolConfig& c, int child_fd, WarmUp warm_up) {
   // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
   std::vector<std::string> args = {c.executable, "worker", "--fd", "3"};
   if (c.force_software) args.push_back("--software");
-  if (!warm_before_ready) args.push_back("--warm-after-ready");
+  if (warm_up == WarmUp::after_ready) args.push_back("--warm-after-ready");
+  if (warm_up == WarmUp::none) args.push_back("--no-warm-up");
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e)
     if (std::strncmp(*e, "LP_NUM_THREADS=", 15) != 0) env.emplace_back(*e);
@@ -55,14 +56,14 @@ void apply_worker_limits(int cpu_limit_seconds) {
   ::setrlimit(RLIMIT_NPROC, &processes);
 }
 
-Expected<pid_t> launch_worker(const PoolConfig& c, int child_fd, bool warm_before_ready) {
+Expected<pid_t> launch_worker(const PoolConfig& c, int child_fd, WarmUp warm_up) {
   if (c.fork_server) {
-    auto forked = c.fork_server->spawn(child_fd, {c.llvmpipe_threads, c.force_software, c.cpu_limit_seconds, warm_before_ready});
+    auto forked = c.fork_server->spawn(child_fd, {c.llvmpipe_threads, c.force_software, c.cpu_limit_seconds, warm_up});
     if (forked) return forked;
     // Still serve: the fork server only saves time. Said once per failure, to the operator.
     std::cerr << "shadelab: " << forked.error().message << "; starting the worker with fork + exec\n";
   }
-  return fork_and_exec(c, child_fd, warm_before_ready);
+  return fork_and_exec(c, child_fd, warm_up);
 }
 
 }  // namespace shadelab::worker

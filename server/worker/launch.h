@@ -10,9 +10,8 @@ namespace shadelab::worker {
 
 // A worker serving `child_fd`, its end of a socketpair (the caller closes its own copy). The
 // worker is a child of this process either way.
-// `warm_before_ready`: worker_main.h's WarmUp (a pool's first workers warm up before they are
-// ready; replacements after).
-Expected<pid_t> launch_worker(const PoolConfig& config, int child_fd, bool warm_before_ready);
+// `warm_up`: when it draws its warm-up job (worker_main.h).
+Expected<pid_t> launch_worker(const PoolConfig& config, int child_fd, WarmUp warm_up);
 
 // The limits every worker runs under, set in the new process (async-signal-safe): its CPU time
 // (a backstop over its whole life), 64 open files, and 4096 processes for the user, which

@@ -143,7 +143,7 @@ struct WorkerPool::Slot {
   int index;
   std::atomic<pid_t> pid{-1};        // read by worker_pids() on other threads
   std::atomic<bool> reported_ready{false};  // the worker holds a context and said so
-  bool started_once = false;                // later starts are replacements: they always warm up after ready
+  bool started_once = false;                // later starts are replacements: they warm up after ready (or never)
   // The caches the worker's last answer reported (worker_main's caches()); a new worker starts at 0.
   std::atomic<std::uint64_t> reference_cache_bytes{0}, cached_programs{0}, cached_meshes{0}, cached_mesh_bytes{0};
   int fd = -1;
@@ -206,7 +206,8 @@ struct WorkerPool::Slot {
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
       return worker_error(ErrorCode::not_ready, std::string("socketpair: ") + std::strerror(errno));
     const PoolConfig& c = pool.config_;
-    auto launched = launch_worker(c, sv[1], !started_once && c.warm_before_ready);
+    const bool replacement_before = started_once && c.warm_up == WarmUp::before_ready;
+    auto launched = launch_worker(c, sv[1], replacement_before ? WarmUp::after_ready : c.warm_up);
     if (!launched) {
       ::close(sv[0]);
       ::close(sv[1]);

@@ -26,6 +26,7 @@
 
 #include "core/expected.h"
 #include "worker/protocol.h"
+#include "worker/worker_main.h"
 
 namespace shadelab::worker {
 
@@ -46,9 +47,10 @@ struct PoolConfig {
   int llvmpipe_threads = 1;                     // LP_NUM_THREADS per worker
   // A worker is ready when it holds its EGL context; its warm-up (the built-in course's default job:
   // the mesh parsed and uploaded, the shared vertex shader's JIT, ~250 ms on the 2-core machine at
-  // 512 x 512) is drawn right after, and a job that arrives meanwhile waits for it. True: the
-  // pool's first workers warm up before they say they are ready (start to /readyz then includes it).
-  bool warm_before_ready = false;
+  // 512 x 512) is drawn right after, and a job that arrives meanwhile waits for it. before_ready:
+  // the pool's first workers warm up before they say they are ready (start to /readyz then
+  // includes it; replacements still warm up after). none: no worker warms up (worker_main.h).
+  WarmUp warm_up = WarmUp::after_ready;
   bool force_software = false;
   std::string executable = "/proc/self/exe";    // started as `<executable> worker`
   // Workers forked from here when set (started before the process's first thread; serve does);
