@@ -191,6 +191,22 @@ TEST(RenderTest, DefaultDeclaredWithAnotherTypeStaysZeroAsInTheBrowser) {
   EXPECT_TRUE(has_warning(r->report, "uAmbientColor"));
 }
 
+// The renderer keeps programs for later jobs: a value one job set must not reach the next job on
+// the same shaders (the browser links a fresh program, every uniform at zero). A grade of the
+// starter's shaders under another course's uniform names read the previous job's light this way.
+TEST(RenderTest, AUniformOneJobSetIsZeroForTheNextJobOnTheSameProgram) {
+  auto request = fullscreen_request("c = vec4(uExtra, 0.5, 0.0, 1.0);", "uniform float uExtra;");
+  request.uniforms = {{"uExtra", {1.0}}};
+  auto first = render_frames(request, bunny());
+  ASSERT_TRUE(first) << first.error().format();
+  EXPECT_EQ(pixel(first->frames[0], 1, 1)[0], 255);
+  request.uniforms = {};
+  auto next = render_frames(request, bunny());
+  ASSERT_TRUE(next) << next.error().format();
+  EXPECT_TRUE(next->report.program_cached) << "the same program, from the renderer's cache";
+  EXPECT_EQ(pixel(next->frames[0], 1, 1)[0], 0) << "uExtra kept the earlier job's 1.0";
+}
+
 TEST(RenderTest, AlphaBelowOneIsSavedAsCanvasToBlobDoes) {
   auto r = render_frames(fullscreen_request("c = vec4(0.4, 0.2, 0.1, 0.5);"), bunny());
   ASSERT_TRUE(r) << r.error().format();

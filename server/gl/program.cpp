@@ -109,6 +109,14 @@ Program Program::build(const std::string& vertex, const std::string& fragment,
 
 void Program::use() const { glUseProgram(name_.get()); }
 
+void Program::zero_uniforms() const {
+  std::vector<float> zeros;
+  for (const auto& u : uniforms_) {
+    zeros.assign(static_cast<size_t>(u.type.components) * static_cast<size_t>(std::max(1, u.array_size)), 0.0f);
+    set_uniform(u, zeros);
+  }
+}
+
 void Program::set_uniform(const ActiveVariable& u, std::span<const float> values) const {
   if (u.location < 0 || u.type.components == 0) return;
   const GLint loc = u.location;

@@ -51,6 +51,9 @@ class Program {
   void use() const;
   // Uploads `values` (count = components x elements) to a reflected uniform.
   void set_uniform(const ActiveVariable& uniform, std::span<const float> values) const;
+  // Every uniform back to zero, as a newly linked program holds them (the program in use). A
+  // program kept for a later job must not carry this job's values into it.
+  void zero_uniforms() const;
 
  private:
   ProgramName name_;

@@ -223,6 +223,9 @@ struct Renderer::State {
     report.times.upload_ms = mesh_cached ? 0.0 : ms_since(upload_start);
 
     program.use();
+    // The program may be a cached one another job set: what this job's plan leaves unset reads 0,
+    // as in the browser's fresh program (and as the plan's warnings say).
+    program.zero_uniforms();
     for (const auto& c : plan->constant) program.set_uniform(*c.uniform, c.values);
     if (variants) set_variants(program, *variants);
 
