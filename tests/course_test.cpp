@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -195,7 +196,11 @@ function draw(gl) {
     write(hw / "src/shaders/starter_vert.js", preset("starter", "vert"));
     write(hw / "src/shaders/starter_frag.js", preset("starter", "frag"));
     write(hw / "src/shaders/phong_vert.js", preset("specular", "vert"));
+    // The folder's phong reads the uniforms under the names its hw2.js feeds.
     std::string phong = preset("specular", "frag");
+    for (const auto& [builtin, here] : {std::pair{"uAmbientColor", "uAmbient"}, {"uDiffuseColor", "uDiffuse"},
+                                        {"uSpecularColor", "uSpecular"}, {"uLightPosition", "uLightPos"}, {"uLightColor", "uLightCol"}})
+      for (size_t at; (at = phong.find(builtin)) != std::string::npos;) phong.replace(at, std::strlen(builtin), here);
     phong.replace(phong.find("float specularAlpha = 6.0;"), 26, "float specularAlpha = 10.0;");
     write(hw / "src/shaders/phong_frag.js", phong);
     fs::create_directories(hw / "assets");
@@ -250,6 +255,13 @@ TEST_F(CourseImportTest, TheFolderGivesTheCanvasValuesCameraMeshesAndExponent) {
     EXPECT_NE(out.find(said), std::string::npos) << said << "\n" << out;
   EXPECT_EQ(out.find("mistake specular/flat_shading left out"), std::string::npos) << "the built-in reference's edits apply";
   EXPECT_TRUE(fs::exists(*root_ / "profile/course.specular_frag.js"));
+  // The built-in references read the uniforms under the names this page feeds (else: all zero, black).
+  for (const char* file : {"profile/course.specular_frag.js", "profile/course.diffuse_frag.js"}) {
+    const std::string text = testkit::read_text(*root_ / file);
+    EXPECT_NE(text.find("uniform vec3 uLightPos;"), std::string::npos) << file;
+    EXPECT_EQ(text.find("uLightPosition"), std::string::npos) << file;
+  }
+  EXPECT_EQ(p["checkpoints"][2]["mistakes"][4]["edits"][0]["find"], "uDiffuse * uLightCol * max(0.0, NdotL)") << "the edits take the names too";
   // The handout's-exponent mistake follows the folder's exponent.
   const json& handout = p["checkpoints"][2]["mistakes"][5];
   ASSERT_EQ(handout["id"], "handout_exponent");
@@ -269,15 +281,19 @@ TEST_F(CourseImportTest, TheImportedCourseRendersAndGradesWithItsCanvasAndLightO
   run = run_cli("render --preset diffuse --size 400x300 --grid " + (*root_ / "b.png").string());
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(testkit::read_text(*root_ / "g.png"), testkit::read_text(*root_ / "b.png"));
-  // The folder's own phong with its exponent passes its specular checkpoint; the built-in 6.0 does not, and says why.
+  // The folder's own phong with its exponent passes its specular checkpoint (against the built-in
+  // reference in this course's uniform names); with the built-in course's 6.0 it does not, and says why.
   const fs::path hw = *root_ / "HW2/src/shaders";
   const std::string result = " -o " + (*root_ / "grade.json").string();
   run = run_cli("grade --vert " + (hw / "phong_vert.js").string() + " --frag " + (hw / "phong_frag.js").string() + course +
                 " --reference specular --size 100x75" + result);
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_TRUE(json::parse(testkit::read_text(*root_ / "grade.json"))["pass"]) << run.output;
-  run = run_cli("grade --vert " + (kSource / "shaders/specular_vert.js").string() + " --frag " + (kSource / "shaders/specular_frag.js").string() +
-                course + " --reference specular --size 100x75");
+  std::string six = testkit::read_text(hw / "phong_frag.js");
+  six.replace(six.find("float specularAlpha = 10.0;"), 27, "float specularAlpha = 6.0;");
+  write(*root_ / "six_frag.js", six);
+  run = run_cli("grade --vert " + (hw / "phong_vert.js").string() + " --frag " + (*root_ / "six_frag.js").string() + course +
+                " --reference specular --size 100x75");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("your shader's exponent is 6.0; the course's starter uses 10.0"), std::string::npos) << run.output;
 }

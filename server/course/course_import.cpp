@@ -217,6 +217,7 @@ class Importer {
       std::string name = names.count(role) ? names[role] : name_like_ambient(names, role);
       if (!names.count(role) && !name.empty()) assumed(role + " is named " + name + " (hw2.js does not look it up: the students' TODO)");
       if (name.empty()) name = builtin_name;
+      if (name != builtin_name) course_names_[builtin_name] = name;
       json spellings = json::array({name});
       if (const auto plain = plain_spelling(name); !plain.empty()) spellings.push_back(plain);
       u["names"] = spellings;
@@ -353,7 +354,45 @@ class Importer {
       assumed("the diffuse reference: the built-in course's" + builtin_why);
     if (!o_.solution || !pair_as_preset(*o_.solution, "phong", "specular", "the specular reference (the solution's phong)"))
       specular_from_builtin(builtin_why);
+    builtin_shaders_in_course_names();
     keep_applicable_mistakes();
+  }
+
+  // `text` with the built-in course's uniform names replaced by this course's, word by word.
+  std::string in_course_names(const std::string& text) const {
+    if (course_names_.empty()) return text;
+    static const std::regex word("[A-Za-z_][A-Za-z0-9_]*");
+    std::string out;
+    size_t last = 0;
+    for (std::sregex_iterator it(text.begin(), text.end(), word), end; it != end; ++it) {
+      out.append(text, last, static_cast<size_t>(it->position()) - last);
+      const auto renamed = course_names_.find(it->str());
+      out += renamed == course_names_.end() ? it->str() : renamed->second;
+      last = static_cast<size_t>(it->position() + it->length());
+    }
+    return out.append(text, last);
+  }
+
+  // A built-in shader that reads a uniform under the built-in name would read 0 on this course's
+  // page (a black reference every black submission matches): each one that names one is written
+  // beside the profile with the course's names.
+  void builtin_shaders_in_course_names() {
+    for (auto& p : p_["presets"])
+      for (const char* stage : {"vertex", "fragment"}) {
+        const std::string file = p.value(stage, "");
+        std::optional<std::string> text;
+        if (file.starts_with("builtin:")) text = stage_text(p["name"], stage);
+        for (const auto& [name, derived] : out_.derived_files)
+          if (name == file) text = derived;
+        if (!text || in_course_names(*text) == *text) continue;
+        const std::string renamed = fs::path(o_.output).stem().string() + "." + p["name"].get<std::string>() + "_" +
+                                    (std::string(stage) == "vertex" ? "vert" : "frag") + ".js";
+        std::erase_if(out_.derived_files, [&](const auto& d) { return d.first == renamed; });
+        out_.derived_files.emplace_back(renamed, in_course_names(*text));
+        if (file != renamed)
+          assumed("the " + p["name"].get<std::string>() + " preset's " + stage + " shader: the built-in course's with this course's uniform names, written to " + renamed);
+        p[stage] = renamed;
+      }
   }
 
   // The built-in specular reference with the folder's exponent: written beside the profile when
@@ -408,7 +447,7 @@ class Importer {
           const std::string builtin_variable = builtin_course().starter_constants.front().variable;
           const std::string variable = p_["specularExponent"]["variable"];
           for (const char* side : {"find", "replace"})
-            e[side] = std::regex_replace(e[side].get<std::string>(), std::regex("\\b" + builtin_variable + "\\b"), variable);
+            e[side] = in_course_names(std::regex_replace(e[side].get<std::string>(), std::regex("\\b" + builtin_variable + "\\b"), variable));
           std::string find = e["find"];
           if (find.find("= " + builtin_exponent + ";") != std::string::npos) {
             e["find"] = std::regex_replace(find, std::regex("= " + builtin_exponent + ";"), "= " + number_text(exponent_) + ";");
@@ -432,6 +471,9 @@ class Importer {
   ImportedCourse out_;
   std::string default_mesh_;
   double exponent_ = 0;
+  // The built-in course's uniform names this folder's page calls otherwise, by role
+  // (uLightPosition -> uLightPos): the built-in shaders and the mistakes' edits take them.
+  std::map<std::string, std::string> course_names_;
 };
 
 }  // namespace
