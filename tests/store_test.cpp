@@ -150,6 +150,16 @@ grade::SharedFrames two_frames() {
   return frames;
 }
 
+// What two_frames() renders: the shape a load expects.
+render::RenderRequest two_frames_request() {
+  render::RenderRequest r;
+  r.width = 5;
+  r.height = 3;
+  r.frames = 2;
+  r.pixel_type = image::PixelType::u8;
+  return r;
+}
+
 size_t files_in(const fs::path& folder) {
   size_t n = 0;
   for (std::error_code ec; const auto& e : fs::directory_iterator(folder, ec)) n += e.is_regular_file() ? 1 : 0;
@@ -160,21 +170,22 @@ TEST_F(SharedStoreTest, ReferencesSavedOnOneNodeAreReadOnAnotherAndKeptOnItsDisk
   auto shared = open_store(redis.url());
   const grade::ReferenceStore first(dir_ / "node-a", shared.get(), "llvmpipe"), second(dir_ / "node-b", shared.get(), "llvmpipe");
   const std::string key = first.key({}, "mesh");
-  EXPECT_FALSE(second.load(key)) << "nothing saved yet";
+  const auto request = two_frames_request();
+  EXPECT_FALSE(second.load(key, request)) << "nothing saved yet";
   first.save(key, two_frames());
-  const auto read = second.load(key);
+  const auto read = second.load(key, request);
   ASSERT_TRUE(read);
   ASSERT_EQ(read->size(), 2u);
   EXPECT_EQ((*read)[1]->bytes, two_frames()[1]->bytes);
   EXPECT_EQ(files_in(dir_ / "node-b"), 1u) << "kept on the second node's disk";
 
   redis.pause();  // a hung Redis: the disk still answers, and a miss costs one timeout
-  const auto from_disk = second.load(key);
+  const auto from_disk = second.load(key, request);
   ASSERT_TRUE(from_disk);
   EXPECT_EQ((*from_disk)[0]->bytes, two_frames()[0]->bytes);
   const grade::ReferenceStore third(dir_ / "node-c", shared.get(), "llvmpipe");
   const auto start = Clock::now();
-  EXPECT_FALSE(third.load(key)) << "Redis is down: a miss, rendered";
+  EXPECT_FALSE(third.load(key, request)) << "Redis is down: a miss, rendered";
   EXPECT_LT(Clock::now() - start, 2s);
   redis.resume();
 }
@@ -182,19 +193,37 @@ TEST_F(SharedStoreTest, ReferencesSavedOnOneNodeAreReadOnAnotherAndKeptOnItsDisk
 TEST_F(SharedStoreTest, APartReferenceInRedisIsAMiss) {
   auto shared = open_store(redis.url());
   const grade::ReferenceStore first(dir_ / "node-a", shared.get(), "llvmpipe"), second(dir_ / "node-b", shared.get(), "llvmpipe");
-  const std::string key = first.key({}, "mesh");
+  const std::string key = first.key({}, "mesh"), redis_key = "shadelab:1:reference:" + key;
+  const auto request = two_frames_request();
   first.save(key, two_frames());
-  const auto whole = shared->get("shadelab:1:reference:" + key);
+  const auto whole = shared->get(redis_key);
   ASSERT_TRUE(whole && *whole) << "the entry is in Redis under the reference prefix";
-  ASSERT_TRUE(shared->put("shadelab:1:reference:" + key, (*whole)->substr(0, (*whole)->size() / 2)));
-  EXPECT_FALSE(second.load(key)) << "half an entry is no frames";
-  EXPECT_EQ(files_in(dir_ / "node-b"), 0u) << "and is not copied to disk";
+  const std::string entry = **whole;
+  ASSERT_TRUE(second.load(key, request)) << "whole, it reads";
+  fs::remove_all(dir_ / "node-b");
+  const auto misses = [&](const std::string& stored, const std::string& why) {
+    ASSERT_TRUE(shared->put(redis_key, stored));
+    EXPECT_FALSE(second.load(key, request)) << why;
+    EXPECT_EQ(files_in(dir_ / "node-b"), 0u) << why << ": not copied to disk";
+  };
+  misses(entry.substr(0, entry.size() / 2), "half an entry is no frames");
+  misses(entry.substr(0, entry.size() - 1), "the checksum cut short");
+  misses(entry + "x", "a byte after the frames");
+  for (size_t at : {entry.size() / 2, entry.size() - 2}) {  // inside the pixels, inside the checksum
+    std::string flipped = entry;
+    flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
+    misses(flipped, "a bit flipped at byte " + std::to_string(at));
+  }
   // A header claiming 16384 x 16384 x 3600 float frames over a few bytes: a miss, not an allocation.
-  std::string claim = whole->value().substr(0, 7);
+  std::string claim = entry.substr(0, 7);
   for (std::uint32_t v : {16384u, 16384u, 3600u, 1u})
     for (int i = 0; i < 4; ++i) claim += static_cast<char>((v >> (8 * i)) & 0xff);
-  ASSERT_TRUE(shared->put("shadelab:1:reference:" + key, claim + "xx"));
-  EXPECT_FALSE(second.load(key));
+  misses(claim + "xx", "a header of another shape");
+  // The request decides the shape: the same entry read for three frames is not its frames.
+  ASSERT_TRUE(shared->put(redis_key, entry));
+  auto three = request;
+  three.frames = 3;
+  EXPECT_FALSE(second.load(key, three));
 }
 
 TEST(RedisAddressTest, AddressesAreParsedOrRefused) {

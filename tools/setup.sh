@@ -23,6 +23,8 @@ build_packages=(
   glslang-dev
   # the optional shared store (Redis client)
   libhiredis-dev
+  # the reference store's entries are zstd
+  libzstd-dev
   # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them
   blender-data
   # the submission sheet: cairo writes the PDF, in DejaVu's fonts

@@ -51,7 +51,7 @@ Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& 
   }
   const std::string stored = store_ ? store_->key(r, mesh_address(mesh_key, m)) : std::string();
   if (store_)
-    if (auto loaded = store_->load(stored)) {
+    if (auto loaded = store_->load(stored, r)) {
       ++work_.from_store;
       references_.insert(std::move(key), *loaded);
       return std::move(*loaded);

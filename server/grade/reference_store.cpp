@@ -3,7 +3,7 @@
 #include <elf.h>
 #include <link.h>
 #include <unistd.h>
-#include <zlib.h>
+#include <zstd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr char kMagic[] = "SLREF1\n";
+constexpr char kMagic[] = "SLREF2\n";
 constexpr size_t kMagicSize = sizeof kMagic - 1, kHeaderSize = kMagicSize + 16;
 
 void put_u32(std::string& out, std::uint32_t v) {
@@ -85,36 +85,55 @@ std::string encode_entry(const SharedFrames& frames) {
   put_u32(out, static_cast<std::uint32_t>(first.height));
   put_u32(out, static_cast<std::uint32_t>(frames.size()));
   put_u32(out, first.type == image::PixelType::u8 ? 0 : 1);
-  uLongf size = compressBound(pixels.size());
-  std::string compressed(size, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(compressed.data()), &size, reinterpret_cast<const Bytef*>(pixels.data()), pixels.size(), 1) != Z_OK)
+  // With a checksum, as zlib's: a flipped bit in a stored frame is a miss, never a wrong grade.
+  std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> context(ZSTD_createCCtx(), ZSTD_freeCCtx);
+  if (!context || ZSTD_isError(ZSTD_CCtx_setParameter(context.get(), ZSTD_c_compressionLevel, 1)) ||
+      ZSTD_isError(ZSTD_CCtx_setParameter(context.get(), ZSTD_c_checksumFlag, 1)))
     return {};
+  std::string compressed(ZSTD_compressBound(pixels.size()), '\0');
+  const size_t size = ZSTD_compress2(context.get(), compressed.data(), compressed.size(), pixels.data(), pixels.size());
+  if (ZSTD_isError(size)) return {};
   out.append(compressed.data(), size);
   return out;
 }
 
-// The frames of an entry, or nullopt when it is not a whole one (truncated, another format).
-std::optional<SharedFrames> decode_entry(const std::string& entry) {
+// The frames of an entry holding `expected`'s shape, or nullopt when it is not a whole one
+// (truncated, another format, another shape). The output is sized from the request, never from
+// the entry, and zstd writes into it directly.
+std::optional<SharedFrames> decode_entry(const std::string& entry, const render::RenderRequest& expected) {
   if (entry.size() < kHeaderSize || entry.compare(0, kMagicSize, kMagic) != 0) return std::nullopt;
-  const std::uint32_t width = get_u32(entry, kMagicSize), height = get_u32(entry, kMagicSize + 4);
-  const std::uint32_t frames = get_u32(entry, kMagicSize + 8), type = get_u32(entry, kMagicSize + 12);
-  if (type > 1 || width == 0 || height == 0 || width > 16384 || height > 16384 || frames == 0 || frames > 3600) return std::nullopt;
-  const auto pixel_type = type == 0 ? image::PixelType::u8 : image::PixelType::f32;
-  const size_t frame_bytes = size_t{width} * height * (pixel_type == image::PixelType::u8 ? 4 : 16);
-  // zlib expands at most ~1032:1: a header claiming more pixels than its bytes can hold is not an
-  // entry, and must not size an allocation (a worker would die of it).
-  if (frame_bytes * frames / 1032 > entry.size()) return std::nullopt;
-  std::string pixels(frame_bytes * frames, '\0');
-  uLongf size = pixels.size();
-  const auto* compressed = reinterpret_cast<const Bytef*>(entry.data() + kHeaderSize);
-  if (uncompress(reinterpret_cast<Bytef*>(pixels.data()), &size, compressed, entry.size() - kHeaderSize) != Z_OK || size != pixels.size())
-    return std::nullopt;
+  const bool is_u8 = expected.pixel_type == image::PixelType::u8;
+  const std::uint32_t shape[] = {static_cast<std::uint32_t>(expected.width), static_cast<std::uint32_t>(expected.height),
+                                 static_cast<std::uint32_t>(expected.frames), is_u8 ? 0u : 1u};
+  for (size_t i = 0; i < 4; ++i)
+    if (get_u32(entry, kMagicSize + 4 * i) != shape[i]) return std::nullopt;
   SharedFrames out;
-  for (std::uint32_t k = 0; k < frames; ++k) {
-    auto frame = std::make_shared<image::Image>(image::Image::blank(static_cast<int>(width), static_cast<int>(height), pixel_type));
-    std::memcpy(frame->bytes.data(), pixels.data() + k * frame_bytes, frame_bytes);
+  std::vector<std::shared_ptr<image::Image>> frames;
+  for (int k = 0; k < expected.frames; ++k)
+    frames.push_back(std::make_shared<image::Image>(image::Image::blank(expected.width, expected.height, expected.pixel_type)));
+  const void* payload = entry.data() + kHeaderSize;
+  const size_t payload_size = entry.size() - kHeaderSize;
+  const size_t frame_bytes = frames.front()->bytes.size();
+  if (ZSTD_getFrameContentSize(payload, payload_size) != frame_bytes * frames.size()) return std::nullopt;
+  std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> context(ZSTD_createDCtx(), ZSTD_freeDCtx);
+  if (!context) return std::nullopt;
+  ZSTD_inBuffer in{payload, payload_size, 0};
+  size_t left = 1;  // ZSTD_decompressStream's answer: 0 once the frame is read whole, checksum included
+  const auto step = [&](ZSTD_outBuffer& to) {
+    const size_t in_before = in.pos, out_before = to.pos;
+    left = ZSTD_decompressStream(context.get(), &to, &in);
+    return !ZSTD_isError(left) && (in.pos != in_before || to.pos != out_before || left == 0);
+  };
+  for (auto& frame : frames) {
+    ZSTD_outBuffer to{frame->bytes.data(), frame_bytes, 0};
+    while (to.pos < to.size)
+      if (!step(to)) return std::nullopt;  // damaged, or truncated: no progress
     out.push_back(std::move(frame));
   }
+  ZSTD_outBuffer none{nullptr, 0, 0};
+  while (left != 0)
+    if (!step(none)) return std::nullopt;
+  if (in.pos != in.size) return std::nullopt;  // bytes after the frame: not an entry this build wrote
   return out;
 }
 
@@ -145,13 +164,14 @@ std::string ReferenceStore::key(const render::RenderRequest& request, const std:
   return sha256_hex(std::string(kMagic) + build_fingerprint() + '\0' + renderer_ + '\0' + mesh + '\0' + render::pixel_identity(request));
 }
 
-std::optional<SharedFrames> ReferenceStore::load(const std::string& key) const {
+std::optional<SharedFrames> ReferenceStore::load(const std::string& key, const render::RenderRequest& request) const {
+  if (request.frames < 1 || request.width < 1 || request.height < 1) return std::nullopt;
   if (!folder_.empty())
-    if (auto frames = decode_entry(read_file(folder_ / key))) return frames;
+    if (auto frames = decode_entry(read_file(folder_ / key), request)) return frames;
   if (!shared_) return std::nullopt;
   auto entry = shared_->get(shared_key(key));  // an outage is a miss: the grader renders
   if (!entry || !*entry) return std::nullopt;
-  auto frames = decode_entry(**entry);
+  auto frames = decode_entry(**entry, request);
   if (frames) write_to_folder(key, **entry);  // the next grade on this node reads its disk
   return frames;
 }
