@@ -16,14 +16,7 @@
 // renders a course's references once, not once per node. The disk is read first (no network for
 // a warm node); the shared store is a cache like any other here, and its outage costs renders.
 //
-// | bytes            | what                                                     |
-// |------------------|----------------------------------------------------------|
-// | "SLREF2\n"       | the format                                               |
-// | 4 x uint32, LE   | width, height, frames, pixel type (0: RGBA8, 1: RGBA32F) |
-// | the rest         | the frames' pixels, rows top-down, zstd (level 1)        |
-//
-// zstd, not zlib: the same size at level 1, and ~6x faster to read back (a course's set of 9
-// frames: 2.7 against 18 ms), which a grade pays for every set it reads (docs/performance.md).
+// The entry's bytes: grade/reference_entry.h.
 #include <filesystem>
 #include <optional>
 #include <string>
