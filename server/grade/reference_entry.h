@@ -8,7 +8,8 @@
 // |------------------|----------------------------------------------------------|
 // | "SLREF2\n"       | the format                                               |
 // | 4 x uint32, LE   | width, height, frames, pixel type (0: RGBA8, 1: RGBA32F) |
-// | the rest         | the frames' pixels, rows top-down, zstd (level 1)        |
+// | the rest         | the frames' pixels, rows top-down: one zstd frame, level |
+// |                  | 1, with its content size and checksum                    |
 //
 // zstd, not zlib: the same size at level 1, and ~6x faster to read back (a course's set of 9
 // frames: 2.7 against 18 ms), which a grade pays for every set it reads (docs/performance.md).
