@@ -384,11 +384,13 @@ class Importer {
         if (file.starts_with("builtin:")) text = stage_text(p["name"], stage);
         for (const auto& [name, derived] : out_.derived_files)
           if (name == file) text = derived;
-        if (!text || in_course_names(*text) == *text) continue;
+        if (!text) continue;
+        std::string in_names = in_course_names(*text);
+        if (in_names == *text) continue;
         const std::string renamed = fs::path(o_.output).stem().string() + "." + p["name"].get<std::string>() + "_" +
                                     (std::string(stage) == "vertex" ? "vert" : "frag") + ".js";
         std::erase_if(out_.derived_files, [&](const auto& d) { return d.first == renamed; });
-        out_.derived_files.emplace_back(renamed, in_course_names(*text));
+        out_.derived_files.emplace_back(renamed, std::move(in_names));
         if (file != renamed)
           assumed("the " + p["name"].get<std::string>() + " preset's " + stage + " shader: the built-in course's with this course's uniform names, written to " + renamed);
         p[stage] = renamed;

@@ -62,7 +62,6 @@ std::optional<SharedFrames> decode_reference_entry(std::string_view entry, const
   const size_t payload_size = entry.size() - kHeaderSize;
   const size_t frame_bytes = size_t(expected.width) * size_t(expected.height) * (is_u8 ? 4 : 16);
   if (ZSTD_getFrameContentSize(payload, payload_size) != frame_bytes * size_t(expected.frames)) return std::nullopt;
-  SharedFrames out;
   std::vector<std::shared_ptr<image::Image>> frames;
   for (int k = 0; k < expected.frames; ++k)
     frames.push_back(std::make_shared<image::Image>(image::Image::blank(expected.width, expected.height, expected.pixel_type)));
@@ -75,17 +74,16 @@ std::optional<SharedFrames> decode_reference_entry(std::string_view entry, const
     left = ZSTD_decompressStream(context.get(), &to, &in);
     return !ZSTD_isError(left) && (in.pos != in_before || to.pos != out_before || left == 0);
   };
-  for (auto& frame : frames) {
+  for (const auto& frame : frames) {
     ZSTD_outBuffer to{frame->bytes.data(), frame_bytes, 0};
     while (to.pos < to.size)
       if (!step(to)) return std::nullopt;  // damaged, or truncated: no progress
-    out.push_back(std::move(frame));
   }
   ZSTD_outBuffer none{nullptr, 0, 0};
   while (left != 0)
     if (!step(none)) return std::nullopt;
   if (in.pos != in.size) return std::nullopt;  // bytes after the frame: not an entry this build wrote
-  return out;
+  return SharedFrames(frames.begin(), frames.end());
 }
 
 }  // namespace shadelab::grade
