@@ -206,9 +206,8 @@ TEST_F(GradeTest, NanIsFoundEvenWhereTheCanvasShowsBlack) {
 }
 
 // Mesa folds n - n to 0 (and 0 * x to 0), so normalize(n - n) is 0 on llvmpipe where IEEE
-// arithmetic, and the GPU behind the student's browser, give NaN. The float check renders the
-// program with IEEE semantics (invariant outputs) and finds it; the frames compared with the
-// reference are still the program as compiled.
+// arithmetic, and the GPU behind the student's browser, give NaN. The grade draws the program with
+// IEEE semantics (invariant outputs) and the draw's census finds it.
 TEST_F(GradeTest, ANanTheOptimiserFoldsAwayIsStillFound) {
   json job = submission("specular", "    fragColor = color;", "    fragColor = vec4(normalize(vNormal.xyz - vNormal.xyz), 1.0) + 0.0 * color;");
   const json r = grade(job, "specular");

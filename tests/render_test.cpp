@@ -459,28 +459,36 @@ std::vector<render::RenderRequest> under_grader_lights(const render::RenderReque
 }
 
 struct Together {
-  std::vector<std::vector<image::Image>> frames;  // per request
+  std::vector<std::vector<image::Image>> frames;           // per request
+  std::vector<std::vector<image::NonFinite>> non_finite;  // per request, with a census
   int passes = 0;
 };
 
-Together render_together(const std::vector<render::RenderRequest>& requests, render::FloatSemantics semantics) {
+Together render_together(const std::vector<render::RenderRequest>& requests, bool census = false) {
   Together out;
   out.frames.resize(requests.size());
-  auto report = testkit::shared_renderer().render_together(requests, testkit::builtin(testkit::course().default_mesh),
-                                                           [&](int i, int, const image::Image& f, bool) { out.frames[static_cast<size_t>(i)].push_back(f); },
-                                                           semantics);
+  out.non_finite.resize(requests.size());
+  render::CensusSink counts;
+  if (census) counts = [&](int i, int, const image::NonFinite& n) { out.non_finite[static_cast<size_t>(i)].push_back(n); };
+  auto report = testkit::shared_renderer().render_together(
+      requests, testkit::builtin(testkit::course().default_mesh),
+      [&](int i, int, const image::Image& f, bool) { out.frames[static_cast<size_t>(i)].push_back(f); }, counts);
   EXPECT_TRUE(report) << report.error().format();
   if (report) out.passes = report->passes;
   return out;
 }
 
-std::vector<image::Image> render_alone(const render::RenderRequest& request, render::FloatSemantics semantics) {
+std::vector<image::Image> render_alone(const render::RenderRequest& request, std::vector<image::NonFinite>* non_finite = nullptr,
+                                       const scene::Mesh& mesh = testkit::builtin(testkit::course().default_mesh)) {
   std::vector<image::Image> frames;
-  auto report = testkit::shared_renderer().render(request, testkit::builtin(testkit::course().default_mesh),
-                                                  [&](int, const image::Image& f, bool) { frames.push_back(f); }, semantics);
+  render::CensusSink counts;
+  if (non_finite) counts = [&](int, int, const image::NonFinite& n) { non_finite->push_back(n); };
+  auto report = testkit::shared_renderer().render(request, mesh, [&](int, const image::Image& f, bool) { frames.push_back(f); }, counts);
   EXPECT_TRUE(report) << report.error().format();
   return frames;
 }
+
+bool same_counts(const image::NonFinite& a, const image::NonFinite& b) { return a.nan == b.nan && a.inf == b.inf; }
 
 bool same_bytes(const image::Image& a, const image::Image& b) {
   return a.width == b.width && a.height == b.height && a.type == b.type && a.bytes == b.bytes;
@@ -502,34 +510,117 @@ std::vector<std::pair<std::string, render::RenderRequest>> graded_shaders(int fr
 
 }  // namespace
 
-// The course's job (3 of its frames), 8-bit with the canvas's 4x MSAA as graded, and float with
-// IEEE semantics as the float check renders it: one pass, the bytes of a pass each.
+// The course's job (3 of its frames) as the grader draws it (8-bit with the canvas's 4x MSAA, IEEE
+// arithmetic and the census), as the page's optimiser would (as compiled, no census), and in float:
+// one pass, the bytes (and the counts) of a pass each.
 TEST(RenderTogetherTest, OneDrawForEveryLightGivesTheBytesOfADrawEach) {
+  struct Kind {
+    const char* name;
+    image::PixelType type;
+    render::FloatSemantics semantics;
+    bool census;
+  };
+  const Kind kinds[] = {{"graded", image::PixelType::u8, render::FloatSemantics::ieee, true},
+                        {"as compiled", image::PixelType::u8, render::FloatSemantics::as_compiled, false},
+                        {"float", image::PixelType::f32, render::FloatSemantics::ieee, false}};
   for (auto [name, request] : graded_shaders(3)) {
-    for (auto type : {image::PixelType::u8, image::PixelType::f32}) {
-      request.pixel_type = type;
-      request.msaa = type == image::PixelType::u8 ? request.msaa : 0;
-      const auto semantics = type == image::PixelType::u8 ? render::FloatSemantics::as_compiled : render::FloatSemantics::ieee;
+    for (const Kind& kind : kinds) {
+      request.pixel_type = kind.type;
+      request.msaa = kind.type == image::PixelType::u8 ? testkit::course().msaa : 0;
+      request.semantics = kind.semantics;
       const auto lit = under_grader_lights(request);
       ASSERT_GE(lit.size(), 2u);
-      const Together together = render_together(lit, semantics);
-      EXPECT_EQ(together.passes, 1) << name;
+      const Together together = render_together(lit, kind.census);
+      EXPECT_EQ(together.passes, 1) << name << ", " << kind.name;
       for (size_t i = 0; i < lit.size(); ++i) {
-        const auto alone = render_alone(lit[i], semantics);
+        std::vector<image::NonFinite> counts;
+        const auto alone = render_alone(lit[i], kind.census ? &counts : nullptr);
         ASSERT_EQ(together.frames[i].size(), alone.size()) << name;
-        for (size_t k = 0; k < alone.size(); ++k)
-          EXPECT_TRUE(same_bytes(together.frames[i][k], alone[k])) << name << (type == image::PixelType::u8 ? " 8-bit" : " float")
-                                                                    << ", light " << i << ", frame " << k;
+        ASSERT_EQ(together.non_finite[i].size(), counts.size()) << name;
+        for (size_t k = 0; k < alone.size(); ++k) {
+          EXPECT_TRUE(same_bytes(together.frames[i][k], alone[k])) << name << ", " << kind.name << ", light " << i << ", frame " << k;
+          if (kind.census) {
+            EXPECT_TRUE(same_counts(together.non_finite[i][k], counts[k])) << name << ", light " << i << ", frame " << k;
+          }
+        }
       }
     }
   }
+}
+
+// The census changes no byte of the frames it is drawn with: the grader's frames are the IEEE
+// program's own.
+TEST(RenderTogetherTest, TheCensusLeavesTheFramesAsTheyAre) {
+  for (auto [name, request] : graded_shaders(2)) {
+    request.semantics = render::FloatSemantics::ieee;
+    std::vector<image::NonFinite> counts;
+    const auto counted = render_alone(request, &counts);
+    const auto plain = render_alone(request);
+    ASSERT_EQ(counted.size(), plain.size());
+    ASSERT_EQ(counts.size(), plain.size());
+    for (size_t k = 0; k < plain.size(); ++k) {
+      EXPECT_TRUE(same_bytes(counted[k], plain[k])) << name << ", frame " << k;
+      EXPECT_EQ(counts[k].nan + counts[k].inf, 0u) << name << ": the course's shaders give finite colours";
+    }
+  }
+}
+
+// The census counts what a float render of the same program holds, pixel for pixel: compared at
+// pixel centres (no MSAA, where both see one sample a pixel), for NaN and infinity under each light
+// of one pass, on the course's mesh (the NaN where the light meets the surface head-on).
+TEST(RenderTogetherTest, TheCensusCountsWhatAFloatRenderHolds) {
+  auto request = testkit::preset_request("specular");
+  request.frames = 2;
+  request.msaa = 0;
+  request.semantics = render::FloatSemantics::ieee;
+  const std::string text = request.fragment.text;
+  const auto at = text.find("fragColor = color;");
+  ASSERT_NE(at, std::string::npos);
+  // NaN on the side the light does not reach (so each light's own), infinity where the normal points down.
+  request.fragment.text.replace(at, 18, "fragColor = color + vec4(sqrt(NdotL), 1.0 / max(0.0, N.y), 0.0, 0.0);");
+  const auto lit = under_grader_lights(request);
+  const Together together = render_together(lit, true);
+  EXPECT_EQ(together.passes, 1);
+  size_t nan = 0, inf = 0;
+  for (size_t i = 0; i < lit.size(); ++i) {
+    auto as_float = lit[i];
+    as_float.pixel_type = image::PixelType::f32;
+    const auto floats = render_alone(as_float);
+    ASSERT_EQ(together.non_finite[i].size(), floats.size());
+    for (size_t k = 0; k < floats.size(); ++k) {
+      const auto expected = image::count_non_finite(floats[k]);
+      EXPECT_TRUE(same_counts(together.non_finite[i][k], expected))
+          << "light " << i << ", frame " << k << ": census " << together.non_finite[i][k].nan << " NaN, " << together.non_finite[i][k].inf
+          << " inf; float " << expected.nan << ", " << expected.inf;
+      nan += expected.nan;
+      inf += expected.inf;
+    }
+  }
+  EXPECT_GT(nan, 100u) << "the shader must give NaN somewhere for this to test anything";
+  EXPECT_GT(inf, 100u) << "and infinity";
+}
+
+// With the canvas's 4x MSAA a pixel is counted when any of its samples held a NaN: the browser's
+// canvas stores that sample as 0 and the pixel comes out darker. One fragment a pixel writes every
+// sample it covers, so a NaN decided by the pixel's centre is counted pixel for pixel.
+TEST(RenderTogetherTest, TheCensusCountsEveryPixelAnySampleOfWhichHeldANan) {
+  auto request = fullscreen_request("c = vec4(gl_FragCoord.x < 3.0 ? uZero / uZero : 0.5, gl_FragCoord.y < 2.0 ? 1.0 / uZero : 0.5, 0.0, 1.0);",
+                                    "uniform float uZero;");
+  request.msaa = 4;
+  request.semantics = render::FloatSemantics::ieee;
+  std::vector<image::NonFinite> counts;
+  const auto frames = render_alone(request, &counts);
+  ASSERT_EQ(counts.size(), 1u);
+  EXPECT_EQ(counts[0].nan, 3u * 8u) << "columns 0-2";
+  EXPECT_EQ(counts[0].inf, 5u * 2u) << "rows 0-1 right of them";
+  EXPECT_EQ(pixel(frames[0], 0, 7), (std::array<int, 4>{0, 255, 0, 255})) << "NaN stored as 0, infinity clamped";
 }
 
 // The lights must change what is drawn: the probe light's frames are not the homework light's.
 TEST(RenderTogetherTest, EachLightGetsItsOwnValue) {
   auto request = testkit::preset_request("specular");
   request.frames = 1;
-  const Together together = render_together(under_grader_lights(request), render::FloatSemantics::as_compiled);
+  const Together together = render_together(under_grader_lights(request));
   ASSERT_EQ(together.frames.size(), 2u);
   EXPECT_FALSE(same_bytes(together.frames[0][0], together.frames[1][0]));
 }
@@ -542,14 +633,52 @@ TEST(RenderTogetherTest, ADiscardIsDrawnALightAtATimeAndTheSameRequestOnce) {
   const std::string text = request.fragment.text;
   request.fragment.text.replace(text.find("fragColor = color;"), 18, "if (color.r > 0.9) discard; fragColor = color;");
   const auto lit = under_grader_lights(request);
-  const Together apart = render_together(lit, render::FloatSemantics::as_compiled);
+  const Together apart = render_together(lit);
   EXPECT_EQ(apart.passes, 2);
-  for (size_t i = 0; i < lit.size(); ++i) EXPECT_TRUE(same_bytes(apart.frames[i][0], render_alone(lit[i], render::FloatSemantics::as_compiled)[0]));
+  for (size_t i = 0; i < lit.size(); ++i) EXPECT_TRUE(same_bytes(apart.frames[i][0], render_alone(lit[i])[0]));
 
   auto normals = testkit::preset_request("normals");  // reads no light
   normals.frames = 1;
-  const Together once = render_together(under_grader_lights(normals), render::FloatSemantics::as_compiled);
+  const Together once = render_together(under_grader_lights(normals));
   EXPECT_EQ(once.passes, 1);
   ASSERT_EQ(once.frames.size(), 2u);
   EXPECT_TRUE(same_bytes(once.frames[0][0], once.frames[1][0]));
+}
+
+// Every way of drawing hands over a census: a discard is drawn a light at a time, each pass with
+// its own; a shader the census cannot be added to (GLSL ES 1.00: one output, no integer bits) is
+// counted in a float render of its own, at pixel centres.
+TEST(RenderTogetherTest, EveryWayOfDrawingHandsOverACensus) {
+  auto request = testkit::preset_request("specular");
+  request.frames = 1;
+  request.semantics = render::FloatSemantics::ieee;
+  const std::string text = request.fragment.text;
+  request.fragment.text.replace(text.find("fragColor = color;"), 18, "if (color.r > 0.9) discard; fragColor = (color - color) / (color.g - color.g);");
+  const auto lit = under_grader_lights(request);
+  const Together apart = render_together(lit, true);
+  EXPECT_EQ(apart.passes, 2);
+  for (size_t i = 0; i < lit.size(); ++i) {
+    std::vector<image::NonFinite> counts;
+    EXPECT_TRUE(same_bytes(apart.frames[i][0], render_alone(lit[i], &counts)[0]));
+    ASSERT_EQ(apart.non_finite[i].size(), 1u);
+    EXPECT_TRUE(same_counts(apart.non_finite[i][0], counts[0]));
+    EXPECT_GT(counts[0].nan, 1000u) << "0 / 0 where the colour is not discarded";
+  }
+
+  render::RenderRequest es100 = fullscreen_request("");
+  es100.vertex.text = "attribute vec4 aVertexPosition;\nvoid main() { gl_Position = vec4(aVertexPosition.xy * 4.0, 0.0, 1.0); }\n";
+  es100.fragment.text = "precision highp float;\nuniform float uZero;\nvoid main() { gl_FragColor = vec4(gl_FragCoord.x < 4.0 ? uZero / uZero : 0.5); }\n";
+  es100.width = es100.height = 64;
+  es100.semantics = render::FloatSemantics::ieee;
+  std::vector<image::NonFinite> counts;
+  auto frames = testkit::shared_renderer().render(es100, testkit::builtin("bunny"), [](int, const image::Image&, bool) {},
+                                                  [&](int, int, const image::NonFinite& n) { counts.push_back(n); });
+  ASSERT_TRUE(frames) << frames.error().format();
+  EXPECT_EQ(frames->passes, 2) << "the frames, then the float render counted";
+  ASSERT_EQ(counts.size(), 1u);
+  auto as_float = es100;
+  as_float.pixel_type = image::PixelType::f32;
+  const auto expected = image::count_non_finite(render_alone(as_float, nullptr, testkit::builtin("bunny"))[0]);
+  EXPECT_TRUE(same_counts(counts[0], expected)) << counts[0].nan << " against " << expected.nan;
+  EXPECT_GT(expected.nan, 10u);
 }

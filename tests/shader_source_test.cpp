@@ -215,7 +215,7 @@ TEST(UniformVariantsTest, WhatOnePassCannotGiveIsDeclinedWithTheReason) {
   declined(variants(head + "out vec4 d;\nvoid main() { c = vec4(uLight, 1); d = c; }"), "more than one vec4 output");
   declined(variants("#version 300 es\nprecision highp float;\nuniform vec3 a, uLight;\nout vec4 c;\nvoid main() { c = vec4(uLight + a, 1); }"),
            "not declared as a plain vec3 uniform");
-  declined(variants(head + "void main() { c = vec4(uLight, 1); }", 9), "9 runs, 8 outputs");
+  declined(variants(head + "void main() { c = vec4(uLight, 1); }", 9), "9 runs need 9 outputs, 8 are drawn at once");
   declined(shader::with_uniform_variants(es300(kVertex, Stage::vertex), es300("#version 100\nprecision highp float;\nuniform vec3 uLight;\n"
                                                                                  "void main() { gl_FragColor = vec4(uLight, 1); }", Stage::fragment),
                                          {"uLight"}, 2, 8),
@@ -226,4 +226,28 @@ TEST(UniformVariantsTest, WhatOnePassCannotGiveIsDeclinedWithTheReason) {
                                          {"uLight"}, 2, 8),
            "the vertex shader uses uLight");
   EXPECT_TRUE(variants(head + "const float k = 2.0;\nfloat lit(vec3 l) { return k * l.x; }\nvoid main() { c = vec4(lit(uLight)); }"));
+}
+
+// The census (each run's NaN and infinity flags, two runs an output) after the runs' colours; one
+// run alone has nobody to share a decision or a global with.
+TEST(UniformVariantsTest, TheCensusFollowsTheColoursTwoRunsAnOutput) {
+  const std::string head = "#version 300 es\nprecision highp float;\nuniform vec3 uLight;\nin vec3 v;\nout vec4 c;\n";
+  const auto census = [&](const std::string& body, int runs, std::vector<std::string> names) {
+    return shader::with_uniform_variants(es300(kVertex, Stage::vertex), es300(head + body, Stage::fragment), names, runs, 8, true);
+  };
+  auto three = census("void main() { c = vec4(uLight, 1); }", 3, {"uLight"});
+  ASSERT_TRUE(three) << three.error().message;
+  EXPECT_NE(three->find("layout(location = 3) out highp vec4 shadelab_census_0;"), std::string::npos) << *three;
+  EXPECT_NE(three->find("layout(location = 4) out highp vec4 shadelab_census_1;"), std::string::npos) << *three;
+  EXPECT_NE(three->find("shadelab_census_1 = vec4(shadelab_non_finite(shadelab_colour[2]), vec2(0.0));"), std::string::npos) << *three;
+  EXPECT_EQ(three->find("if ("), std::string::npos) << "no branch on the colour: " << *three;
+  EXPECT_EQ(three->find('?'), std::string::npos) << "no branch on the colour: " << *three;
+  EXPECT_EQ(shader::variant_outputs(5, true).total(), 8);
+  EXPECT_FALSE(census("void main() { c = vec4(uLight, 1); }", 6, {"uLight"}));
+  const std::string alone[] = {"void main() { if (v.x > 0.5) discard; c = vec4(uLight, 1); }",
+                               "vec3 lit;\nvoid main() { lit += uLight; c = vec4(lit, 1); }"};
+  for (const auto& body : alone) {
+    EXPECT_TRUE(census(body, 1, {})) << body;
+    EXPECT_FALSE(census(body, 2, {"uLight"})) << body;
+  }
 }

@@ -1,5 +1,6 @@
 #include "gl/render_target.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -52,7 +53,7 @@ void set_draw_buffers(int outputs, int only = -1) {
 
 }  // namespace
 
-Expected<RenderTarget> RenderTarget::create(int width, int height, int samples, PixelFormat format, int outputs) {
+Expected<RenderTarget> RenderTarget::create(int width, int height, int samples, PixelFormat format, int outputs, int census_outputs) {
   const int max = max_samples(format);
   if (samples < 0 || samples > max)
     return make_error(ErrorCode::msaa_unsupported, "this renderer supports at most " + std::to_string(max) +
@@ -61,6 +62,7 @@ Expected<RenderTarget> RenderTarget::create(int width, int height, int samples, 
   if (outputs < 1 || outputs > max_outputs())
     return make_error(ErrorCode::gl_error, "this renderer draws at most " + std::to_string(max_outputs()) + " outputs at once");
   RenderTarget t;
+  t.census_outputs_ = std::clamp(census_outputs, 0, outputs);
   t.width_ = width;
   t.height_ = height;
   t.format_ = format;
@@ -110,6 +112,8 @@ void RenderTarget::begin_frame() const {
   glClearColor(0.f, 0.f, 0.f, 1.f);
   glClearDepthf(1.f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  constexpr GLfloat zero[4] = {0.f, 0.f, 0.f, 0.f};
+  for (int k = outputs() - census_outputs_; k < outputs(); ++k) glClearBufferfv(GL_COLOR, k, zero);
 }
 
 void RenderTarget::resolve() const {

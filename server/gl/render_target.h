@@ -38,19 +38,22 @@ class Fence {
 class RenderTarget {
  public:
   // samples = 0 renders single-sampled. `outputs` colour attachments of one format, drawn together
-  // (location k to attachment k). Errors when the driver cannot give the sample count or the outputs.
-  static Expected<RenderTarget> create(int width, int height, int samples, PixelFormat format, int outputs = 1);
+  // (location k to attachment k); the last `census_outputs` of them start each frame at zero, not at
+  // the canvas's opaque black (the grader's flags, shader/uniform_variants.h). Errors when the
+  // driver cannot give the sample count or the outputs.
+  static Expected<RenderTarget> create(int width, int height, int samples, PixelFormat format, int outputs = 1, int census_outputs = 0);
 
   int width() const { return width_; }
   int height() const { return height_; }
   int samples() const { return samples_; }  // what the driver actually allocated
   PixelFormat format() const { return format_; }
   int outputs() const { return static_cast<int>(color_.size()); }
+  int census_outputs() const { return census_outputs_; }
   size_t bytes_per_frame() const;                                     // one output's
   size_t bytes_per_read() const { return bytes_per_frame() * color_.size(); }  // every output's
 
   // Binds the target and sets the homework's frame state: viewport, clear colour (0,0,0,1),
-  // clear depth 1, depth test LEQUAL, no blending, no culling; then clears.
+  // clear depth 1, depth test LEQUAL, no blending, no culling; then clears (census outputs to 0).
   void begin_frame() const;
   // Queues the multisample resolve (no-op when single-sampled). Returns at once: the driver works
   // on it while the caller submits the next frame to another target.
@@ -67,7 +70,7 @@ class RenderTarget {
   // bound pack buffer.
   void read_pixels(void* dst) const;
 
-  int width_ = 0, height_ = 0, samples_ = 0;
+  int width_ = 0, height_ = 0, samples_ = 0, census_outputs_ = 0;
   PixelFormat format_ = PixelFormat::rgba8;
   FramebufferName draw_fbo_, resolve_fbo_;
   std::vector<RenderbufferName> color_, resolve_color_;  // one per output

@@ -71,7 +71,7 @@ std::vector<RenderedMistake> GradeSession::rendered_mistakes(const GradeSpec& sp
     render::RenderRequest mr = reference;
     mr.vertex = mk.vertex;
     mr.fragment = mk.fragment;
-    if (auto frames = render_under_lights(spec, mr, mesh, &mesh_key)) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
+    if (auto frames = cached_under_lights(spec, mr, mesh, mesh_key)) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
   }
   return mistakes;
 }
@@ -103,59 +103,40 @@ Expected<std::vector<render::RenderRequest>> GradeSession::under_lights(const Gr
   return lit;
 }
 
-// Every set of frames is rendered under the homework's light, then under each probe light. A
-// reference or a mistake goes through the caches light by light; the submission is drawn once for
-// every light (Renderer::render_together).
-Expected<SharedFrames> GradeSession::render_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
-                                                         const scene::Mesh& mesh, const std::string* cache_key) {
+// A reference's or a mistake's frames, under the homework's light and then each probe light,
+// light by light through the caches.
+Expected<SharedFrames> GradeSession::cached_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
+                                                         const scene::Mesh& mesh, const std::string& cache_key) {
   auto lit = under_lights(spec, base);
   if (!lit) return lit.take_error();
   SharedFrames all;
-  if (cache_key) {
-    for (const auto& r : *lit) {
-      auto frames = cached_frames(r, mesh, *cache_key);
-      if (!frames) return frames.take_error();
-      all.insert(all.end(), frames->begin(), frames->end());
-    }
-    return all;
+  for (const auto& r : *lit) {
+    auto frames = cached_frames(r, mesh, cache_key);
+    if (!frames) return frames.take_error();
+    all.insert(all.end(), frames->begin(), frames->end());
   }
-  std::vector<SharedFrames> each(lit->size());
-  auto rendered = renderer_.render_together(*lit, mesh, [&](int i, int, const image::Image& f, bool) {
-    each[static_cast<size_t>(i)].push_back(std::make_shared<const image::Image>(f));
-  });
-  if (!rendered) return rendered.take_error();
-  for (auto& frames : each) all.insert(all.end(), frames.begin(), frames.end());
   return all;
 }
 
-// NaN and infinities counted in each float frame as it is rendered; the frames themselves are not
-// kept (4 floats a pixel: 38 MB a light for 9 frames at 512 x 512).
-Expected<std::vector<image::NonFinite>> GradeSession::non_finite_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
-                                                                              const scene::Mesh& mesh, render::FloatSemantics semantics) {
+// The submission under every light, drawn together (Renderer::render_together), with the census
+// of its colours: the NaN and infinities the canvas would store as 0 or clamp.
+Expected<GradeSession::SubmissionFrames> GradeSession::submission_under_lights(const GradeSpec& spec,
+                                                                               const render::RenderRequest& base,
+                                                                               const scene::Mesh& mesh) {
   auto lit = under_lights(spec, base);
   if (!lit) return lit.take_error();
-  std::vector<std::vector<image::NonFinite>> each(lit->size());
-  auto rendered = renderer_.render_together(*lit, mesh, [&](int i, int, const image::Image& f, bool) {
-    each[static_cast<size_t>(i)].push_back(image::count_non_finite(f));
-  }, semantics);
+  std::vector<SharedFrames> frames(lit->size());
+  std::vector<std::vector<image::NonFinite>> counts(lit->size());
+  auto rendered = renderer_.render_together(
+      *lit, mesh, [&](int i, int, const image::Image& f, bool) { frames[static_cast<size_t>(i)].push_back(std::make_shared<const image::Image>(f)); },
+      [&](int i, int, const image::NonFinite& n) { counts[static_cast<size_t>(i)].push_back(n); });
   if (!rendered) return rendered.take_error();
-  std::vector<image::NonFinite> counts;
-  for (auto& c : each) counts.insert(counts.end(), c.begin(), c.end());
-  return counts;
-}
-
-// The canvas stores NaN as 0: the submission is rendered to floats as well to find it, with IEEE
-// arithmetic, since the browser's GPU shows a NaN that Mesa's optimiser may fold away. No
-// multisampling needed. If the invariant outputs do not build (a driver's limit), the program as
-// compiled is checked instead.
-Expected<std::vector<image::NonFinite>> GradeSession::float_check(const GradeSpec& spec, const render::RenderRequest& submission,
-                                                                  const scene::Mesh& mesh) {
-  render::RenderRequest as_float = submission;
-  as_float.pixel_type = image::PixelType::f32;
-  as_float.msaa = 0;
-  auto ieee = non_finite_under_lights(spec, as_float, mesh, render::FloatSemantics::ieee);
-  if (ieee) return ieee;
-  return non_finite_under_lights(spec, as_float, mesh, render::FloatSemantics::as_compiled);
+  SubmissionFrames out;
+  for (size_t i = 0; i < lit->size(); ++i) {
+    out.frames.insert(out.frames.end(), frames[i].begin(), frames[i].end());
+    out.non_finite.insert(out.non_finite.end(), counts[i].begin(), counts[i].end());
+  }
+  return out;
 }
 
 Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
@@ -168,12 +149,19 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   auto mesh = mesh_source();
   if (!mesh) return mesh.take_error();
 
+  // Everything the grade compares is drawn with IEEE arithmetic: the census then finds a NaN that
+  // Mesa's optimiser would fold away and the student's GPU may not (docs/grading.md). If the
+  // driver does not take the invariant outputs, the submission is graded as compiled.
   render::RenderRequest r = submission;
   r.pixel_type = image::PixelType::u8;
-  auto student = render_under_lights(spec, r, **mesh, nullptr);
+  r.semantics = render::FloatSemantics::ieee;
+  auto student = submission_under_lights(spec, r, **mesh);
+  if (!student && (student.error().code == ErrorCode::compile_failed || student.error().code == ErrorCode::link_failed)) {
+    render::RenderRequest as_compiled = r;
+    as_compiled.semantics = render::FloatSemantics::as_compiled;
+    student = submission_under_lights(spec, as_compiled, **mesh);
+  }
   if (!student) return ungradable(student.error());
-  auto student_non_finite = float_check(spec, r, **mesh);
-  if (!student_non_finite) return ungradable(student_non_finite.error());
   if (auto s = enter("grader"); !s) return s.take_error();
 
   // The reference gets the same uniform values as the submission: a grader that changes the
@@ -181,11 +169,11 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   render::RenderRequest ref = r;
   ref.vertex = spec.reference_vertex;
   ref.fragment = spec.reference_fragment;
-  auto reference = render_under_lights(spec, ref, **mesh, &mesh_key);
+  auto reference = cached_under_lights(spec, ref, **mesh, mesh_key);
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
   // The catalogue only for a submission that fails: a passing one needs no diagnosis.
-  GradeResult result = assess(*student, *student_non_finite, *reference, spec.options);
-  if (!result.pass) explain(result, *student, *reference, rendered_mistakes(spec, ref, **mesh, mesh_key), spec.options);
+  GradeResult result = assess(student->frames, student->non_finite, *reference, spec.options);
+  if (!result.pass) explain(result, student->frames, *reference, rendered_mistakes(spec, ref, **mesh, mesh_key), spec.options);
 
   std::vector<std::string> lights = {"homework"};
   for (const auto& p : spec.probes) lights.push_back(p.name);
@@ -199,7 +187,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
       out.report.messages.insert(out.report.messages.begin(), found.message);
     }
   std::vector<image::Image> heat;  // the homework light's frames
-  for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap(*(*student)[k], *(*reference)[k]));
+  for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap(*student->frames[k], *(*reference)[k]));
   if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat)))
     out.heatmap_png.assign(png->begin(), png->end());
   return out;

@@ -1,9 +1,9 @@
 #pragma once
 // Grading one submission on a renderer: the orchestration between the worker's dispatch and the
 // pure verdict in grader.h. The submission is rendered under the homework's light and each of the
-// checkpoint's probe lights, to 8-bit frames (what the canvas saves) and to float frames (where
-// NaN and infinity survive); the reference and every known mistake are rendered the same way with
-// the submission's uniform values, and grade() decides.
+// checkpoint's probe lights to 8-bit frames (what the canvas saves), with IEEE arithmetic and a
+// census of the NaN and infinities the canvas cannot show; the reference and every known mistake
+// are rendered the same way with the submission's uniform values, and grade() decides.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -85,12 +85,13 @@ class GradeSession {
   Expected<SharedFrames> at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles);
   // `base` under the homework's light, then under each probe light.
   Expected<std::vector<render::RenderRequest>> under_lights(const GradeSpec& spec, const render::RenderRequest& base);
-  Expected<SharedFrames> render_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
-                                             const std::string* cache_key);
-  Expected<std::vector<image::NonFinite>> float_check(const GradeSpec& spec, const render::RenderRequest& submission,
-                                                      const scene::Mesh& mesh);
-  Expected<std::vector<image::NonFinite>> non_finite_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
-                                                                  const scene::Mesh& mesh, render::FloatSemantics semantics);
+  Expected<SharedFrames> cached_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh,
+                                             const std::string& cache_key);
+  struct SubmissionFrames {
+    SharedFrames frames;                       // every light's, in order
+    std::vector<image::NonFinite> non_finite;  // each frame's, in the same order
+  };
+  Expected<SubmissionFrames> submission_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh);
   Expected<render::RenderRequest> with_light(const GradeSpec& spec, const render::RenderRequest& base,
                                              const std::array<float, 3>& position);
 

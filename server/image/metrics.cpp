@@ -152,6 +152,17 @@ NonFinite count_non_finite(const Image& f) {
   return out;
 }
 
+NonFinite count_census(const std::uint8_t* rgba, std::size_t pixels, bool second) {
+  NonFinite out;
+  const std::uint8_t* flags = rgba + (second ? 2 : 0);
+  for (std::size_t i = 0; i < pixels; ++i, flags += 4) {
+    const bool nan = flags[0] != 0;
+    out.nan += nan;
+    out.inf += !nan && flags[1] != 0;
+  }
+  return out;
+}
+
 Image heatmap(const Image& actual, const Image& expected) {
   Image out = Image::blank(actual.width, actual.height, PixelType::u8);
   for (std::size_t i = 0; i < out.bytes.size(); i += 4) {

@@ -38,11 +38,15 @@ FrameMetrics compare(const Image& actual, const Image& expected, const CompareOp
 // tables are most of it): what a grader comparing against many candidates needs.
 std::size_t failing_pixels(const Image& actual, const Image& expected, const CompareOptions& options = {});
 
-// NaN and infinite pixels of a float frame (any channel).
+// NaN and infinite pixels of a float frame (any channel; a pixel with both counts as NaN).
 struct NonFinite {
   std::size_t nan = 0, inf = 0;
 };
 NonFinite count_non_finite(const Image& float_frame);
+
+// The same counts from a census the grader's program drew (shader/uniform_variants.h): `pixels`
+// RGBA8 pixels, one run's flags in (R, G) or, with `second`, (B, A); a flag is any nonzero byte.
+NonFinite count_census(const std::uint8_t* rgba, std::size_t pixels, bool second);
 
 // Per-pixel maximum channel difference as a heat map: black, red, yellow, white at 1/8, 1/4, 1/2.
 Image heatmap(const Image& actual, const Image& expected);

@@ -19,7 +19,7 @@ void append_exact(std::string& key, double v) {
 std::string pixel_identity(const RenderRequest& r) {
   std::string key = r.vertex.text + '\0' + r.fragment.text + '\0';
   for (const double v : {double(r.width), double(r.height), double(r.frames), r.degrees_per_frame, double(r.msaa),
-                         double(r.pixel_type == image::PixelType::f32)})
+                         double(r.pixel_type == image::PixelType::f32), double(r.semantics == FloatSemantics::ieee)})
     append_exact(key, v);
   key += "angles:";
   for (const double a : r.angles) append_exact(key, a);

@@ -14,6 +14,12 @@
 
 namespace shadelab::render {
 
+// What the driver may do to the shaders' float arithmetic. as_compiled: what the student's program
+// gets everywhere (Mesa's optimiser rewrites algebra as GPU compilers do: x - x -> 0). ieee: the
+// outputs are declared invariant (shader/invariant_outputs.h), so no rewrite changes a value and a
+// NaN or Inf that IEEE arithmetic gives appears: what the grader draws (docs/grading.md).
+enum class FloatSemantics { as_compiled, ieee };
+
 struct RenderRequest {
   shader::ShaderFile vertex;
   shader::ShaderFile fragment;
@@ -26,6 +32,7 @@ struct RenderRequest {
   PageSetup page;                // the camera and the constant uniforms the page sets
   std::vector<UniformSetting> uniforms;  // the caller's values, over the page's
   image::PixelType pixel_type = image::PixelType::u8;  // f32: float target, for EXR
+  FloatSemantics semantics = FloatSemantics::as_compiled;
 };
 
 struct RenderLimits {

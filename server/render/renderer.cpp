@@ -71,9 +71,12 @@ struct Renderer::State {
     shader::UnwrappedSource vertex, fragment;
     std::vector<Diagnostic> webgl_warnings;  // the browser's own, which the driver does not give
     bool cached;
+    bool rewritten = false;  // by shader/uniform_variants.h: its runs' colours, then their census
+    shader::VariantOutputs outputs{1, 0};
   };
+  // With `variants`, one run for each of their requests; with `census`, the flags of every run.
   Expected<Built> build(const shader::ShaderFile& vf, const shader::ShaderFile& ff,
-                        FloatSemantics semantics = FloatSemantics::as_compiled, const Variants* variants = nullptr) {
+                        FloatSemantics semantics = FloatSemantics::as_compiled, const Variants* variants = nullptr, bool census = false) {
     const shader::SourceLimits limits{kRendererHardLimits.max_source_bytes};
     auto vertex = shader::unwrap(vf, shader::Stage::vertex, limits);
     if (!vertex) return vertex.take_error();
@@ -82,25 +85,28 @@ struct Renderer::State {
     if (auto same = shader::check_same_version(*vertex, *fragment, ff); !same) return same.take_error();
     auto webgl = shader::apply_webgl_rules(*vertex, *fragment, vf, ff);
     if (!webgl) return webgl.take_error();
-    if (variants) {  // same lines, and the new main after them
-      auto rewritten = shader::with_uniform_variants(*vertex, *fragment, variants->names, static_cast<int>(variants->values.size()),
-                                                     gl::max_outputs());
-      if (!rewritten) return rewritten.take_error();
-      fragment->glsl = std::move(*rewritten);
+    const int runs = variants ? static_cast<int>(variants->values.size()) : 1;
+    const bool rewritten = variants || census;
+    if (rewritten) {  // same lines, and the new main after them
+      auto glsl = shader::with_uniform_variants(*vertex, *fragment, variants ? variants->names : std::vector<std::string>{}, runs,
+                                                gl::max_outputs(), census);
+      if (!glsl) return glsl.take_error();
+      fragment->glsl = std::move(*glsl);
     }
+    const shader::VariantOutputs outputs = rewritten ? shader::variant_outputs(runs, census) : shader::VariantOutputs{1, 0};
     if (semantics == FloatSemantics::ieee) {  // same lines, so the line maps still hold
       vertex->glsl = shader::with_invariant_outputs(vertex->glsl, shader::Stage::vertex);
       fragment->glsl = shader::with_invariant_outputs(fragment->glsl, shader::Stage::fragment);
     }
     std::string key = vertex->glsl + '\0' + fragment->glsl;
     if (gl::Program* hit = programs.find(key))
-      return Built{hit, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), true};
+      return Built{hit, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), true, rewritten, outputs};
 
     std::optional<gl::BuildFailure> failure;
     gl::Program program = gl::Program::build(vertex->glsl, fragment->glsl, kBindings, failure);
     if (failure) return build_error(*failure, vf, ff, *vertex, *fragment, *webgl);
     gl::Program& kept = programs.insert(std::move(key), std::move(program), 0);
-    return Built{&kept, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), false};
+    return Built{&kept, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), false, rewritten, outputs};
   }
 
   static Error build_error(const gl::BuildFailure& f, const shader::ShaderFile& vf, const shader::ShaderFile& ff,
@@ -165,14 +171,15 @@ struct Renderer::State {
   }
 
   // The pair of targets for this request's size, samples and format, reused between jobs.
-  Expected<std::array<gl::RenderTarget*, 2>> render_targets(const RenderRequest& r, int outputs) {
+  Expected<std::array<gl::RenderTarget*, 2>> render_targets(const RenderRequest& r, shader::VariantOutputs outputs) {
     const auto format = r.pixel_type == image::PixelType::u8 ? gl::PixelFormat::rgba8 : gl::PixelFormat::rgba32f;
     const bool reusable = targets[0] && targets[0]->width() == r.width && targets[0]->height() == r.height &&
-                          targets[0]->format() == format && requested_samples == r.msaa && targets[0]->outputs() == outputs;
+                          targets[0]->format() == format && requested_samples == r.msaa && targets[0]->outputs() == outputs.total() &&
+                          targets[0]->census_outputs() == outputs.census;
     if (!reusable) {
       targets = {};
       for (auto& t : targets) {
-        auto created = gl::RenderTarget::create(r.width, r.height, r.msaa, format, outputs);
+        auto created = gl::RenderTarget::create(r.width, r.height, r.msaa, format, outputs.total(), outputs.census);
         if (!created) return created.take_error();
         t = std::move(*created);
       }
@@ -182,9 +189,10 @@ struct Renderer::State {
   }
   int requested_samples = -1;
 
-  // The frames of `request` (of every request in `variants`, one output each) with a program built for it.
+  // The frames of `request` (of every request in `variants`, one output each) with a program built
+  // for it; a float frame's non-finite colours, or the census the program draws, to `census`.
   Expected<RenderReport> draw(const RenderRequest& request, const scene::Mesh& mesh, const Built& built, const Variants* variants,
-                              Clock::time_point start, const IndexedSink& sink) {
+                              Clock::time_point start, const IndexedSink& sink, const CensusSink& census) {
     RenderReport report;
     report.program_cached = built.cached;
     report.times.compile_ms = built.cached ? 0.0 : ms_since(start);
@@ -209,7 +217,7 @@ struct Renderer::State {
       }
     }
 
-    const int outputs = variants ? static_cast<int>(variants->values.size()) : 1;
+    const shader::VariantOutputs outputs = built.outputs;
     auto pair = render_targets(request, outputs);
     if (!pair) return pair.take_error();
     report.samples = (*pair)[0]->samples();
@@ -227,7 +235,7 @@ struct Renderer::State {
     // as in the browser's fresh program (and as the plan's warnings say).
     program.zero_uniforms();
     for (const auto& c : plan->constant) program.set_uniform(*c.uniform, c.values);
-    if (variants) set_variants(program, *variants);
+    if (built.rewritten) set_variants(program, variants, outputs.colours);
 
     staging.resize((*pair)[0]->bytes_per_read());
     const size_t frame_bytes = (*pair)[0]->bytes_per_frame();
@@ -235,7 +243,7 @@ struct Renderer::State {
     const auto read_and_emit = [&](int k) {
       const auto read_start = Clock::now();
       if (auto read = (*pair)[static_cast<size_t>(k % 2)]->finish_read(staging.data()); !read) return read;
-      for (int o = 0; o < outputs; ++o) {
+      for (int o = 0; o < outputs.colours; ++o) {
         const auto convert_start = Clock::now();
         const std::uint8_t* pixels = staging.data() + static_cast<size_t>(o) * frame_bytes;
         bool opaque = false;
@@ -243,10 +251,16 @@ struct Renderer::State {
           opaque = image::canvas_blob_from_readback(pixels, frame);
         else
           image::float_from_readback(reinterpret_cast<const float*>(pixels), frame);
+        if (census && request.pixel_type == image::PixelType::f32) census(o, k, image::count_non_finite(frame));
         report.times.readback_ms += ms_since(o == 0 ? read_start : convert_start);
         const auto sink_start = Clock::now();
         sink(o, k, frame, opaque);
         report.times.sink_ms += ms_since(sink_start);
+      }
+      const size_t pixels = static_cast<size_t>(request.width) * static_cast<size_t>(request.height);
+      for (int j = 0; j < outputs.census; ++j) {  // runs 2j and 2j + 1
+        const std::uint8_t* flags = staging.data() + static_cast<size_t>(outputs.colours + j) * frame_bytes;
+        for (int run = 2 * j; run < std::min(2 * j + 2, outputs.colours); ++run) census(run, k, image::count_census(flags, pixels, run % 2 == 1));
       }
       return Status{Ok{}};
     };
@@ -276,19 +290,20 @@ struct Renderer::State {
     return report;
   }
 
-  // Each request's values for the uniforms it differs in, into the rewritten program's arrays.
-  static void set_variants(const gl::Program& program, const Variants& v) {
+  // The rewritten program's run count, and each request's values for the uniforms they differ in
+  // into its arrays (none for the census alone: one run).
+  static void set_variants(const gl::Program& program, const Variants* v, int runs) {
     const auto active = [&](const std::string& name) -> const gl::ActiveVariable* {
       for (const auto& u : program.uniforms())
         if (u.name == name || u.name == name + "[0]") return &u;
       return nullptr;
     };
-    for (size_t n = 0; n < v.names.size(); ++n) {
+    for (size_t n = 0; v && n < v->names.size(); ++n) {
       std::vector<float> all;
-      for (const auto& values : v.values) all.insert(all.end(), values.begin() + static_cast<long>(3 * n), values.begin() + static_cast<long>(3 * n + 3));
-      if (const auto* u = active(shader::variant_uniform(v.names[n]))) program.set_uniform(*u, all);
+      for (const auto& values : v->values) all.insert(all.end(), values.begin() + static_cast<long>(3 * n), values.begin() + static_cast<long>(3 * n + 3));
+      if (const auto* u = active(shader::variant_uniform(v->names[n]))) program.set_uniform(*u, all);
     }
-    if (const auto* count = active(shader::kVariantCount)) program.set_uniform(*count, std::vector<float>{static_cast<float>(v.values.size())});
+    if (const auto* count = active(shader::kVariantCount)) program.set_uniform(*count, std::vector<float>{static_cast<float>(runs)});
   }
 
   // What `requests` differ in, judged on the uniform values each would upload to the program.
@@ -371,34 +386,58 @@ Expected<CompileReport> Renderer::compile(const shader::ShaderFile& vertex, cons
 }
 
 Expected<RenderReport> Renderer::render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink,
-                                        FloatSemantics semantics) {
+                                        const CensusSink& census) {
   const auto start = Clock::now();
   if (auto valid = validate(request, kRendererHardLimits); !valid) return valid.take_error();
-  auto built = state_->build(request.vertex, request.fragment, semantics);
-  if (!built) return built.take_error();
-  return state_->draw(request, mesh, *built, nullptr, start, [&](int, int k, const image::Image& f, bool opaque) { sink(k, f, opaque); });
+  const auto frame_sink = [&](int, int k, const image::Image& f, bool opaque) { sink(k, f, opaque); };
+  const bool drawn_census = census && request.pixel_type == image::PixelType::u8;
+  auto built = state_->build(request.vertex, request.fragment, request.semantics, nullptr, drawn_census);
+  if (built || !drawn_census) {
+    if (!built) return built.take_error();
+    return state_->draw(request, mesh, *built, nullptr, start, frame_sink, census);
+  }
+  // The census could not be added (GLSL ES 1.00, several outputs): the frames as drawn, and the
+  // colours counted in a float render of their own, at pixel centres.
+  auto plain = state_->build(request.vertex, request.fragment, request.semantics);
+  if (!plain) return plain.take_error();
+  auto report = state_->draw(request, mesh, *plain, nullptr, start, frame_sink, {});
+  if (!report) return report;
+  RenderRequest as_float = request;
+  as_float.pixel_type = image::PixelType::f32;
+  as_float.msaa = 0;
+  auto counted = render(as_float, mesh, [](int, const image::Image&, bool) {}, census);
+  if (!counted) return counted.take_error();
+  report->passes = 2;
+  return report;
 }
 
 Expected<RenderReport> Renderer::render_together(const std::vector<RenderRequest>& requests, const scene::Mesh& mesh,
-                                                 const IndexedSink& sink, FloatSemantics semantics) {
+                                                 const IndexedSink& sink, const CensusSink& census) {
   const auto start = Clock::now();
   if (requests.empty()) return RenderReport{};
   auto variants = state_->variants_of(requests);
   if (!variants) return variants.take_error();
-  // Request i's render, its frames handed on as those of the requests it stands for.
+  // Request i's render, its frames (and census) handed on as those of the requests it stands for.
   const auto render_for = [&](size_t i, size_t first, size_t last) {
+    CensusSink counts;
+    if (census)
+      counts = [&](int, int k, const image::NonFinite& n) {
+        for (size_t to = first; to <= last; ++to) census(static_cast<int>(to), k, n);
+      };
     return render(requests[i], mesh, [&](int k, const image::Image& f, bool opaque) {
       for (size_t to = first; to <= last; ++to) sink(static_cast<int>(to), k, f, opaque);
-    }, semantics);
+    }, counts);
   };
   const auto a_pass_each = [&]() -> Expected<RenderReport> {
     RenderReport report;
+    int passes = 0;
     for (size_t i = 0; i < requests.size(); ++i) {
       auto r = render_for(i, i, i);
       if (!r) return r;
+      passes += r->passes;
       report = std::move(*r);
     }
-    report.passes = static_cast<int>(requests.size());
+    report.passes = passes;
     return report;
   };
   switch (variants->kind) {
@@ -406,9 +445,10 @@ Expected<RenderReport> Renderer::render_together(const std::vector<RenderRequest
     case Variants::Kind::apart: return a_pass_each();
     case Variants::Kind::uniforms: break;
   }
-  auto built = state_->build(requests[0].vertex, requests[0].fragment, semantics, &*variants);
+  const RenderRequest& first = requests[0];
+  auto built = state_->build(first.vertex, first.fragment, first.semantics, &*variants, census && first.pixel_type == image::PixelType::u8);
   if (!built) return a_pass_each();  // the rewrite declined, or the driver did not take it
-  return state_->draw(requests[0], mesh, *built, &*variants, start, sink);
+  return state_->draw(first, mesh, *built, &*variants, start, sink, census);
 }
 
 }  // namespace shadelab::render

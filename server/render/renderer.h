@@ -8,6 +8,7 @@
 #include "core/expected.h"
 #include "egl/headless_context.h"
 #include "gl/render_target.h"
+#include "image/metrics.h"
 #include "render/render_request.h"
 #include "scene/mesh.h"
 
@@ -21,11 +22,10 @@ struct CompileReport {
   bool cached = false;
 };
 
-// What the driver may do to the shaders' float arithmetic. as_compiled: what the student's program
-// gets everywhere (Mesa's optimiser rewrites algebra as GPU compilers do: x - x -> 0). ieee: the
-// outputs are declared invariant (shader/invariant_outputs.h), so no rewrite changes a value and a
-// NaN or Inf that IEEE arithmetic gives appears: the grader's float check.
-enum class FloatSemantics { as_compiled, ieee };
+// The NaN and infinities in the colour a frame's fragments wrote before the canvas stored it in 8
+// bits (NaN as 0, infinity clamped), per request and frame: the grader's float check. Counted by
+// the draw itself, at every sample the frame holds (docs/grading.md, "The NaN the student saw").
+using CensusSink = std::function<void(int request, int frame, const image::NonFinite& counts)>;
 
 class Renderer {
  public:
@@ -50,9 +50,10 @@ class Renderer {
 
   // Unwraps, compiles, links and reflects; renders nothing.
   Expected<CompileReport> compile(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment);
-  // Renders request.frames frames of `mesh`, handing each to `sink` as soon as it is read back.
+  // Renders request.frames frames of `mesh`, handing each to `sink` as soon as it is read back;
+  // with a `census`, each frame's count of non-finite colours to it as well.
   Expected<RenderReport> render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink,
-                                FloatSemantics semantics = FloatSemantics::as_compiled);
+                                const CensusSink& census = {});
 
   // Requests that differ only in the values of vec3 uniforms (the grader's lights), their frames
   // handed to `sink` with the request's index: in one pass over the geometry, the fragment shader
@@ -61,7 +62,7 @@ class Renderer {
   // Requests that differ in nothing are rendered once. `report.passes` says how many it took.
   using IndexedSink = std::function<void(int request, int frame, const image::Image& image, bool opaque)>;
   Expected<RenderReport> render_together(const std::vector<RenderRequest>& requests, const scene::Mesh& mesh, const IndexedSink& sink,
-                                         FloatSemantics semantics = FloatSemantics::as_compiled);
+                                         const CensusSink& census = {});
 
  private:
   struct State;

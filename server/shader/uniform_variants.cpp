@@ -53,18 +53,38 @@ Edit blank(std::string_view glsl, size_t at, size_t length) {
   return {at, length, std::move(spaces)};
 }
 
-std::string epilogue(const std::vector<std::string>& names, const std::string& output, int runs) {
+// (NaN, infinity) of a colour, each 0 or 1, from its bits alone (see the header).
+constexpr std::string_view kNonFinite =
+    "highp vec2 shadelab_non_finite(highp vec4 c) {\n"
+    "  highp uvec4 bits = floatBitsToUint(c);\n"
+    "  highp uvec4 all_ones = (((bits >> 23u) & 0xffu) + 1u) >> 8u;\n"
+    "  highp uvec4 nan = all_ones * min(bits & 0x7fffffu, uvec4(1u));\n"
+    "  highp uvec4 inf = all_ones - nan;\n"
+    "  return vec2(float(max(max(nan.x, nan.y), max(nan.z, nan.w))), float(max(max(inf.x, inf.y), max(inf.z, inf.w))));\n"
+    "}\n";
+
+std::string colour(int k) { return "shadelab_colour[" + std::to_string(k) + "]"; }
+
+std::string epilogue(const std::vector<std::string>& names, const std::string& output, int runs, bool census) {
   const std::string n = std::to_string(runs);
+  const VariantOutputs outputs = variant_outputs(runs, census);
   std::string s = "\n// One pass for every light (ShadeLab's grader): the code above runs once per light.\n";
   for (const auto& name : names) s += "uniform highp vec3 " + variant_uniform(name) + "[" + n + "];\n";
   s += "uniform highp int " + std::string(kVariantCount) + ";\n";
-  for (int k = 0; k < runs; ++k)
-    s += "layout(location = " + std::to_string(k) + ") out highp vec4 shadelab_output_" + std::to_string(k) + ";\n";
+  for (int k = 0; k < outputs.total(); ++k)
+    s += "layout(location = " + std::to_string(k) + ") out highp vec4 " +
+         (k < runs ? "shadelab_output_" + std::to_string(k) : "shadelab_census_" + std::to_string(k - runs)) + ";\n";
+  if (census) s += kNonFinite;
   s += "void main() {\n  highp vec4 shadelab_colour[" + n + "];\n";
   s += "  for (int shadelab_k = 0; shadelab_k < " + std::string(kVariantCount) + "; ++shadelab_k) {\n";
   for (const auto& name : names) s += "    " + name + " = " + variant_uniform(name) + "[shadelab_k];\n";
   s += "    " + std::string(kRun) + "();\n    shadelab_colour[shadelab_k] = " + output + ";\n  }\n";
-  for (int k = 0; k < runs; ++k) s += "  shadelab_output_" + std::to_string(k) + " = shadelab_colour[" + std::to_string(k) + "];\n";
+  for (int k = 0; k < runs; ++k) s += "  shadelab_output_" + std::to_string(k) + " = " + colour(k) + ";\n";
+  for (int j = 0; j < outputs.census; ++j) {
+    const int second = 2 * j + 1;
+    s += "  shadelab_census_" + std::to_string(j) + " = vec4(shadelab_non_finite(" + colour(2 * j) + "), " +
+         (second < runs ? "shadelab_non_finite(" + colour(second) + ")" : "vec2(0.0)") + ");\n";
+  }
   return s + "}\n";
 }
 
@@ -72,10 +92,15 @@ std::string epilogue(const std::vector<std::string>& names, const std::string& o
 
 std::string variant_uniform(std::string_view name) { return std::string(kPrefix) + "variant_" + std::string(name); }
 
+VariantOutputs variant_outputs(int runs, bool census) { return {runs, census ? (runs + 1) / 2 : 0}; }
+
 Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const UnwrappedSource& fragment,
-                                            const std::vector<std::string>& names, int runs, int max_outputs) {
+                                            const std::vector<std::string>& names, int runs, int max_outputs, bool census) {
   if (fragment.version != GlslVersion::es300) return declined("GLSL ES 1.00 has one output");
-  if (runs < 1 || runs > max_outputs) return declined(std::to_string(runs) + " runs, " + std::to_string(max_outputs) + " outputs");
+  const int outputs = variant_outputs(runs, census).total();
+  if (runs < 1 || outputs > max_outputs)
+    return declined(std::to_string(runs) + " runs need " + std::to_string(outputs) + " outputs, " + std::to_string(max_outputs) + " are drawn at once");
+  const bool several = runs > 1;  // what one run decides or leaves behind matters only to the next
   for (const auto& w : scan_glsl(vertex.glsl).identifiers)
     if (std::find(names.begin(), names.end(), w.text) != names.end()) return declined("the vertex shader uses " + w.text);
 
@@ -83,7 +108,7 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
   std::vector<Edit> edits;
   bool has_main = false;
   for (const auto& w : scan.identifiers) {
-    if (w.text == "discard" || w.text == "gl_FragDepth") return declined("the shader uses " + w.text);
+    if (several && (w.text == "discard" || w.text == "gl_FragDepth")) return declined("the shader uses " + w.text);
     if (w.text.compare(0, kPrefix.size(), kPrefix) == 0) return declined("the shader has a name of ShadeLab's own (" + w.text + ")");
     if (w.text == "main") {
       has_main = true;
@@ -95,7 +120,7 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
   std::string output;
   std::map<std::string, int> declared;  // each name's plain declarations
   for (const auto& s : scan.statements) {
-    if (shared_between_runs(s)) return declined("the global " + s.names.front() + " could carry one run's value into the next");
+    if (several && shared_between_runs(s)) return declined("the global " + s.names.front() + " could carry one run's value into the next");
     if (s.has("out") && !s.has_parameters) {
       if (!output.empty() || s.names.size() != 1 || s.has_brackets || !s.has("vec4")) return declined("more than one vec4 output");
       output = s.names.front();
@@ -114,7 +139,7 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
   if (output.empty()) return declined("no output");
   for (const auto& name : names)
     if (declared[name] != 1) return declined(name + " is declared " + std::to_string(declared[name]) + " times");
-  return applied(fragment.glsl, std::move(edits)) + epilogue(names, output, runs);
+  return applied(fragment.glsl, std::move(edits)) + epilogue(names, output, runs, census);
 }
 
 }  // namespace shadelab::shader

@@ -131,7 +131,8 @@ json request_json(const render::RenderRequest& r) {
   for (const auto& u : r.uniforms) uniforms.push_back({{"name", u.name}, {"values", u.values}});
   return {{"vertex", file_json(r.vertex)}, {"fragment", file_json(r.fragment)}, {"width", r.width}, {"height", r.height},
           {"frames", r.frames}, {"degreesPerFrame", r.degrees_per_frame}, {"angles", r.angles}, {"msaa", r.msaa},
-          {"page", page_json(r.page)}, {"uniforms", uniforms}, {"pixelType", r.pixel_type == image::PixelType::f32 ? "f32" : "u8"}};
+          {"page", page_json(r.page)}, {"uniforms", uniforms}, {"pixelType", r.pixel_type == image::PixelType::f32 ? "f32" : "u8"},
+          {"semantics", r.semantics == render::FloatSemantics::ieee ? "ieee" : "asCompiled"}};
 }
 
 render::RenderRequest request_from(const json& j) {
@@ -147,6 +148,7 @@ render::RenderRequest request_from(const json& j) {
   r.page = page_from(j.at("page"));
   for (const auto& u : j.at("uniforms")) r.uniforms.push_back({u.at("name"), u.at("values").get<std::vector<double>>()});
   r.pixel_type = j.at("pixelType") == "f32" ? image::PixelType::f32 : image::PixelType::u8;
+  r.semantics = j.at("semantics") == "ieee" ? render::FloatSemantics::ieee : render::FloatSemantics::as_compiled;
   return r;
 }
 
