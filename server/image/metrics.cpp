@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -32,45 +33,57 @@ bool blend_on_outline(const std::uint8_t* a, const Image& expected, int x, int y
   return true;
 }
 
-// Mean SSIM of luma over 7 x 7 windows, from summed-area tables (O(pixels)).
+// Mean SSIM of luma over 7 x 7 windows. Luma stays an integer (Rec. 601 in thousandths: 299 R +
+// 587 G + 114 B), so each window's sums are exact in 64 bits, kept as running sums: a row's column
+// sums move down a row at a time and a window's sums right a column at a time, O(pixels).
 double mean_ssim(const Image& a, const Image& b) {
-  const int w = a.width, h = a.height, r = 3;
-  if (w < 2 * r + 1 || h < 2 * r + 1) return 1.0;
-  const auto luma = [](const Image& img, std::size_t i) {
-    const std::uint8_t* p = img.bytes.data() + i * 4;
-    return (0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2]) / 255.0;
+  const int w = a.width, h = a.height, r = 3, side = 2 * r + 1;
+  if (w < side || h < side) return 1.0;
+  const auto luma = [&](const Image& img) {
+    std::vector<std::int64_t> y(static_cast<std::size_t>(w) * h);
+    for (std::size_t i = 0; i < y.size(); ++i) {
+      const std::uint8_t* p = img.bytes.data() + i * 4;
+      y[i] = 299 * p[0] + 587 * p[1] + 114 * p[2];
+    }
+    return y;
   };
-  const std::size_t stride = static_cast<std::size_t>(w) + 1;
-  std::vector<double> sx(stride * (h + 1)), sy(sx.size()), sxx(sx.size()), syy(sx.size()), sxy(sx.size());
-  for (int y = 0; y < h; ++y)
+  const std::vector<std::int64_t> la = luma(a), lb = luma(b);
+  struct Sums {
+    std::int64_t x = 0, y = 0, xx = 0, yy = 0, xy = 0;
+    void add(std::int64_t va, std::int64_t vb, std::int64_t sign) {
+      x += sign * va, y += sign * vb, xx += sign * va * va, yy += sign * vb * vb, xy += sign * va * vb;
+    }
+    void add(const Sums& o, std::int64_t sign) { x += sign * o.x, y += sign * o.y, xx += sign * o.xx, yy += sign * o.yy, xy += sign * o.xy; }
+  };
+  std::vector<Sums> column(static_cast<std::size_t>(w));  // over rows [top, top + side) of each column
+  const auto add_row = [&](int row, std::int64_t sign) {
     for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * w + x;
-      const double va = luma(a, i), vb = luma(b, i);
-      const std::size_t s = (y + 1) * stride + (x + 1), up = y * stride + (x + 1), left = (y + 1) * stride + x, diag = y * stride + x;
-      sx[s] = va + sx[up] + sx[left] - sx[diag];
-      sy[s] = vb + sy[up] + sy[left] - sy[diag];
-      sxx[s] = va * va + sxx[up] + sxx[left] - sxx[diag];
-      syy[s] = vb * vb + syy[up] + syy[left] - syy[diag];
-      sxy[s] = va * vb + sxy[up] + sxy[left] - sxy[diag];
+      const std::size_t i = static_cast<std::size_t>(row) * w + x;
+      column[static_cast<std::size_t>(x)].add(la[i], lb[i], sign);
     }
-  const auto box = [&](const std::vector<double>& t, int x0, int y0, int x1, int y1) {
-    return t[y1 * stride + x1] - t[y0 * stride + x1] - t[y1 * stride + x0] + t[y0 * stride + x0];
   };
-  constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
-  const double n = (2 * r + 1) * (2 * r + 1);
+  for (int row = 0; row < side; ++row) add_row(row, 1);
+  constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03, scale = 255.0 * 1000.0;
+  const double n = side * side, to_mean = 1.0 / (n * scale), to_square = 1.0 / (n * scale * scale);
   double total = 0;
-  std::size_t windows = 0;
-  for (int y = r; y < h - r; ++y)
-    for (int x = r; x < w - r; ++x) {
-      const int x0 = x - r, y0 = y - r, x1 = x + r + 1, y1 = y + r + 1;
-      const double ma = box(sx, x0, y0, x1, y1) / n, mb = box(sy, x0, y0, x1, y1) / n;
-      const double va = std::max(0.0, box(sxx, x0, y0, x1, y1) / n - ma * ma);
-      const double vb = std::max(0.0, box(syy, x0, y0, x1, y1) / n - mb * mb);
-      const double cov = box(sxy, x0, y0, x1, y1) / n - ma * mb;
+  for (int top = 0;; ++top) {
+    Sums window;
+    for (int x = 0; x < side; ++x) window.add(column[static_cast<std::size_t>(x)], 1);
+    for (int left = 0;; ++left) {
+      const double ma = static_cast<double>(window.x) * to_mean, mb = static_cast<double>(window.y) * to_mean;
+      const double va = std::max(0.0, static_cast<double>(window.xx) * to_square - ma * ma);
+      const double vb = std::max(0.0, static_cast<double>(window.yy) * to_square - mb * mb);
+      const double cov = static_cast<double>(window.xy) * to_square - ma * mb;
       total += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
-      ++windows;
+      if (left + side == w) break;
+      window.add(column[static_cast<std::size_t>(left + side)], 1);
+      window.add(column[static_cast<std::size_t>(left)], -1);
     }
-  return total / static_cast<double>(windows);
+    if (top + side == h) break;
+    add_row(top + side, 1);
+    add_row(top, -1);
+  }
+  return total / (static_cast<double>(w - side + 1) * (h - side + 1));
 }
 
 // Whether the pixel at (x, y), already known to differ by more than `limit`, still fails after
