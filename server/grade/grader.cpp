@@ -34,12 +34,16 @@ struct AgainstCandidate {
   double mean_failing = 0;
 };
 
+// One frame's failing share of the object with `candidate` standing in for the reference.
+double failing_share(const image::Image& frame, const image::Image& candidate, const GradeOptions& options) {
+  const double pixels = static_cast<double>(frame.width) * frame.height;
+  return failing_of_object(frame, candidate, static_cast<double>(image::failing_pixels(frame, candidate, options.compare)) / pixels);
+}
+
 AgainstCandidate against(const SharedFrames& student, const SharedFrames& candidate, const GradeOptions& options) {
   AgainstCandidate out;
   for (size_t k = 0; k < student.size(); ++k) {
-    const image::Image& a = *student[k];
-    const double pixels = static_cast<double>(a.width) * a.height;
-    const double failing = failing_of_object(a, *candidate[k], static_cast<double>(image::failing_pixels(a, *candidate[k], options.compare)) / pixels);
+    const double failing = failing_share(*student[k], *candidate[k], options);
     out.matching += failing <= options.max_failing_fraction;
     out.mean_failing += failing;
   }
@@ -49,22 +53,24 @@ AgainstCandidate against(const SharedFrames& student, const SharedFrames& candid
   return out;
 }
 
-// The student's frames with RGB permuted: does some order other than R, G, B match the reference?
+image::Image with_channels(const image::Image& frame, const std::array<int, 3>& order) {
+  image::Image out = frame;
+  for (size_t i = 0; i < out.bytes.size(); i += 4)
+    for (int c = 0; c < 3; ++c) out.bytes[i + static_cast<size_t>(c)] = frame.bytes[i + static_cast<size_t>(order[static_cast<size_t>(c)])];
+  return out;
+}
+
+// The student's frames with RGB permuted: does some order other than R, G, B match the reference
+// in every frame? An order is given up at its first frame that does not match.
 std::string swapped_channels(const SharedFrames& student, const SharedFrames& reference,
                              const GradeOptions& options) {
   constexpr std::array<std::array<int, 3>, 5> orders = {{{0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
   const char* names = "RGB";
   for (const auto& order : orders) {
-    SharedFrames permuted;
-    for (const auto& frame : student) {
-      auto f = std::make_shared<image::Image>(*frame);
-      for (size_t i = 0; i < f->bytes.size(); i += 4) {
-        const std::uint8_t rgb[3] = {f->bytes[i], f->bytes[i + 1], f->bytes[i + 2]};
-        for (int c = 0; c < 3; ++c) f->bytes[i + c] = rgb[order[c]];
-      }
-      permuted.push_back(std::move(f));
-    }
-    if (against(permuted, reference, options).matching == 1.0)
+    bool every = true;
+    for (size_t k = 0; k < student.size() && every; ++k)
+      every = failing_share(with_channels(*student[k], order), *reference[k], options) <= options.max_failing_fraction;
+    if (every)
       return std::string("colour channels swapped: your (") + names[order[0]] + ", " + names[order[1]] + ", " +
              names[order[2]] + ") would match the reference's (R, G, B)";
   }
