@@ -9,6 +9,7 @@
 
 #include "core/base64.h"
 #include "core/lru_cache.h"
+#include "grade/grade_session.h"
 #include "grade/reference_cache.h"
 #include "grade/starter_constants.h"
 #include "scene/mesh.h"
@@ -491,4 +492,31 @@ TEST(StarterConstantsTest, TheFirstAssignedLiteralIsReadAndNothingElse) {
   std::string names;
   for (int i = 0; i < 60000; ++i) names += "specularAlpha ";
   EXPECT_EQ(found(names), "");
+}
+
+// The heat map is drawn only where somebody looks at it: always for the page (and --heatmap), for a
+// failing grade only in Gradescope (a passing test shows none), never in a class batch.
+TEST(GradeHeatMapTest, IsDrawnOnlyWhereItIsShown) {
+  const course::Course& c = testkit::course();
+  grade::GradeSpec spec = c.grade_spec(*c.checkpoint("specular")->checkpoint, {});
+  const auto* right = c.preset("specular");
+  const auto* wrong = c.preset("diffuse");
+  grade::GradeSession session(testkit::shared_renderer());
+  const auto heatmap = [&](grade::HeatMap policy, const course::Preset& p) {
+    spec.heatmap = policy;
+    render::RenderRequest r = c.render_request(p.vertex, p.fragment);
+    r.frames = 1;
+    r.width = r.height = 64;
+    auto out = session.grade(spec, r, [] { return Expected<const scene::Mesh*>(&testkit::builtin(testkit::course().default_mesh)); },
+                             "bunny", [](const char*) -> Status { return Ok{}; });
+    EXPECT_TRUE(out) << out.error().format();
+    EXPECT_EQ(out->report.pass, &p == right);
+    return out ? out->heatmap_png : std::string();
+  };
+  EXPECT_FALSE(heatmap(grade::HeatMap::always, *right).empty());
+  EXPECT_FALSE(heatmap(grade::HeatMap::always, *wrong).empty());
+  EXPECT_TRUE(heatmap(grade::HeatMap::when_failing, *right).empty());
+  EXPECT_FALSE(heatmap(grade::HeatMap::when_failing, *wrong).empty());
+  EXPECT_TRUE(heatmap(grade::HeatMap::never, *right).empty());
+  EXPECT_TRUE(heatmap(grade::HeatMap::never, *wrong).empty());
 }

@@ -44,6 +44,8 @@ TEST(WireTest, AGradeJobCarriesItsWholeSpec) {
   job.fit = scene::Bounds{{-1, 0, -1}, {1, 4, 1}};
   job.grade = c.grade_spec(*c.checkpoint("specular")->checkpoint, {});
   job.grade.options.max_score = 7;
+  job.grade.heatmap = grade::HeatMap::when_failing;
+  job.request.semantics = render::FloatSemantics::ieee;
   job.grade.reference_store = {"/var/cache/shadelab", {.url = "redis://cache:6380/1", .timeout = std::chrono::milliseconds(900),
                                                        .retry_after = std::chrono::milliseconds(3000),
                                                        .time_to_live = std::chrono::seconds(3600), .max_value_bytes = 1u << 20}};
@@ -55,6 +57,8 @@ TEST(WireTest, AGradeJobCarriesItsWholeSpec) {
   EXPECT_EQ(back->grade.probes.size(), job.grade.probes.size());
   EXPECT_EQ(back->grade.probes[0].light_position, job.grade.probes[0].light_position);
   EXPECT_EQ(back->grade.options.max_score, 7);
+  EXPECT_EQ(back->grade.heatmap, grade::HeatMap::when_failing);
+  EXPECT_EQ(back->request.semantics, render::FloatSemantics::ieee);
   EXPECT_EQ(back->grade.light_position_uniforms, job.grade.light_position_uniforms);
   EXPECT_EQ(back->grade.starter_constants.size(), 1u);
   EXPECT_EQ(back->grade.reference_store.folder, "/var/cache/shadelab");

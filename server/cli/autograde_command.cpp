@@ -39,10 +39,8 @@ struct AutogradeFlags {
   std::string submission, results, heatmaps;
 };
 
-// Each deliverable's files, and its grades: every job queued at once (the pool's workers take them
-// in parallel), the code's against the reference and the frames' (with the code) side by side.
-std::vector<DeliverableGrades> grade_all(worker::WorkerPool& pool, const course::Course& course, const AutogradeFlags& f,
-                                         const std::vector<fs::path>& files) {
+// Each deliverable's files: its shader pair and its saved frames, where the submission has them.
+std::vector<DeliverableGrades> deliverables(const course::Course& course, const AutogradeFlags& f, const std::vector<fs::path>& files) {
   const std::vector<course::CheckpointFiles> plan = course::plan_checkpoints(course, files);
   std::vector<DeliverableGrades> out;
   for (const auto& k : course.checkpoints) {
@@ -51,6 +49,19 @@ std::vector<DeliverableGrades> grade_all(worker::WorkerPool& pool, const course:
       if (p.checkpoint == k.name) d.code = p.pair;
     out.push_back(std::move(d));
   }
+  return out;
+}
+
+// The grade jobs `out` needs: one for each deliverable's code and one for its frames.
+int jobs_for(const std::vector<DeliverableGrades>& out) {
+  int jobs = 0;
+  for (const auto& d : out) jobs += (d.code ? 1 : 0) + (d.frames.any() ? 1 : 0);
+  return jobs;
+}
+
+// Each deliverable's grades: every job queued at once (the pool's workers take them in parallel),
+// the code's against the reference and the frames' (with the code) side by side.
+void grade_all(worker::WorkerPool& pool, const course::Course& course, const AutogradeFlags& f, std::vector<DeliverableGrades>& out) {
   std::vector<std::future<std::optional<Expected<Graded>>>> code;
   std::vector<std::future<std::optional<Expected<GradedFrames>>>> frames;
   for (const auto& d : out) {
@@ -70,7 +81,6 @@ std::vector<DeliverableGrades> grade_all(worker::WorkerPool& pool, const course:
     out[i].code_grade = code[i].get();
     out[i].frames_grade = frames[i].get();
   }
-  return out;
 }
 
 int run_autograde(const AutogradeFlags& f) {
@@ -78,8 +88,11 @@ int run_autograde(const AutogradeFlags& f) {
   if (!loaded) return fail(loaded.error());
   const course::Course& course = **loaded;
   const std::vector<fs::path> files = submitted_files(f.submission);
-  worker::WorkerPool pool(pool_config(f.grade, 2 * static_cast<int>(course.checkpoints.size())));
-  const std::vector<DeliverableGrades> grades = grade_all(pool, course, f, files);
+  std::vector<DeliverableGrades> grades = deliverables(course, f, files);
+  // As many workers as there are jobs, up to one per core: a submission with one deliverable's
+  // code gets one worker with every core's llvmpipe thread, not one of two with half of them.
+  worker::WorkerPool pool(pool_config(f.grade, jobs_for(grades)));
+  grade_all(pool, course, f, grades);
   json tests = json::array();
   double score = 0, seconds = 0;
   int passed = 0;
@@ -115,7 +128,10 @@ Command add_autograde_command(CLI::App& app) {
   cmd->add_option("--max-score", f->max_score, "Points per checkpoint, shared among its tests (default: the course's points for each)");
   cmd->add_option("--timeout-ms", f->grade.timeout_ms, "Compile and render deadline per checkpoint, in CPU time")->capture_default_str();
   cmd->add_flag("--software", f->grade.software, "Force Mesa's software renderer");
-  return [f] { return run_autograde(*f); };
+  return [f] {
+    f->grade.heatmaps = f->heatmaps.empty() ? grade::HeatMap::never : grade::HeatMap::when_failing;
+    return run_autograde(*f);
+  };
 }
 
 }  // namespace shadelab::cli

@@ -167,6 +167,7 @@ Command add_grade_command(CLI::App& app) {
   return [f] {
     auto loaded = load_course(f->course);
     if (!loaded) return fail(loaded.error());
+    if (!f->heatmap.empty()) f->heatmaps = grade::HeatMap::always;
     if (!f->submissions.empty()) return run_batch(**loaded, *f);
     if (!f->saved_frames.empty()) return run_saved_frames(**loaded, *f);
     if (f->vert.empty() || f->frag.empty()) {

@@ -49,6 +49,7 @@ Expected<GradeJob> grade_job(const course::Course& c, const GradeFlags& f, shade
   if (auto s = worker::attach_course_mesh(c, f.mesh.empty() ? c.default_mesh : f.mesh, job, out.payload); !s) return s.take_error();
   job.grade = c.grade_spec(*checkpoint->checkpoint, options);
   job.grade.reference_store.folder = f.cache_dir;
+  job.grade.heatmap = f.heatmaps;
   auto& r = job.request;
   r = c.render_request(std::move(vert), std::move(frag));
   if (!f.size.empty())
@@ -86,7 +87,7 @@ namespace {
 // A saved frame as a browser wrote it is ~0.1-1 MB at 512 x 512; a file far larger is not one.
 constexpr std::uintmax_t kMaxFrameBytes = 32u << 20;
 
-worker::FramesGradeSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}}; }
+worker::FramesGradeSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps}; }
 
 }  // namespace
 

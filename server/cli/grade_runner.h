@@ -30,6 +30,7 @@ struct GradeFlags {
   long retry_for_s = 300;
   double threshold = 0.016, max_failing = 0.01, max_score = 1.0;
   bool spatial = false;
+  grade::HeatMap heatmaps = grade::HeatMap::never;  // a class batch writes none; a command that does says when
   long timeout_ms = 10000;
   bool software = software_from_environment();
 };

@@ -186,6 +186,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
       if (out.report.diagnosis.empty()) out.report.diagnosis = "changed_" + found.variable;
       out.report.messages.insert(out.report.messages.begin(), found.message);
     }
+  if (!spec.wants_heatmap(out.report.pass)) return out;
   std::vector<image::Image> heat;  // the homework light's frames
   for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap(*student->frames[k], *(*reference)[k]));
   if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat)))

@@ -47,6 +47,11 @@ struct ReferenceStorePlaces {
   bool empty() const { return folder.empty() && shared.url.empty(); }
 };
 
+// Whether a grade draws the heat map of where the submission's frames differ from the reference
+// (~25 ms of a grade's ~550 on the 2-core machine, most of it the PNG): the page shows it always;
+// Gradescope only beside a failed test; a class batch nowhere.
+enum class HeatMap { always, when_failing, never };
+
 struct GradeSpec {
   std::string reference_name;  // a checkpoint, or "custom"
   shader::ShaderFile reference_vertex, reference_fragment;
@@ -57,6 +62,9 @@ struct GradeSpec {
   std::vector<StarterConstant> starter_constants;
   GradeOptions options;
   ReferenceStorePlaces reference_store;
+  HeatMap heatmap = HeatMap::always;
+
+  bool wants_heatmap(bool passed) const { return heatmap == HeatMap::always || (heatmap == HeatMap::when_failing && !passed); }
 };
 
 // A frame a student saved from their browser, as it arrived: its file name and its PNG bytes.

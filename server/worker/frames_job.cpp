@@ -37,6 +37,7 @@ Expected<GradedFrames> grade_frame_set(WorkerPool& pool, const course::Course& c
   if (auto a = attach_course_mesh(c, s.mesh.empty() ? c.default_mesh : s.mesh, job, payload.mesh); !a) return a.take_error();
   job.grade = c.frames_grade_spec(checkpoint, options);
   job.grade.reference_store = s.reference_store;
+  job.grade.heatmap = s.heatmap;
   job.request = with_code ? c.render_request(submission.code->first, submission.code->second) : c.render_request({}, {});
   if (with_code)
     if (auto sources = render::check_sources(job.request, render::RenderLimits{}); !sources) {

@@ -27,6 +27,7 @@ struct FramesGradeSettings {
   std::string mesh;
   double max_score = 1;
   grade::ReferenceStorePlaces reference_store;  // grade/reference_store.h; empty: the worker's memory only
+  grade::HeatMap heatmap = grade::HeatMap::always;
 };
 
 struct GradedFrames {

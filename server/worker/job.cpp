@@ -1,5 +1,7 @@
 #include "worker/job.h"
 
+#include <algorithm>
+#include <iterator>
 #include <optional>
 
 #include <glm/vec3.hpp>
@@ -72,6 +74,9 @@ store::SharedStoreConfig shared_store_from(const json& j) {
   return s;
 }
 
+// grade::HeatMap's values on the wire, in its order.
+constexpr std::string_view heatmap_names[] = {"always", "whenFailing", "never"};
+
 json grade_json(const grade::GradeSpec& g) {
   json mistakes = json::array(), probes = json::array();
   for (const auto& m : g.mistakes)
@@ -85,7 +90,7 @@ json grade_json(const grade::GradeSpec& g) {
           {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants},
           {"referenceStore", g.reference_store.folder}, {"sharedStore", shared_store_json(g.reference_store.shared)},
           {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
-          {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}};
+          {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}, {"heatmap", heatmap_names[static_cast<int>(g.heatmap)]}};
 }
 
 grade::GradeSpec grade_from(const json& g) {
@@ -103,6 +108,9 @@ grade::GradeSpec grade_from(const json& g) {
   spec.options.compare.spatial_tolerance = g.at("spatialTolerance");
   spec.options.max_failing_fraction = g.at("maxFailingFraction");
   spec.options.max_score = g.at("maxScore");
+  const auto* named = std::find(std::begin(heatmap_names), std::end(heatmap_names), g.at("heatmap").get<std::string>());
+  if (named == std::end(heatmap_names)) throw json::other_error::create(501, "unknown heat map policy", &g);
+  spec.heatmap = static_cast<grade::HeatMap>(named - std::begin(heatmap_names));
   return spec;
 }
 
