@@ -441,11 +441,12 @@ TEST(GraderTimeTest, AnUncataloguedMistakeIsGradedOnceInAboutTheTimeOfAPass) {
     EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no response");
     return std::pair{r ? json::parse(r->body) : json::object(), ms};
   };
-  // A fresh shader each time (Mesa caches programs by their IR): a never-taken branch on a new constant.
+  // A fresh shader each time (Mesa caches programs by their IR): a never-taken branch on a new
+  // constant; a return, not a discard, which would have the grade draw a light at a time.
   const auto fresh = [](json job, int serial) {
     std::string f = job["fragment"];
     const std::string entry = "void main(void) {";
-    f.insert(f.find(entry) + entry.size(), "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) discard;");
+    f.insert(f.find(entry) + entry.size(), "\n    if (gl_FragCoord.x < -" + std::to_string(serial) + ".0) { fragColor = vec4(1.0); return; }");
     job["fragment"] = f;
     return job;
   };

@@ -646,8 +646,8 @@ TEST(RenderTogetherTest, ADiscardIsDrawnALightAtATimeAndTheSameRequestOnce) {
 }
 
 // Every way of drawing hands over a census: a discard is drawn a light at a time, each pass with
-// its own; a shader the census cannot be added to (GLSL ES 1.00: one output, no integer bits) is
-// counted in a float render of its own, at pixel centres.
+// its own; a shader the census cannot be added to (GLSL ES 1.00: one output, no integer bits; a
+// #define, which would apply to the census's code) is counted in a float render of its own.
 TEST(RenderTogetherTest, EveryWayOfDrawingHandsOverACensus) {
   auto request = testkit::preset_request("specular");
   request.frames = 1;
@@ -681,4 +681,11 @@ TEST(RenderTogetherTest, EveryWayOfDrawingHandsOverACensus) {
   const auto expected = image::count_non_finite(render_alone(as_float, nullptr, testkit::builtin("bunny"))[0]);
   EXPECT_TRUE(same_counts(counts[0], expected)) << counts[0].nan << " against " << expected.nan;
   EXPECT_GT(expected.nan, 10u);
+  // A macro that would blind the census to every NaN: the census declines, the float render counts.
+  auto macro = fullscreen_request("c = vec4(uZero / uZero);", "#define floatBitsToUint(x) uvec4(0u)\nuniform float uZero;");
+  macro.semantics = render::FloatSemantics::ieee;
+  std::vector<image::NonFinite> macro_counts;
+  render_alone(macro, &macro_counts);
+  ASSERT_EQ(macro_counts.size(), 1u);
+  EXPECT_EQ(macro_counts[0].nan, 64u) << "every pixel of the 8 x 8 frame";
 }

@@ -250,4 +250,9 @@ TEST(UniformVariantsTest, TheCensusFollowsTheColoursTwoRunsAnOutput) {
     EXPECT_TRUE(census(body, 1, {})) << body;
     EXPECT_FALSE(census(body, 2, {"uLight"})) << body;
   }
+  // A macro would reach the grader's code: this one would hide every NaN from the census.
+  const auto blinded = census("#define floatBitsToUint(x) uvec4(0u)\nvoid main() { c = vec4(uLight, 1); }", 1, {});
+  ASSERT_FALSE(blinded);
+  EXPECT_NE(blinded.error().message.find("macro"), std::string::npos) << blinded.error().message;
+  EXPECT_TRUE(census("#ifdef GL_ES\nvoid main() { c = vec4(uLight, 1); }\n#endif\n", 1, {})) << "only a #define declines";
 }

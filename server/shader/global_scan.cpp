@@ -24,7 +24,10 @@ class Scanner {
     const char c = glsl_[i];
     if (glsl_.substr(i, 2) == "//") return skip_to(i, "\n");
     if (glsl_.substr(i, 2) == "/*") return skip_to(i, "*/") + 2;
-    if (c == '#' && at_line_start(i)) return skip_to(i, "\n");
+    if (c == '#' && at_line_start(i)) {
+      directive(i + 1);
+      return skip_to(i, "\n");
+    }
     if (starts_identifier(c)) return identifier(i);
     if (c == '{' || c == '}') {
       depth_ += c == '{' ? 1 : -1;
@@ -33,6 +36,14 @@ class Scanner {
       punctuation(c, i);
     }
     return i + 1;
+  }
+
+  // The directive's name after the '#' at `i` - 1 (spaces allowed between).
+  void directive(size_t i) {
+    while (i < glsl_.size() && (glsl_[i] == ' ' || glsl_[i] == '\t')) ++i;
+    size_t end = i;
+    while (end < glsl_.size() && continues_identifier(glsl_[end])) ++end;
+    if (glsl_.substr(i, end - i) == "define") scan_.defines_macro = true;
   }
 
   size_t identifier(size_t i) {

@@ -32,6 +32,7 @@ struct GlobalStatement {
 struct GlslScan {
   std::vector<GlobalStatement> statements;
   std::vector<GlslWord> identifiers;  // every identifier and keyword outside comments and directives
+  bool defines_macro = false;         // a `#define` line: code appended after it may not mean what it says
 };
 
 GlslScan scan_glsl(std::string_view glsl);

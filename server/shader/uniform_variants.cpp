@@ -105,6 +105,9 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
     if (std::find(names.begin(), names.end(), w.text) != names.end()) return declined("the vertex shader uses " + w.text);
 
   const GlslScan scan = scan_glsl(fragment.glsl);
+  // A macro of the student's would apply to the code appended here too: `#define floatBitsToUint(x)
+  // uvec4(0u)` would blind the census to every NaN.
+  if (scan.defines_macro) return declined("the shader defines a macro, which would apply to the grader's code after it");
   std::vector<Edit> edits;
   bool has_main = false;
   for (const auto& w : scan.identifiers) {

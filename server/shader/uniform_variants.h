@@ -45,7 +45,8 @@ VariantOutputs variant_outputs(int runs, bool census);
 // share (a variable outside main, written by one run and read by the next); more than one output or
 // an array of them, a name declared otherwise than `uniform [precision] vec3 NAME;` in the fragment
 // shader or used by the vertex shader, GLSL ES 1.00 (one output, no integer bits), or more outputs
-// than `max_outputs`. One run with no names is the census alone.
+// than `max_outputs`, or a `#define` (it would apply to the code appended). One run with no names
+// is the census alone.
 Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const UnwrappedSource& fragment,
                                             const std::vector<std::string>& names, int runs, int max_outputs, bool census = false);
 

@@ -4,6 +4,7 @@
 // rewrites of what unwrapped (shader/invariant_outputs.h, shader/uniform_variants.h): every line
 // of the student's GLSL stays where it was.
 #include <algorithm>
+#include <tuple>
 #include <string>
 
 #include "fuzz_check.h"
@@ -62,14 +63,19 @@ size_t lines_in(std::string_view s) { return static_cast<size_t>(std::count(s.be
 void check_rewrites(const shadelab::shader::UnwrappedSource& source, shadelab::shader::Stage stage) {
   FUZZ_CHECK(lines_in(shadelab::shader::with_invariant_outputs(source.glsl, stage)) == lines_in(source.glsl));
   if (stage != shadelab::shader::Stage::fragment) return;
-  auto one_pass = shadelab::shader::with_uniform_variants(shadelab::shader::UnwrappedSource{}, source, {"uLightPosition"}, 2, 8);
-  if (!one_pass) {
-    FUZZ_CHECK(!one_pass.error().message.empty());
-    return;
+  // Two lights, with and without the census; the census alone (one run).
+  const std::vector<std::string> light = {"uLightPosition"};
+  for (const auto& [names, runs, census] : {std::tuple{light, 2, false}, std::tuple{light, 2, true}, std::tuple{std::vector<std::string>{}, 1, true}}) {
+    auto one_pass = shadelab::shader::with_uniform_variants(shadelab::shader::UnwrappedSource{}, source, names, runs, 8, census);
+    if (!one_pass) {
+      FUZZ_CHECK(!one_pass.error().message.empty());
+      continue;
+    }
+    const size_t epilogue = one_pass->rfind("\n// One pass for every light");
+    FUZZ_CHECK(epilogue != std::string::npos);
+    FUZZ_CHECK(lines_in(std::string_view(*one_pass).substr(0, epilogue)) == lines_in(source.glsl));
+    FUZZ_CHECK((one_pass->find("shadelab_census_0", epilogue) != std::string::npos) == census);
   }
-  const size_t epilogue = one_pass->rfind("\n// One pass for every light");
-  FUZZ_CHECK(epilogue != std::string::npos);
-  FUZZ_CHECK(lines_in(std::string_view(*one_pass).substr(0, epilogue)) == lines_in(source.glsl));
 }
 
 }  // namespace
