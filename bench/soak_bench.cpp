@@ -29,6 +29,7 @@
 #include <mutex>
 #include <random>
 #include <string>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -242,6 +243,22 @@ void print_soak(int seconds, const std::map<Kind, Outcome>& outcomes, const std:
   std::printf("| proportional sets summed (MiB) | %zu | %zu | %zu | %zu |\n", memory[0].pss >> 20, memory[1].pss >> 20, memory[2].pss >> 20, memory[3].pss >> 20);
 }
 
+// Which kind of job holds the memory: the most one worker held during a job of each kind, from
+// the server's /metrics (in a cluster, the replica nginx sent the request to).
+void print_peak_by_kind(int port) {
+  auto r = client(port).Get("/metrics");
+  if (!r || r->status != 200) return;
+  const std::string prefix = "shadelab_job_peak_resident_bytes{kind=\"";
+  std::printf("\n| job kind | the most one worker held during one (MiB) |\n| --- | --- |\n");
+  std::istringstream lines(r->body);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) != 0) continue;
+    const auto close = line.find('"', prefix.size());
+    if (close == std::string::npos) continue;
+    std::printf("| %s | %.0f |\n", line.substr(prefix.size(), close - prefix.size()).c_str(), std::atof(line.c_str() + line.rfind(' ') + 1) / (1 << 20));
+  }
+}
+
 void soak(const Server& server, int seconds, std::atomic<unsigned>& serial) {
   const json scene = json::parse(client(server.port).Get("/api/scenes/two_objects")->body);
   std::atomic<bool> stop{false};
@@ -281,6 +298,7 @@ void soak(const Server& server, int seconds, std::atomic<unsigned>& serial) {
   const Memory settled = tree_memory(server.pid);
 
   print_soak(seconds, outcomes, {at_start, peak, at_end, settled});
+  print_peak_by_kind(server.port);
 }
 
 }  // namespace
