@@ -396,11 +396,10 @@ Expected<RenderReport> Renderer::render(const RenderRequest& request, const scen
     if (!built) return built.take_error();
     return state_->draw(request, mesh, *built, nullptr, start, frame_sink, census);
   }
-  // The census could not be added (GLSL ES 1.00, several outputs): the frames as drawn, and the
-  // colours counted in a float render of their own, at pixel centres.
-  auto plain = state_->build(request.vertex, request.fragment, request.semantics);
-  if (!plain) return plain.take_error();
-  auto report = state_->draw(request, mesh, *plain, nullptr, start, frame_sink, {});
+  // No census in this program (the rewrite declined it: GLSL ES 1.00, several outputs, a macro; or
+  // the driver did not take it): the frames as drawn, then their colours counted in a float render
+  // of their own, at pixel centres.
+  auto report = render(request, mesh, sink);
   if (!report) return report;
   RenderRequest as_float = request;
   as_float.pixel_type = image::PixelType::f32;
