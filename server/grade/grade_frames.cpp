@@ -284,11 +284,7 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
                         : failed_submission(rendered.error(), spec.reference_name, spec.options.max_score);
   }
   out.frames.grader_work = work_;
-  if (!spec.wants_heatmap(out.frames.pass)) return out;
-  std::vector<image::Image> heat;
-  for (size_t k = 0; k < frames->size(); ++k) heat.push_back(image::heatmap(*(*frames)[k], *(*reference)[k]));
-  if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(code.frames, code.width, code.height), heat)))
-    out.heatmap_png.assign(png->begin(), png->end());
+  if (spec.wants_heatmap(out.frames.pass)) out.heatmap_png = heatmap_png(*frames, *reference, code);
   return out;
 }
 

@@ -10,6 +10,13 @@
 
 namespace shadelab::grade {
 
+std::string GradeSession::heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job) {
+  std::vector<image::Image> heat;
+  for (size_t k = 0; k < static_cast<size_t>(job.frames); ++k) heat.push_back(image::heatmap(*frames[k], *reference[k]));
+  auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(job.frames, job.width, job.height), heat));
+  return png ? std::string(png->begin(), png->end()) : std::string();
+}
+
 Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
   SharedFrames out;
   auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(std::make_shared<const image::Image>(f)); });
@@ -186,11 +193,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
       if (out.report.diagnosis.empty()) out.report.diagnosis = "changed_" + found.variable;
       out.report.messages.insert(out.report.messages.begin(), found.message);
     }
-  if (!spec.wants_heatmap(out.report.pass)) return out;
-  std::vector<image::Image> heat;  // the homework light's frames
-  for (size_t k = 0; k < static_cast<size_t>(r.frames); ++k) heat.push_back(image::heatmap(*student->frames[k], *(*reference)[k]));
-  if (auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(r.frames, r.width, r.height), heat)))
-    out.heatmap_png.assign(png->begin(), png->end());
+  if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r);  // the homework light's
   return out;
 }
 

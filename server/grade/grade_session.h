@@ -61,6 +61,9 @@ class GradeSession {
 
  private:
   Expected<SharedFrames> frames_of(const render::RenderRequest& request, const scene::Mesh& mesh);
+  // The grid of where the first `job.frames` of `frames` differ from `reference`'s, as a PNG (empty
+  // if it does not encode).
+  static std::string heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job);
   // A reference set from the worker's memory, else the store on disk (when the spec names one),
   // else rendered (and kept in both); `work` counts which.
   Expected<SharedFrames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
