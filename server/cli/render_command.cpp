@@ -25,6 +25,7 @@ struct RenderFlags {
   bool fit = false;
   std::optional<int> frames, msaa;
   std::optional<double> degrees;
+  std::vector<double> angles;
   std::string size;
   std::vector<std::string> uniforms;
   std::string grid, frames_dir, prefix, format = "png";
@@ -91,6 +92,10 @@ int run_render(const RenderFlags& f) {
     if (auto s = parse_size(f.size, "--size", request.width, request.height); !s) return fail(s.error());
   request.frames = f.frames.value_or(request.frames);
   request.degrees_per_frame = f.degrees.value_or(request.degrees_per_frame);
+  if (!f.angles.empty()) {
+    request.angles = f.angles;
+    request.frames = static_cast<int>(f.angles.size());
+  }
   request.msaa = f.msaa.value_or(request.msaa);
   const bool exr = f.format == "exr";
   request.pixel_type = exr ? image::PixelType::f32 : image::PixelType::u8;
@@ -169,6 +174,10 @@ Command add_render_command(CLI::App& app) {
   cmd->add_flag("--fit", flags->fit, "Scale and place the mesh as the course's default mesh stands (its height, base and centre)");
   cmd->add_option("--frames", flags->frames, "Number of frames (default: the course's, " + std::to_string(builtin.frames) + ")");
   cmd->add_option("--degrees", flags->degrees, "Rotation per frame about +Y, in degrees (default: the course's)");
+  cmd->add_option("--angles", flags->angles,
+                  "Each frame's rotation in degrees, instead of k x --degrees: where a page on a running clock drew them "
+                  "(0,19.8,39.7,...), as a saved frames' grade reports")
+      ->delimiter(',');
   cmd->add_option("--size", flags->size, "Frame size WIDTHxHEIGHT (default: the course's canvas, " + std::to_string(builtin.width) +
                                              "x" + std::to_string(builtin.height) + ")");
   cmd->add_option("--msaa", flags->msaa, "Samples per pixel (default: the course's canvas, " + std::to_string(builtin.msaa) + "; 0 = off)");
