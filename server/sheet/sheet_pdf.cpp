@@ -227,9 +227,10 @@ class PageWriter {
 
 void checkpoint(PageWriter& w, const CheckpointSection& s, size_t index) {
   w.text(std::to_string(index) + ". " + s.title, kSans, 13, kInk, true);
-  w.text(section_verdict(s), kSans, 9.5, s.report.pass ? kPass : s.graded ? kFail : kGrey);
-  for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) w.text(s.report.messages[k], kSans, 8.5, kGrey);
-  for (const auto& line : frames_lines(s)) w.text(line, kSans, 9, s.frames_report && s.frames_report->pass ? kPass : kFail);
+  // Wrapped: a verdict with the lags found runs past the page's width, and a TA reads all of it.
+  w.paragraph(section_verdict(s), 9.5, s.report.pass ? kPass : s.graded ? kFail : kGrey);
+  for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) w.paragraph(s.report.messages[k], 8.5, kGrey);
+  for (const auto& line : frames_lines(s)) w.paragraph(line, 9, s.frames_report && s.frames_report->pass ? kPass : kFail);
   w.gap(4);
   if (!s.saved_grid_png.empty() && !s.grid_png.empty()) {
     w.image_pair(s.saved_grid_png, "the frames the student saved", s.grid_png, s.grid_caption);
