@@ -12,11 +12,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <sstream>
 #include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "image/encode.h"
+#include "image/png_decode.h"
 #include "support/files.h"
 #include "support/run_command.h"
 #include "support/test_support.h"
@@ -182,6 +186,44 @@ TEST_F(CliTest, BatchGradingScoresAHangingSubmissionZeroAndGoesOn) {
   // Stopped by its CPU budget, or, where this machine is so oversubscribed that the worker gets
   // under a quarter of a core, by the wall-clock backstop: either way only after a second attempt.
   EXPECT_NE(carol.find("graded again"), std::string::npos) << carol;
+}
+
+// The class's saved frames looked at across the class: two students who hand in the same frames
+// (one re-encoded: the same pixels) are both flagged, and so is one who hands in ShadeLab's own
+// render of the reference; a student whose frames are their own page's is not.
+TEST_F(CliTest, BatchFlagsSharedFramesAndShadeLabsOwnInTheSummary) {
+  const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
+  for (const char* who : {"erin", "frank", "grace", "heidi"}) {
+    write(std::string("class/") + who + "/shaders/starter_vert.js", preset("normals_vert.js"));
+    write(std::string("class/") + who + "/shaders/starter_frag.js", preset("normals_frag.js"));
+  }
+  const auto save = [&](const std::string& who, const std::string& angles) {
+    const auto r = run_cli("render --preset normals --angles " + angles + " --frames-dir " + path("class/" + who + "/images"));
+    ASSERT_EQ(r.status, 0) << r.output;
+  };
+  save("erin", shadelab::testkit::kPageAngles);
+  save("grace", "0,20,40,60,80,100,120,140,160");               // ShadeLab's own, at the exact angles
+  save("heidi", "0,19.9,39.7,59.8,79.75,99.9,119.8,139.7,159.85");  // her own page's run
+  // frank: erin's frames, re-encoded (the same pixels in other PNG bytes)
+  for (int k = 0; k < 9; ++k) {
+    const std::string name = "/images/hw2_normals_" + std::to_string(k) + ".png";
+    auto image = shadelab::image::decode_png(read_text(path("class/erin" + name)));
+    ASSERT_TRUE(image.ok());
+    auto png = shadelab::image::encode_png(*image, {.compression_level = 9});
+    ASSERT_TRUE(png.ok());
+    write("class/frank" + name, std::string(png->begin(), png->end()));
+  }
+  const auto run = run_cli("grade --submissions " + path("class") + " --reference normals --size 64x48 --out " + path("grades"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("3 students flagged for the TA"), std::string::npos) << run.output;
+  std::map<std::string, std::string> line_of;
+  std::istringstream summary(read_text(path("grades/summary.csv")));
+  for (std::string line; std::getline(summary, line);) line_of[line.substr(0, line.find(','))] = line;
+  EXPECT_NE(line_of["erin"].find("the same normals frames, pixel for pixel, as frank"), std::string::npos) << line_of["erin"];
+  EXPECT_NE(line_of["frank"].find("the same normals frames, pixel for pixel, as erin"), std::string::npos) << line_of["frank"];
+  EXPECT_NE(line_of["grace"].find("made by ShadeLab, not saved from the page"), std::string::npos) << line_of["grace"];
+  EXPECT_TRUE(line_of["heidi"].ends_with(",")) << "no flags: " << line_of["heidi"];
+  EXPECT_NE(line_of["heidi"].find("heidi,1.000000,1.000000,true"), std::string::npos) << line_of["heidi"];
 }
 
 // A server that starts beside another on the same port would get half of its connections: the

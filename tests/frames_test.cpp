@@ -4,6 +4,7 @@
 // the code renders) fails with a diagnosis a student can act on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "grade/grade_session.h"
@@ -32,12 +33,15 @@ class FramesTest : public ::testing::Test {
     static grade::GradeSession s(testkit::shared_renderer());
     return s;
   }
+  // `from_page`: the course wants frames saved from its page (the built-in course does).
   static grade::FramesGradeOutput grade(const std::string& checkpoint, const std::vector<grade::SavedFrame>& saved,
-                                        const std::string& code_preset = "") {
+                                        const std::string& code_preset = "", bool from_page = true) {
     const course::Course& c = testkit::course();
     const auto found = c.checkpoint(checkpoint);
     EXPECT_TRUE(found.ok());
-    const grade::GradeSpec spec = c.frames_grade_spec(*found->checkpoint, grade::GradeOptions{.max_score = 1});
+    grade::GradeSpec spec = c.frames_grade_spec(*found->checkpoint, grade::GradeOptions{.max_score = 1});
+    EXPECT_TRUE(spec.frames_from_page);
+    spec.frames_from_page = from_page;
     render::RenderRequest code = c.render_request({}, {});
     if (!code_preset.empty()) {
       const auto* p = c.preset(code_preset);
@@ -95,11 +99,67 @@ TEST_F(FramesTest, TheReferenceGridIsTheGradersWorkOncePerSession) {
   EXPECT_EQ(again.frames.grader_work.from_memory, 1);
 }
 
-TEST_F(FramesTest, FramesWithoutTheLagStillPass) {
-  // A deterministic renderer's frames at exactly 20k degrees (a headless page with a fixed clock).
+bool has_flag(const grade::Report& r, grade::FlagKind kind) {
+  for (const auto& f : r.flags)
+    if (f.kind == kind) return true;
+  return false;
+}
+
+// Frames at the exact angles that are not ShadeLab's to the pixel: another rasteriser's (a page
+// with a fixed clock). Every 97th pixel of the object in each frame 12/255 brighter in red.
+std::vector<grade::SavedFrame> from_another_rasteriser(std::vector<grade::SavedFrame> frames) {
+  for (auto& f : frames) {
+    auto image = image::decode_png(f.bytes);
+    EXPECT_TRUE(image.ok());
+    size_t object = 0;
+    for (size_t i = 0; i < image->bytes.size(); i += 4) {
+      const bool clear = image->bytes[i] == 0 && image->bytes[i + 1] == 0 && image->bytes[i + 2] == 0;
+      if (!clear && ++object % 97 == 0) image->bytes[i] = static_cast<std::uint8_t>(std::min(255, image->bytes[i] + 12));
+    }
+    auto png = image::encode_png(*image);
+    f.bytes.assign(png->begin(), png->end());
+  }
+  return frames;
+}
+
+// The reference's frames as ShadeLab draws them at exactly 20k degrees (GET /api/render's frames):
+// no browser draws them, so where the course wants frames saved from its page they score 0, named.
+TEST_F(FramesTest, ShadeLabsOwnFramesOfTheReferenceScoreZeroWhereTheCourseWantsPageFrames) {
   const auto out = grade("normals", saved_frames("normals", "normals", std::vector<double>(9, 0.0)));
+  EXPECT_FALSE(out.frames.pass);
+  EXPECT_EQ(out.frames.score, 0);
+  EXPECT_EQ(out.frames.diagnosis, "made_by_shadelab");
+  ASSERT_FALSE(out.frames.messages.empty());
+  EXPECT_NE(out.frames.messages[0].find("saved from its page"), std::string::npos) << out.frames.messages[0];
+  ASSERT_EQ(out.frames.flags.size(), 1u);
+  EXPECT_EQ(out.frames.flags[0].kind, grade::FlagKind::made_by_shadelab);
+  EXPECT_NE(out.frames.flags[0].message.find("made by ShadeLab, not saved from the page"), std::string::npos);
+  for (const auto& f : out.frames.frames) EXPECT_TRUE(f.grade.pass) << "each frame matches; the hand-in is what fails";
+}
+
+TEST_F(FramesTest, ShadeLabsOwnFramesAreOnlyFlaggedWhereTheCourseAllowsThem) {
+  const auto out = grade("normals", saved_frames("normals", "normals", std::vector<double>(9, 0.0)), "", false);
   EXPECT_TRUE(out.frames.pass) << out.frames.diagnosis;
+  EXPECT_EQ(out.frames.score, 1);
+  EXPECT_TRUE(has_flag(out.frames, grade::FlagKind::made_by_shadelab));
+}
+
+// A page with a fixed clock: every frame at its exact angle, but drawn by another rasteriser. It
+// passes; the TA is told there was no lag.
+TEST_F(FramesTest, FramesWithNoLagThatAreNotShadeLabsPassFlaggedForTheTA) {
+  const auto out = grade("normals", from_another_rasteriser(saved_frames("normals", "normals", std::vector<double>(9, 0.0))));
+  EXPECT_TRUE(out.frames.pass) << out.frames.diagnosis;
+  EXPECT_EQ(out.frames.score, 1);
   for (const auto& f : out.frames.frames) EXPECT_NEAR(*f.lag_degrees, 0, 0.05);
+  ASSERT_EQ(out.frames.flags.size(), 1u);
+  EXPECT_EQ(out.frames.flags[0].kind, grade::FlagKind::no_lag);
+}
+
+// Frames drawn as a page on a running clock draws them (60 and 30 Hz): no flag at all.
+TEST_F(FramesTest, FramesAtThePagesLagAreNotFlagged) {
+  EXPECT_TRUE(grade("specular", saved_frames("specular", "specular")).frames.flags.empty());
+  const std::vector<double> at_30hz = {0, 0.65, 0.42, 0.61, 0.55, 0.5, 0.66, 0.35, 0.58};
+  EXPECT_TRUE(grade("specular", saved_frames("specular", "specular", at_30hz)).frames.flags.empty());
 }
 
 TEST_F(FramesTest, DiffuseFramesHandedInAsSpecularAreNamedForWhatTheyAre) {

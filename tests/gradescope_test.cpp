@@ -55,12 +55,14 @@ class GradescopeTest : public ::testing::Test {
     submit(name, shadelab::testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js")));
   }
 
-  // A deliverable's frames as the page saves them, rendered by `shadelab render` from `preset`
-  // (at the nominal angles: a page with a fixed clock) and named for `prefix`.
-  void save_frames(const std::string& folder, const std::string& preset, const std::string& prefix, const std::string& more = "") const {
+  // A deliverable's frames as the page saves them, rendered by `shadelab render` from `preset` at
+  // the angles a 60 Hz page draws them (each frame after the first a little behind its nominal
+  // angle: ShadeLab's frames at the exact angles are no hand-in) and named for `prefix`.
+  void save_frames(const std::string& folder, const std::string& preset, const std::string& prefix, const std::string& more = "",
+                   const std::string& angles = shadelab::testkit::kPageAngles) const {
     fs::create_directories(root_ / "submission" / folder);
     const auto r = shadelab::testkit::run_shadelab("render --preset " + preset + " --prefix " + prefix + " --frames-dir '" +
-                                                   (root_ / "submission" / folder).string() + "' " + more);
+                                                   (root_ / "submission" / folder).string() + "' --angles " + angles + " " + more);
     ASSERT_EQ(r.status, 0) << r.output;
   }
   // A student's HW2 folder as the course lays it out: src/shaders/ and images/, every deliverable
@@ -110,6 +112,25 @@ class GradescopeTest : public ::testing::Test {
 };
 
 }  // namespace
+
+// The diffuse reference's frames as ShadeLab draws them at the exact angles (what
+// GET /api/render?preset=diffuse&output=frames gives a staff key), handed in as the deliverable's:
+// no browser draws them, and the course wants frames saved from its page.
+TEST_F(GradescopeTest, ShadeLabsOwnFramesOfTheReferenceScoreZeroAndAreFlagged) {
+  hand_in();
+  save_frames("HW2/images", "diffuse", "diffuse", "", "0,20,40,60,80,100,120,140,160");  // over the page's
+  const json results = autograde();
+  const json* frames = test_of(results, "diffuse", "saved frames");
+  ASSERT_NE(frames, nullptr) << results.dump(2);
+  EXPECT_EQ((*frames)["score"], 0) << output_of(frames);
+  EXPECT_NE(output_of(frames).find("FLAGGED FOR THE TA: made by ShadeLab, not saved from the page"), std::string::npos) << output_of(frames);
+  EXPECT_NE(output_of(frames).find("saved from its page"), std::string::npos) << output_of(frames);
+  EXPECT_NE(results["output"].get<std::string>().find("FLAGGED FOR THE TA (diffuse saved frames): made by ShadeLab"), std::string::npos)
+      << results["output"];
+  // The page's own frames beside them: no flag.
+  EXPECT_EQ(output_of(test_of(results, "normals", "saved frames")).find("FLAGGED"), std::string::npos);
+  EXPECT_EQ((*test_of(results, "normals", "saved frames"))["status"], "passed");
+}
 
 // The student's HW2 folder as they zip it (the course's layout: src/shaders/ and images/), macOS
 // litter included: each deliverable's saved frames, its code, the hidden-light rule and whether the

@@ -3,6 +3,8 @@
 // the same folder; and the text helpers the layouts share.
 #include <gtest/gtest.h>
 
+#include <cctype>
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -65,9 +67,11 @@ class SheetTest : public ::testing::Test {
     std::ofstream(*dir_ / "HW2/src/shaders/phong_frag.js") << frag;
     error_line_ = line_of(frag, "fragColor = color * undefinedThing;");
     // The normals deliverable's saved frames, at the canvas's size, beside its code.
-    made_.push_back(run(std::string(SHADELAB_CLI) + " render --preset normals --frames-dir " + (*dir_ / "HW2/images").string()));
+    made_.push_back(run(std::string(SHADELAB_CLI) + " render --preset normals --angles " + testkit::kPageAngles + " --frames-dir " +
+                        (*dir_ / "HW2/images").string()));
     // The diffuse deliverable as the browser saved it: nine frames, no code.
-    made_.push_back(run(std::string(SHADELAB_CLI) + " render --preset diffuse --size 96x96 --frames-dir " + (*dir_ / "HW2/images").string()));
+    made_.push_back(run(std::string(SHADELAB_CLI) + " render --preset diffuse --size 96x96 --angles " + testkit::kPageAngles +
+                        " --frames-dir " + (*dir_ / "HW2/images").string()));
     for (const auto& [name, red] : {std::pair{"camera_25.png", 200}, {"camera_50.png", 150}, {"eevee0001.png", 100}})
       std::ofstream(*dir_ / "HW2/images" / name, std::ios::binary) << solid_png(64, 36, static_cast<std::uint8_t>(red));
     std::ofstream(*dir_ / "answers.txt") << "The normal's z is blue, and +z faces the viewer & interpolates <colours>.\n\nA longer lens flattens.\n";
@@ -157,10 +161,15 @@ TEST_F(SheetTest, TheGridIsDrawnOnThePageOfItsCode) {
 // normal-coloured bunnies in both halves of the page.
 TEST_F(SheetTest, SavedFramesAreShownBesideTheCodesGridWithTheirVerdicts) {
   const std::string page1 = pdf_text(1, 1);
+  // The verdicts wrap at the page's width: read as one run of words.
+  std::string words;
+  for (const char c : page1)
+    if (!std::isspace(static_cast<unsigned char>(c)) || (!words.empty() && words.back() != ' ')) words += std::isspace(static_cast<unsigned char>(c)) ? ' ' : c;
   for (const std::string expected : {"the frames the student saved", "rendered from the student's code",
-                                     "saved frames: 1 / 1: matches the reference", "at their nominal angles",
+                                     "saved frames: 1 / 1: matches the reference", "degrees behind their nominal angles",
                                      "saved frames against the code: the saved frames are what your code renders"})
-    EXPECT_NE(page1.find(expected), std::string::npos) << expected << "\n" << page1;
+    EXPECT_NE(words.find(expected), std::string::npos) << expected << "\n" << page1;
+  EXPECT_EQ(words.find("FLAGGED"), std::string::npos) << "frames from a page's run are not flagged";
   // The diffuse frames were saved at 96 x 96: graded, and the size named.
   EXPECT_NE(pdf_text().find("hw2_diffuse_0.png is 96 x 96; the course's canvas is 512 x 512"), std::string::npos);
   ASSERT_EQ(run("pdftoppm -r 36 -f 1 -l 1 " + (*dir_ / "a.pdf").string() + " " + (*dir_ / "halves").string()).status, 0);

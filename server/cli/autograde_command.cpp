@@ -105,7 +105,12 @@ int run_autograde(const AutogradeFlags& f) {
     if (d.code_grade && *d.code_grade) seconds += (**d.code_grade).seconds;
     if (d.frames_grade && *d.frames_grade) seconds += (**d.frames_grade).seconds;
   }
-  const std::string summary = std::to_string(passed) + " of " + std::to_string(tests.size()) + " tests passed\n";
+  std::string summary = std::to_string(passed) + " of " + std::to_string(tests.size()) + " tests passed\n";
+  // The flags at the top, where the TA opening the submission reads first.
+  for (const auto& d : grades)
+    if (d.frames_grade && *d.frames_grade)
+      for (const auto& flag : (**d.frames_grade).result.frames.flags)
+        summary += "FLAGGED FOR THE TA (" + d.checkpoint->name + " saved frames): " + flag.message + "\n";
   score = std::round(score * 1e6) / 1e6;  // shares of points: 0.4 + 0.2 + ... is not exact in binary
   const json results = {{"score", score}, {"execution_time", seconds}, {"output", summary}, {"tests", tests}};
   if (auto s = write_file(f.results, results.dump(2) + "\n"); !s) return fail(s.error());

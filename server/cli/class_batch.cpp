@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "core/hash.h"
+#include "grade/provenance.h"
 
 namespace shadelab::cli {
 
@@ -28,18 +29,46 @@ struct Entry {
   double score = 0, max_score = 0;
   bool pass = false;
   std::string diagnosis, message;
+  std::string frames;              // the saved frames' fingerprint; empty: none handed in
+  std::vector<std::string> flags;  // the grade's flags, in words
 };
 
 json to_json(const Entry& e) {
   return {{"student", e.student}, {"score", e.score}, {"maxScore", e.max_score}, {"pass", e.pass},
-          {"diagnosis", e.diagnosis}, {"message", e.message}};
+          {"diagnosis", e.diagnosis}, {"message", e.message}, {"frames", e.frames}, {"flags", e.flags}};
 }
 
 std::optional<Entry> entry_from(const std::string& line) {
   const json j = json::parse(line, nullptr, false);
   if (!j.is_object() || !j.contains("student") || !j["student"].is_string()) return std::nullopt;  // a line cut short by a kill
-  return Entry{j["student"], j.value("score", 0.0), j.value("maxScore", 0.0), j.value("pass", false),
-               j.value("diagnosis", ""), j.value("message", "")};
+  Entry e{j["student"], j.value("score", 0.0), j.value("maxScore", 0.0), j.value("pass", false), j.value("diagnosis", ""),
+          j.value("message", ""), j.value("frames", ""), {}};
+  for (const auto& f : j.value("flags", json::array()))
+    if (f.is_string()) e.flags.push_back(f);
+  return e;
+}
+
+Entry entry_of(const std::string& student, const StudentGrade& g) {
+  const grade::Report& r = g.report;
+  Entry e{student, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0], g.frames_fingerprint, {}};
+  for (const auto& f : r.flags) e.flags.push_back(f.message);
+  return e;
+}
+
+// Students whose saved frames are another's too, pixel for pixel, each flagged naming the others.
+void flag_shared_frames(std::map<std::string, Entry>& entries, const std::string& deliverable) {
+  std::map<std::string, std::vector<std::string>> by_frames;
+  for (const auto& [who, e] : entries)
+    if (!e.frames.empty()) by_frames[e.frames].push_back(who);
+  for (const auto& [frames, students] : by_frames) {
+    if (students.size() < 2) continue;
+    for (const auto& who : students) {
+      std::vector<std::string> others;
+      for (const auto& other : students)
+        if (other != who) others.push_back(other);
+      entries[who].flags.push_back(grade::same_frames_flag(deliverable, others).message);
+    }
+  }
 }
 
 std::string journal_name(const Shard& s) {
@@ -97,11 +126,17 @@ std::string csv(std::string s) {
   return out + "\"";
 }
 
+std::string joined_flags(const std::vector<std::string>& flags) {
+  std::string out;
+  for (const auto& f : flags) out += (out.empty() ? "" : " | ") + f;
+  return out;
+}
+
 Status write_summary(const fs::path& out, const std::map<std::string, Entry>& entries) {
-  std::string summary = "student,score,max_score,pass,diagnosis,message\n";
+  std::string summary = "student,score,max_score,pass,diagnosis,message,flags\n";
   for (const auto& [who, e] : entries)
     summary += csv(who) + "," + std::to_string(e.score) + "," + std::to_string(e.max_score) + "," + (e.pass ? "true" : "false") + "," +
-               csv(e.diagnosis) + "," + csv(e.message) + "\n";
+               csv(e.diagnosis) + "," + csv(e.message) + "," + csv(joined_flags(e.flags)) + "\n";
   return write_file(out / "summary.csv", summary);
 }
 
@@ -183,7 +218,7 @@ std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>
         stop = true;
         return;
       }
-      journal.append({s.name, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0]});
+      journal.append(entry_of(s.name, *graded));
       progress.finished(s.name);
     }
   };
@@ -212,7 +247,8 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
   ProgressBar progress(students.size(), students.size() - todo.size());
   auto error = grade_all(o, todo, grade_student, journal, progress);
 
-  const auto entries = read_journals(o.out);
+  auto entries = read_journals(o.out);
+  flag_shared_frames(entries, o.deliverable);
   if (auto summary = write_summary(o.out, entries); !summary && !error) error = summary.take_error();
   if (error) {
     std::cerr << "error: the batch stopped: " << error->message << " [" << info(error->code).name << "]\n"
@@ -222,6 +258,10 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
   double total = 0;
   for (const auto& s : students)
     if (const auto e = entries.find(s.name); e != entries.end()) total += e->second.score;
+  size_t flagged = 0;
+  for (const auto& s : students)
+    if (const auto e = entries.find(s.name); e != entries.end()) flagged += !e->second.flags.empty();
+  if (flagged > 0) std::cerr << flagged << " students flagged for the TA: see the flags column of " << (o.out / "summary.csv").string() << "\n";
   std::cerr << "graded " << students.size() << " submissions" << (o.shard.count > 1 ? " in this shard" : "") << ", mean score "
             << total / static_cast<double>(students.size()) << "; results in " << o.out.string() << "/\n";
   return 0;

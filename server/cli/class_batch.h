@@ -7,7 +7,8 @@
 // |---------------------------------------|--------------------------------------------------------|
 // | <student>/results.json                | Gradescope's results.json for that student             |
 // | graded.jsonl (graded-shard-I-of-N.jsonl) | one line per finished student, appended as each ends |
-// | summary.csv                           | every student found in the journals, sorted           |
+// | summary.csv                           | every student found in the journals, sorted; `flags`: |
+// |                                       | what the TA should look at (grade/provenance.h)       |
 //
 // A student with a line in any journal is not graded again, so the same command run again (or a
 // job array's task rerun) carries on where it stopped. `--shard I/N` takes the students whose
@@ -36,6 +37,9 @@ struct Student {
 struct StudentGrade {
   grade::Report report;
   double seconds = 0;
+  // The student's saved frames of the deliverable by their pixels (grade::fingerprint); empty when
+  // they handed in none. Students who share one are flagged in the summary.
+  std::string frames_fingerprint;
 };
 
 // Grades one student. An Error stops the batch (a wrong API key, a server gone for minutes):
@@ -46,6 +50,7 @@ struct BatchOptions {
   std::filesystem::path submissions, out;
   int concurrency = 1;
   Shard shard;
+  std::string deliverable;  // the checkpoint graded, as the summary's flags name it
 };
 
 // Exit status: 0 when every student of the shard is graded, 1 when the batch stopped on an error.

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "cli/class_batch.h"
+#include "cli/class_frames.h"
 #include "cli/commands.h"
 #include "cli/course_option.h"
 #include "cli/file_output.h"
@@ -87,7 +88,25 @@ std::optional<StudentGrade> without_pair(const course::Course& c, const course::
   if (pair) return std::nullopt;
   const std::string why = "no shader pair found for " + checkpoint.name + ": expected " + course::wanted_files(c, checkpoint) +
                           " in one folder, or a single *_vert.js and *_frag.js";
-  return StudentGrade{grade::failed_submission(make_error(ErrorCode::invalid_argument, why), checkpoint.name, f.max_score), 0};
+  return StudentGrade{grade::failed_submission(make_error(ErrorCode::invalid_argument, why), checkpoint.name, f.max_score), 0, {}};
+}
+
+Expected<StudentGrade> grade_student_on_server(const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f,
+                                               const ServerOptions& server, const Student& s) {
+  std::optional<std::pair<fs::path, fs::path>> pair;
+  if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
+  auto graded = grade_on_server(server, server_request(c, f, pair->first, pair->second));
+  if (!graded) return graded.take_error();
+  return StudentGrade{std::move(graded->report), graded->seconds, {}};
+}
+
+Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f,
+                                     const Student& s) {
+  std::optional<std::pair<fs::path, fs::path>> pair;
+  if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
+  auto graded = grade_one(pool, c, f, pair->first, pair->second);
+  if (!graded) return graded.take_error();
+  return StudentGrade{std::move(graded->result.report), graded->seconds, {}};
 }
 
 int run_batch(const course::Course& c, const GradeFlags& f) {
@@ -96,16 +115,15 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
   const course::Checkpoint& checkpoint = *found->checkpoint;
   auto shard = parse_shard(f.shard);
   if (!shard) return fail(shard.error());
-  BatchOptions options{f.submissions, f.out, f.concurrency, *shard};
+  BatchOptions options{f.submissions, f.out, f.concurrency, *shard, checkpoint.name};
   if (!f.server.empty()) {
     const ServerOptions server{f.server, f.api_key, std::chrono::seconds(f.retry_for_s)};
     if (options.concurrency <= 0) options.concurrency = 4;
+    const ClassFrames frames(c, checkpoint, [&] { return preset_frames_on_server(server, c.id, checkpoint.reference); });
     return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
-      std::optional<std::pair<fs::path, fs::path>> pair;
-      if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
-      auto graded = grade_on_server(server, server_request(c, f, pair->first, pair->second));
-      if (!graded) return graded.take_error();
-      return StudentGrade{std::move(graded->report), graded->seconds};
+      auto graded = grade_student_on_server(c, checkpoint, f, server, s);
+      if (graded) frames.check(s, *graded);
+      return graded;
     });
   }
   // In process: as many submissions in flight as the pool has workers, and one more queued.
@@ -114,12 +132,11 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
   const worker::PoolConfig config = pool_config(f, static_cast<int>(count));
   worker::WorkerPool pool(config);
   if (options.concurrency <= 0) options.concurrency = config.workers + 1;
+  const ClassFrames frames(c, checkpoint, [&] { return reference_frames(pool, c, checkpoint); });
   return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
-    std::optional<std::pair<fs::path, fs::path>> pair;
-    if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
-    auto graded = grade_one(pool, c, f, pair->first, pair->second);
-    if (!graded) return graded.take_error();  // the batch stops, resumable: nobody is graded for the grader's failure
-    return StudentGrade{std::move(graded->result.report), graded->seconds};
+    auto graded = grade_student(pool, c, checkpoint, f, s);
+    if (graded) frames.check(s, *graded);
+    return graded;  // an error stops the batch, resumable: nobody is graded for the grader's failure
   });
 }
 

@@ -66,8 +66,8 @@ void add_connection_flags(CLI::App* cmd, http::ConnectionLimits& c) {
 }
 
 void add_tenant_flags(CLI::App* cmd, http::TenantLimits& t) {
-  cmd->add_option("--api-keys", t.api_keys_file, "File of API keys (KEY NAME [REQUESTS_PER_MINUTE] per line); "
-                  "when given, /api/ requires Authorization: Bearer KEY")->envname("SHADELAB_API_KEYS");
+  cmd->add_option("--api-keys", t.api_keys_file, "File of API keys (KEY NAME [REQUESTS_PER_MINUTE] [student|staff] per line); "
+                  "when given, /api/ requires Authorization: Bearer KEY, and only staff keys see the references")->envname("SHADELAB_API_KEYS");
   cmd->add_option("--rate-limit", t.requests_per_minute, "Requests a minute per key, or per address without keys (0: none)")
       ->envname("SHADELAB_RATE_LIMIT")->capture_default_str();
   cmd->add_option("--burst", t.burst, "Requests allowed at once over the rate (0: a tenth of a minute's, at least 5)")
@@ -108,6 +108,9 @@ int serve(const http::ServiceConfig& config) {
                               std::to_string(config.pool.workers) + " render workers" +
                               (config.shared_store.url.empty() ? std::string() : ", sharing through " + config.shared_store.url) + "\n";
   std::cerr << serving << std::flush;
+  std::cerr << (config.open_references
+                    ? "shadelab: --open-references: every caller sees the references' source and frames (self-study; never for a class)\n"
+                    : "shadelab: the references' source and frames are for staff keys only; students see the public presets\n");
   std::thread([&service, stop_signals] {
     int sig = 0;
     sigwait(&stop_signals, &sig);
@@ -148,6 +151,10 @@ Command add_serve_command(CLI::App& app) {
   add_connection_flags(cmd, config->connections);
   add_tenant_flags(cmd, config->tenants);
   add_shared_store_flags(cmd, config->shared_store);
+  cmd->add_flag("--open-references", config->open_references,
+                "Show the references' source and frames to every caller: a server for one learner's self-study, never a class's "
+                "(off: only staff keys see them)")
+      ->envname("SHADELAB_OPEN_REFERENCES");
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
   config->reference_store = grade::default_reference_folder();
   cmd->add_option("--cache-dir", config->reference_store,

@@ -2,6 +2,8 @@
 
 #include <httplib.h>
 
+#include "core/base64.h"
+
 #include <random>
 #include <thread>
 
@@ -73,6 +75,28 @@ Expected<ServerGrade> grade_on_server(const ServerOptions& o, const json& body) 
                                                  " s (" + std::to_string(tries) + " tries; last: " + last + ")");
     std::this_thread::sleep_for(wait);
   }
+}
+
+Expected<std::vector<std::string>> preset_frames_on_server(const ServerOptions& o, const std::string& course, const std::string& preset) {
+  auto endpoint = endpoint_of(o.url);
+  if (!endpoint) return endpoint.take_error();
+  httplib::Client client(endpoint->scheme_host_port);
+  client.set_connection_timeout(std::chrono::seconds(5));
+  client.set_read_timeout(o.request_timeout);
+  httplib::Headers headers;
+  if (!o.api_key.empty()) headers.emplace("Authorization", "Bearer " + o.api_key);
+  const httplib::Params query = {{"course", course}, {"preset", preset}, {"output", "json"}};
+  auto res = client.Get(endpoint->prefix + "/api/render", query, headers);
+  if (!res) return make_error(ErrorCode::io_error, o.url + " did not answer: " + httplib::to_string(res.error()));
+  if (res->status == 403) return make_error(ErrorCode::reference_private, problem_detail(*res));
+  if (res->status != 200) return make_error(ErrorCode::io_error, o.url + " did not draw " + preset + ": " + problem_detail(*res));
+  const json body = json::parse(res->body, nullptr, false);
+  std::vector<std::string> frames;
+  if (body.is_object() && body.contains("images"))
+    for (const auto& f : body["images"].value("frames", json::array()))
+      if (auto bytes = base64_decode(f.value("data", "")); bytes) frames.push_back(std::move(*bytes));
+  if (frames.empty()) return make_error(ErrorCode::io_error, o.url + " answered " + preset + "'s render without its frames");
+  return frames;
 }
 
 }  // namespace shadelab::cli

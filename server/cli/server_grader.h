@@ -10,6 +10,7 @@
 // | any other status                         | stops the batch with the server's problem detail   |
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -33,5 +34,9 @@ struct ServerGrade {
 
 // `body`: the POST /api/grade JSON request.
 Expected<ServerGrade> grade_on_server(const ServerOptions& options, const nlohmann::json& body);
+
+// The frames (PNG bytes) of the course's job the server draws for `preset` at the exact angles:
+// GET /api/render?output=json. A reference needs a staff key: reference_private without one.
+Expected<std::vector<std::string>> preset_frames_on_server(const ServerOptions& options, const std::string& course, const std::string& preset);
 
 }  // namespace shadelab::cli

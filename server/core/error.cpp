@@ -51,6 +51,7 @@ constexpr ErrorCodeInfo kCodes[] = {
     {ErrorCode::unknown_course,             "unknown_course",             404, "No such course",                                        false, false},
     {ErrorCode::grader_failed,              "grader_failed",              500, "The grader's own work failed",                          false, false},
     {ErrorCode::frames_invalid,             "frames_invalid",             422, "A saved frame cannot be read",                          true,  false},
+    {ErrorCode::reference_private,          "reference_private",          403, "The course's references are for its staff",             false, false},
 };
 }  // namespace
 

@@ -73,6 +73,12 @@ Expected<Course::FoundPreset> Course::find_preset(std::string_view name) const {
   return make_error(ErrorCode::unknown_preset, "no preset '" + std::string(name) + "' in " + id + " (presets: " + joined(preset_names()) + ")");
 }
 
+std::string Course::frames_download_notice() const {
+  if (!frames_from_page) return "";
+  return "for checking, not for handing in: the course wants the frames saved from its page (its Save button); frames ShadeLab "
+         "drew are recognised and score 0 as saved frames";
+}
+
 render::PageSetup Course::page() const {
   render::PageSetup setup{camera, {}};
   for (const auto& u : uniforms)
@@ -140,6 +146,7 @@ grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptio
 grade::GradeSpec Course::frames_grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {
   grade::GradeSpec spec = grade_spec(c, options);
   spec.probes.clear();
+  spec.frames_from_page = frames_from_page;
   const auto named = [&](const std::string& preset) {
     for (const auto& m : c.mistakes)
       if (m.preset == preset) return true;  // the catalogue says it better ("missing_specular")

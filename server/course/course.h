@@ -31,6 +31,9 @@ struct Preset {
   // Where they were read: "builtin:shaders/specular_vert.js", or the file's path on disk.
   std::string vertex_source, fragment_source;
   shader::ShaderFile vertex, fragment;     // named by their file names, as a student's are
+  // Handed to the students ("public": true; the built-in course's starter as distributed). Any
+  // other preset is a reference: its source and frames are the staff's (course/access.h).
+  bool is_public = false;
 };
 
 // One deliberate change to a reference shader, found by its text.
@@ -130,6 +133,10 @@ struct Course {
   double degrees_per_frame = 0;
   int msaa = 0;
   std::string frame_name;  // "hw2_{prefix}_{k}": a frame's file name without its extension
+  // The handout has students save the frames from the page: frames ShadeLab drew itself (the
+  // reference at the exact angles, which no browser produces) lose the saved-frames test. False:
+  // they are only flagged for the TA.
+  bool frames_from_page = true;
   render::PageCamera camera;
   std::vector<PageUniform> uniforms;
   std::vector<grade::StarterConstant> starter_constants;  // specularAlpha = 6.0
@@ -179,6 +186,9 @@ struct Course {
   std::string frame_file(std::string_view prefix, int k, std::string_view extension) const;
   // The names the page feeds the light's position by (what a probe light moves).
   std::vector<std::string> light_position_names() const;
+  // What a download of ShadeLab's own frames says where the course wants frames saved from the
+  // page: they are for checking, not for handing in. Empty where ShadeLab's frames may be handed in.
+  std::string frames_download_notice() const;
   // The starter's specular exponent (the CPU reference's alpha); 0 when the profile sets none.
   double specular_exponent() const;
 };

@@ -84,12 +84,13 @@ class Parser {
 
     const JsonReader frames = r.object("frames");
     if (r.require("frames")) {
-      frames.only({"count", "degreesPerFrame", "fileName"});
+      frames.only({"count", "degreesPerFrame", "fileName", "savedFromPage"});
       frames.require("count") && frames.require("degreesPerFrame") && frames.require("fileName");
     }
     course_.frames = frames.integer("count", 0, 1, 3600);
     course_.degrees_per_frame = frames.number("degreesPerFrame", 0, -3600, 3600);
     course_.frame_name = frames.text("fileName", "");
+    course_.frames_from_page = frames.boolean("savedFromPage", true);
     if (frames.has("fileName") && (!std::regex_match(course_.frame_name, std::regex("[A-Za-z0-9_{}.-]{1,128}")) ||
                                    course_.frame_name.find("{prefix}") == std::string::npos ||
                                    course_.frame_name.find("{k}") == std::string::npos))
@@ -199,13 +200,14 @@ class Parser {
   void presets(const JsonReader& r) {
     if (r.require("presets") && r.get("presets").is_array() && r.get("presets").empty()) r.fail_at("presets", "expected at least one preset");
     for (const JsonReader& p : r.objects("presets")) {
-      p.only({"name", "description", "vertex", "fragment"});
+      p.only({"name", "description", "vertex", "fragment", "public"});
       p.require("name") && p.require("vertex") && p.require("fragment");
       Preset out;
       out.name = p.text("name", "");
       if (p.has("name") && !is_name(out.name)) p.fail_at(p.at("name"), "expected lower-case letters, digits, '_' or '-' (at most 32)");
       if (course_.preset(out.name)) p.fail_at(p.at("name"), "'" + out.name + "' is named twice");
       out.description = p.text("description", "");
+      out.is_public = p.boolean("public", false);
       out.vertex_file = p.text("vertex", "");
       out.fragment_file = p.text("fragment", "");
       out.vertex = shader_file(p, "vertex", shader::Stage::vertex, out.vertex_source);
@@ -413,9 +415,11 @@ json to_json(const Course& c, bool portable) {
   json meshes = json::array();
   for (const auto& m : c.meshes) meshes.push_back({{"name", m.name}, {"file", portable ? m.source : m.file}});
   json presets = json::array();
-  for (const auto& p : c.presets)
+  for (const auto& p : c.presets) {
     presets.push_back({{"name", p.name}, {"description", p.description}, {"vertex", portable ? p.vertex_source : p.vertex_file},
                        {"fragment", portable ? p.fragment_source : p.fragment_file}});
+    if (p.is_public) presets.back()["public"] = true;
+  }
   json checkpoints = json::array();
   for (const auto& k : c.checkpoints) {
     json mistakes = json::array();
@@ -459,7 +463,8 @@ json to_json(const Course& c, bool portable) {
               {"id", c.id},
               {"title", c.title},
               {"canvas", {{"width", c.width}, {"height", c.height}}},
-              {"frames", {{"count", c.frames}, {"degreesPerFrame", c.degrees_per_frame}, {"fileName", c.frame_name}}},
+              {"frames", {{"count", c.frames}, {"degreesPerFrame", c.degrees_per_frame}, {"fileName", c.frame_name},
+                          {"savedFromPage", c.frames_from_page}}},
               {"msaa", c.msaa},
               {"camera", {{"fovYDegrees", cam.fov_y_degrees}, {"near", cam.near}, {"far", cam.far},
                           {"meshTranslation", {cam.mesh_translation.x, cam.mesh_translation.y, cam.mesh_translation.z}}}},

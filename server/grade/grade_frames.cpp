@@ -12,6 +12,7 @@
 #include "core/words.h"
 #include "grade/grade_session.h"
 #include "grade/lag_fit.h"
+#include "grade/provenance.h"
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/metrics.h"
@@ -83,14 +84,22 @@ double worst_outline_overlap(const SharedFrames& a, const SharedFrames& b) {
 }
 constexpr double kSameOutline = 0.9;
 
+// Whether frames 1 on were drawn at exactly their nominal angles: what a page with a fixed clock gives.
+bool without_lag(const std::vector<LagFit>& fits) {
+  if (fits.size() < 2) return false;
+  for (size_t k = 1; k < fits.size(); ++k)
+    if (fits[k].lag_degrees >= 0.005) return false;
+  return true;
+}
+
 // The fits in words: the lags found, and what does not fit (a frame behind the window, one that
 // looks like another frame). Frames of the second kind fail.
 void describe_fits(const std::vector<LagFit>& fits, const LagGrid& grid, const std::vector<SavedFrame>& saved, Report& r) {
-  double lo = 1e9, hi = -1e9;
+  double lo = 1e9;
   for (size_t k = 0; k < fits.size(); ++k) {
     const LagFit& f = fits[k];
     r.frames[k].lag_degrees = f.lag_degrees;
-    if (k > 0) lo = std::min(lo, f.lag_degrees), hi = std::max(hi, f.lag_degrees);
+    if (k > 0) lo = std::min(lo, f.lag_degrees);
     if (f.beyond_window)
       r.messages.push_back(saved[k].name + " was drawn " + degrees(grid.window) + " degrees or more behind " + degrees(grid.nominal(f.frame)) +
                            " (the window searched): compared at that limit");
@@ -102,11 +111,33 @@ void describe_fits(const std::vector<LagFit>& fits, const LagGrid& grid, const s
                                                 "'s (" + degrees(grid.nominal(f.frame)) + "): saved out of order, or twice?");
     }
   }
-  if (fits.size() > 1 && hi < 0.005)
+  double hi = 0;
+  for (size_t k = 1; k < fits.size(); ++k) hi = std::max(hi, fits[k].lag_degrees);
+  if (without_lag(fits))
     r.messages.push_back("frames 1 to " + std::to_string(fits.size() - 1) + " were drawn at their nominal angles (no lag: a fixed clock)");
   else if (fits.size() > 1)
     r.messages.push_back("frames 1 to " + std::to_string(fits.size() - 1) + " were drawn " + degrees(lo) + " to " + degrees(hi) +
                          " degrees behind their nominal angles (the page draws with the previous frame's time), and were compared there");
+}
+
+// Where the frames came from (grade/provenance.h): ShadeLab's own render of the reference at the
+// exact angles (the grid's lag-0 frames) loses the test where the course wants frames saved from
+// its page, and is flagged where it does not; no lag on any frame otherwise is flagged for the TA.
+void judge_provenance(Report& r, const std::vector<const image::Image*>& saved, const SharedFrames& grid_frames, const LagGrid& grid,
+                      const std::vector<LagFit>& fits, bool frames_from_page) {
+  std::vector<const image::Image*> exact;
+  for (int k = 0; k < grid.frames; ++k) exact.push_back(grid_frames[grid.index(k, 0)].get());
+  if (drawn_by_shadelab(saved, exact)) {
+    r.flags.push_back(made_by_shadelab_flag(grid.frames));
+    if (frames_from_page) {
+      r.pass = false;
+      r.score = 0;
+      r.diagnosis = std::string(to_string(FlagKind::made_by_shadelab));
+      r.messages.insert(r.messages.begin(), save_from_the_page());
+    }
+  } else if (without_lag(fits)) {
+    r.flags.push_back(no_lag_flag(grid.frames));
+  }
 }
 
 // Pass when every frame passes (after the fits' findings); the score is all or nothing, as a code grade's.
@@ -271,6 +302,7 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
                                                                   percent(outline) + " at worst): saved with another mesh selected on the page?");
     }
   settle(out.frames);
+  judge_provenance(out.frames, saved_images, *grid_frames, grid, diagnosed_fits, spec.frames_from_page);
 
   if (has_code && code_error) out.code = failed_submission(*code_error, spec.reference_name, spec.options.max_score);
   if (has_code && !code_error) {

@@ -63,6 +63,9 @@ struct GradeSpec {
   GradeOptions options;
   ReferenceStorePlaces reference_store;
   HeatMap heatmap = HeatMap::always;
+  // Saved frames must come from the course's page: ShadeLab's own frames lose the saved-frames
+  // test (false: they are flagged only). Course::frames_from_page.
+  bool frames_from_page = true;
 
   bool wants_heatmap(bool passed) const { return heatmap == HeatMap::always || (heatmap == HeatMap::when_failing && !passed); }
 };

@@ -94,12 +94,13 @@ Report part_of(const Report& whole, bool probes, double max_score) {
 }
 
 json to_json(const Report& r) {
-  json frames = json::array(), diagnostics = json::array();
+  json frames = json::array(), diagnostics = json::array(), flags = json::array();
+  for (const auto& f : r.flags) flags.push_back({{"id", to_string(f.kind)}, {"message", f.message}});
   for (size_t k = 0; k < r.frames.size(); ++k) frames.push_back(frame_json(r.frames[k], k));
   for (const auto& d : r.diagnostics) diagnostics.push_back(to_json(d));
   return {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},           {"maxScore", r.max_score},
           {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},           {"diagnostics", diagnostics},
-          {"warnings", r.warnings},     {"attempts", r.attempts},
+          {"warnings", r.warnings},     {"flags", flags},         {"attempts", r.attempts},
           {"graderWork", {{"rendered", r.grader_work.rendered}, {"fromStore", r.grader_work.from_store},
                           {"fromMemory", r.grader_work.from_memory}}}};
 }
@@ -117,6 +118,11 @@ Expected<Report> report_from_json(const json& j) {
     for (const auto& d : j.at("diagnostics")) r.diagnostics.push_back(diagnostic_from_json(d));
     r.warnings = j.at("warnings").get<std::vector<std::string>>();
     r.attempts = j.value("attempts", 1);
+    for (const auto& f : j.value("flags", json::array())) {
+      const auto kind = flag_named(f.at("id").get<std::string>());
+      if (!kind) return make_error(ErrorCode::worker_protocol, "a grade report with an unknown flag: " + f.at("id").dump());
+      r.flags.push_back({*kind, f.at("message")});
+    }
     if (j.contains("graderWork")) {
       const json& w = j.at("graderWork");
       r.grader_work = {w.at("rendered"), w.at("fromStore"), w.at("fromMemory")};
@@ -127,9 +133,15 @@ Expected<Report> report_from_json(const json& j) {
   }
 }
 
-json to_gradescope(const Report& r, double seconds) {
+std::string output_text(const Report& r) {
   std::string output;
+  for (const auto& f : r.flags) output += "FLAGGED FOR THE TA: " + f.message + "\n";
   for (const auto& m : r.messages) output += m + "\n";
+  return output;
+}
+
+json to_gradescope(const Report& r, double seconds) {
+  const std::string output = output_text(r);
   json test = {{"name", "checkpoint: " + r.checkpoint},
                {"score", r.score},
                {"max_score", r.max_score},

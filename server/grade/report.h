@@ -14,6 +14,8 @@
 // |              | lagDegrees for a frame the student saved                                   |
 // | diagnostics[]| compiler messages at the student's lines (ungradable submissions)          |
 // | warnings[]   | request fields ignored, uniforms the program does not use, ...             |
+// | flags[]      | {id, message} for the TA: saved frames ShadeLab made, frames with no lag   |
+// |              | (grade/provenance.h)                                                       |
 // | graderWork   | the grader's own sets of frames: rendered, fromStore (disk/Redis), fromMemory    |
 #include <optional>
 #include <string>
@@ -23,6 +25,7 @@
 
 #include "core/expected.h"
 #include "grade/grader.h"
+#include "grade/provenance.h"
 
 namespace shadelab::grade {
 
@@ -42,6 +45,7 @@ struct Report {
   std::vector<FrameReport> frames;
   std::vector<Diagnostic> diagnostics;
   std::vector<std::string> warnings;
+  std::vector<Flag> flags;  // for the TA to look at (grade/provenance.h)
   int attempts = 1;  // 2 when the first ran past its deadline and the grade is the retry's
   // The grader's own work for this grade, in sets of frames (one light's render of the reference
   // or of one known mistake): rendered, read from the store on disk, or found in the worker's memory.
@@ -63,6 +67,10 @@ Report part_of(const Report& whole, bool probes, double max_score);
 
 nlohmann::json to_json(const Report& report);
 Expected<Report> report_from_json(const nlohmann::json& j);
+
+// What a test's output says: the flags first ("FLAGGED FOR THE TA: ..."), then the messages, a
+// line each.
+std::string output_text(const Report& report);
 
 // Gradescope's results.json: score, execution_time, output, tests[] (name, score, max_score,
 // status, output, visibility).

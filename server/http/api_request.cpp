@@ -139,6 +139,7 @@ Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& l
     job.request.vertex = found->preset->vertex;
     job.request.fragment = found->preset->fragment;
     job.prefix = prefix_of(course, *found->preset);
+    out.preset = found->preset;
     return Ok{};
   }
   if (kind == worker::JobKind::mesh_check) return Ok{};

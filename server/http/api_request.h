@@ -30,6 +30,9 @@ struct ParsedJob {
   UploadedFile mesh_upload;       // a mesh sent with the request (content empty when none)
   std::string course_mesh_bytes;  // a course's own mesh, when the job names one (embedded ones travel by path)
   std::vector<std::string> warnings;
+  // The course's preset the job draws, when it names one: the route asks whether the caller may
+  // see it (course/access.h) before any worker draws it.
+  const course::Preset* preset = nullptr;
 };
 
 // Fields of a JSON body; a 400 for anything but an object.

@@ -57,6 +57,7 @@ void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res)
     if (!info(parsed.error().code).submission_caused) return send_problem(res, parsed.error(), req.path);
     graded.report = grade::failed_submission(parsed.error(), checkpoint, max_score);
   } else {
+    if (auto visible = c.may_draw(parsed->parsed, **course, req); !visible) return send_problem(res, visible.error(), req.path);
     auto mesh = c.mesh_bytes(parsed->parsed);
     if (!mesh) return send_problem(res, mesh.error(), req.path);
     parsed->parsed.job.grade.reference_store = c.config.reference_places();

@@ -57,6 +57,8 @@ void render(RouteContext& c, const httplib::Request& req, httplib::Response& res
   if (!course) return send_problem(res, course.error(), req.path);
   auto parsed = parse_job(*raw, worker::JobKind::render, c.config.limits, **course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
+  if (auto visible = c.may_draw(*parsed, **course, req); !visible) return send_problem(res, visible.error(), req.path);
+  if (parsed->job.output == worker::Output::frames) parsed->job.notice = (**course).frames_download_notice();
   auto mesh = c.mesh_bytes(*parsed);
   if (!mesh) return send_problem(res, mesh.error(), req.path);
   worker::Message message = worker::to_message(parsed->job, std::move(*mesh));
@@ -75,6 +77,8 @@ void render(RouteContext& c, const httplib::Request& req, httplib::Response& res
   response.headers["Server-Timing"] = server_timing(r.timings, answered->queue_ms);
   response.headers["X-ShadeLab-Warnings"] = std::to_string(warnings.size());
   if (!constant.empty()) response.headers["X-ShadeLab-Constant-Frames"] = constant;
+  if (const std::string notice = (**course).frames_download_notice(); !notice.empty() && parsed->job.output != worker::Output::grid)
+    response.headers["X-ShadeLab-Notice"] = notice;
   if (parsed->job.output == worker::Output::frames)
     response.headers["Content-Disposition"] =
         "attachment; filename=\"" + render::frame_file_name(parsed->job.frame_name, parsed->job.prefix, "frames", "zip") + "\"";
@@ -95,6 +99,7 @@ void compile(RouteContext& c, const httplib::Request& req, httplib::Response& re
   if (!course) return send_problem(res, course.error(), req.path);
   auto parsed = parse_job(*raw, worker::JobKind::compile, c.config.limits, **course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
+  if (auto visible = c.may_draw(*parsed, **course, req); !visible) return send_problem(res, visible.error(), req.path);
   auto answered = c.run<worker::CompileResult>(worker::to_message(parsed->job));
   if (!answered) return send_problem(res, answered.error(), req.path);
   const auto& r = answered->result;

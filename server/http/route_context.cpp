@@ -34,6 +34,17 @@ Expected<std::string> RouteContext::mesh_bytes(ParsedJob& parsed) const {
   return (*stored)->bytes;
 }
 
+course::Viewer RouteContext::viewer(const httplib::Request& req) const {
+  return {tenants.role_of(req.get_header_value("Authorization")), config.open_references};
+}
+
+Status RouteContext::may_draw(const ParsedJob& parsed, const course::Course& course, const httplib::Request& req) const {
+  if (!parsed.preset) return Ok{};
+  auto found = course::find_visible_preset(course, parsed.preset->name, viewer(req));
+  if (!found) return found.take_error();
+  return Ok{};
+}
+
 const course::Course* RouteContext::course_param(const httplib::Request& req, httplib::Response& res) const {
   auto found = courses.named(req.has_param("course") ? req.get_param_value("course") : "");
   if (!found) {

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "course/access.h"
 #include "http/api_request.h"
 #include "http/request_reader.h"
 #include "http/mesh_store.h"
@@ -47,6 +48,11 @@ struct RouteContext {
   // The bytes of the job's mesh: a file in this request, a course's own mesh, an uploaded id (its
   // format set on the job), or none for a mesh compiled into the binary.
   Expected<std::string> mesh_bytes(ParsedJob& parsed) const;
+
+  // Who is asking (course/access.h): the role of the request's key, and the server's openness.
+  course::Viewer viewer(const httplib::Request& req) const;
+  // Whether the caller may have what `parsed` draws: a reference preset only with a staff key.
+  Status may_draw(const ParsedJob& parsed, const course::Course& course, const httplib::Request& req) const;
 
   // The course `?course=ID` names, or the default one; null, with the problem answered, otherwise.
   const course::Course* course_param(const httplib::Request& req, httplib::Response& res) const;

@@ -26,6 +26,8 @@ struct ServiceConfig {
   store::SharedStoreConfig shared_store;  // Redis shared by the replicas; empty url: none
   std::string web_root;  // served at /; empty: no static files
   course::CourseSet courses;  // what requests name by `course`; the first is the default (built-in unless given)
+  // Every caller sees the references (a server for one learner's self-study); off: staff keys only.
+  bool open_references = false;
   std::string reference_store;  // where workers keep reference renders across restarts (grade/reference_store.h); empty: memory only
 
   // Where a grade's workers keep the references: the folder, and Redis when the replicas share one.

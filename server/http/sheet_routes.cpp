@@ -144,6 +144,7 @@ void sheet(RouteContext& c, const httplib::Request& req, httplib::Response& res)
   if (!course) return send_problem(res, course.error(), req.path);
   auto input = parse_sheet(*raw, c.config.limits);
   if (!input) return send_problem(res, input.error(), req.path);
+  input->viewer = c.viewer(req);
   auto assembled = sheet::assemble(c.pool, **course, std::move(*input), c.config.reference_places());
   if (!assembled) return send_problem(res, assembled.error(), req.path);
   if (*format == "html") return res.set_content(sheet::render_html(*assembled), "text/html; charset=utf-8");

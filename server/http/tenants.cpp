@@ -23,6 +23,21 @@ std::string bearer_token(const std::string& authorization) {
   return authorization.substr(kScheme.size());
 }
 
+// What follows a key's name: its rate (a number), then its role, each optional.
+bool key_options(std::istringstream& fields, ApiKey& k) {
+  std::string word;
+  if (!(fields >> word)) return true;
+  if (std::isdigit(static_cast<unsigned char>(word[0])) || word[0] == '.') {
+    std::istringstream rate(word);
+    if (!(rate >> k.requests_per_minute) || !rate.eof() || k.requests_per_minute < 0) return false;
+    if (!(fields >> word)) return true;
+  }
+  const auto role = course::role_named(word);
+  if (!role) return false;
+  k.role = *role;
+  return !(fields >> word);
+}
+
 }  // namespace
 
 Expected<std::vector<ApiKey>> read_api_keys(const std::string& path) {
@@ -35,9 +50,8 @@ Expected<std::vector<ApiKey>> read_api_keys(const std::string& path) {
     std::istringstream fields(line);
     ApiKey k;
     if (!(fields >> k.key)) continue;
-    std::string rate;
-    if (!(fields >> k.name) || (fields >> rate && !(std::istringstream(rate) >> k.requests_per_minute)) || k.requests_per_minute < 0)
-      return make_error(ErrorCode::invalid_argument, path + ":" + std::to_string(number) + ": expected KEY NAME [REQUESTS_PER_MINUTE]");
+    if (!(fields >> k.name) || !key_options(fields, k))
+      return make_error(ErrorCode::invalid_argument, path + ":" + std::to_string(number) + ": expected KEY NAME [REQUESTS_PER_MINUTE] [student|staff]");
     if (!std::all_of(k.name.begin(), k.name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; }))
       return make_error(ErrorCode::invalid_argument, path + ":" + std::to_string(number) + ": a name may hold letters, digits, '_', '-' and '.'");
     if (k.key.size() < 16)
@@ -75,6 +89,11 @@ Tenants::Verdict Tenants::admit(const std::string& authorization, const std::str
   return {make_error(ErrorCode::rate_limited, "over " + std::to_string(static_cast<long>(rate)) + " requests a minute for this " +
                                                   (keys_.empty() ? "address" : "key") + "; retry in " + std::to_string(wait) + " s"),
           wait};
+}
+
+course::Role Tenants::role_of(const std::string& authorization) const {
+  const auto key = keys_.find(bearer_token(authorization));
+  return key == keys_.end() ? course::Role::student : key->second.role;
 }
 
 int Tenants::take(const std::string& tenant, double per_minute) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "course/access.h"
 
 namespace shadelab::http {
 
@@ -19,6 +20,7 @@ struct ApiKey {
   std::string key;
   std::string name;                 // how metrics and logs name the tenant (never the key)
   double requests_per_minute = 0;   // 0: the server's default rate
+  course::Role role = course::Role::student;  // `staff` in the keys file: sees the references
 };
 
 struct TenantLimits {
@@ -39,7 +41,8 @@ bool address_in(const std::string& address, const std::vector<std::string>& rang
 // A malformed range is an invalid_argument naming it.
 Status check_address_ranges(const std::vector<std::string>& ranges);
 
-// The keys file: one key per line, `KEY NAME [REQUESTS_PER_MINUTE]`; `#` starts a comment.
+// The keys file: one key per line, `KEY NAME [REQUESTS_PER_MINUTE] [ROLE]` (ROLE: student, the
+// default, or staff); `#` starts a comment.
 Expected<std::vector<ApiKey>> read_api_keys(const std::string& path);
 
 class Tenants {
@@ -53,6 +56,8 @@ class Tenants {
   // `authorization` is the request's Authorization header ("" when absent).
   Verdict admit(const std::string& authorization, const std::string& address);
   bool keys_required() const { return !keys_.empty(); }
+  // The role of the key `authorization` carries: a known key's, else a student's.
+  course::Role role_of(const std::string& authorization) const;
   std::string render_metrics() const;
 
  private:

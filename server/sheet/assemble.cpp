@@ -226,14 +226,31 @@ std::string rgb_words(const std::array<double, 3>& c) {
   return buf;
 }
 
-// The course's page drawing its default mesh with `preset`'s shaders in the colours an answer gives.
-Expected<std::string> colours_render(worker::WorkerPool& pool, const course::Course& course, const std::string& preset,
-                                     const AnswerColours& colours) {
+// The shaders that draw an answer's colours: `preset`'s, where the sheet's reader may see it;
+// else the student's own code for the deliverable `preset` is the reference of, when handed in.
+std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>> colour_shaders(const course::Course& course, const SheetInput& input,
+                                                                                  const std::string& preset) {
   const course::Preset* p = course.preset(preset);
-  if (!p) return std::string();
+  if (!p) return std::nullopt;
+  if (course::may_see(input.viewer, *p)) return std::pair{p->vertex, p->fragment};
+  std::vector<fs::path> paths;
+  for (const auto& f : input.files) paths.push_back(f.path);
+  course::sort_submission(paths);
+  for (const auto& planned : course::plan_checkpoints(course, paths)) {
+    auto found = course.checkpoint(planned.checkpoint);
+    if (found && found->checkpoint->reference == preset && planned.pair)
+      return std::pair{shader::ShaderFile{planned.pair->first.filename().string(), text_of(input, planned.pair->first)},
+                       shader::ShaderFile{planned.pair->second.filename().string(), text_of(input, planned.pair->second)}};
+  }
+  return std::nullopt;
+}
+
+// The course's page drawing its default mesh with `shaders` in the colours an answer gives.
+Expected<std::string> colours_render(worker::WorkerPool& pool, const course::Course& course,
+                                     const std::pair<shader::ShaderFile, shader::ShaderFile>& shaders, const AnswerColours& colours) {
   CourseJob job{worker::course_job(course, worker::JobKind::render), {}};
   (void)worker::attach_course_mesh(course, course.default_mesh, job.job, job.payload);
-  job.job.request = course.render_request(p->vertex, p->fragment);
+  job.job.request = course.render_request(shaders.first, shaders.second);
   job.job.request.frames = 1;
   for (const auto& [role, rgb] : {std::pair{"ambient", colours.ambient}, {"diffuse", colours.diffuse}, {"specular", colours.specular}})
     if (const course::PageUniform* u = course.uniform_with_role(role))
@@ -254,12 +271,17 @@ Status add_answers(worker::WorkerPool& pool, const course::Course& course, const
     const course::Question& q = course.questions[i];
     AnswerSection a{q.text, (*answers)[i], {}, {}};
     if (!q.render_colours.empty() && !a.answer.empty()) {
-      if (const auto colours = colours_in(a.answer)) {
-        auto png = colours_render(pool, course, q.render_colours, *colours);
+      const auto shaders = colour_shaders(course, input, q.render_colours);
+      if (const auto colours = colours_in(a.answer); colours && shaders) {
+        auto png = colours_render(pool, course, *shaders, *colours);
         if (!png) return png.take_error();
         a.render_png = std::move(*png);
-        a.render_caption = "the bunny in your colours: ambient " + rgb_words(colours->ambient) + ", diffuse " + rgb_words(colours->diffuse) +
+        a.render_caption = std::string(course::may_see(input.viewer, *course.preset(q.render_colours)) ? "the bunny" : "your shaders' bunny") +
+                           " in your colours: ambient " + rgb_words(colours->ambient) + ", diffuse " + rgb_words(colours->diffuse) +
                            ", specular " + rgb_words(colours->specular);
+      } else if (colours) {
+        a.render_caption = "not rendered: the course's " + q.render_colours + " reference is for its staff, and the submission has no " +
+                           q.render_colours + " shaders of its own to draw your colours with";
       } else {
         a.render_caption = "no ambient, diffuse and specular RGB values found in the answer to render";
       }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "course/access.h"
 #include "course/course.h"
 #include "sheet/sheet.h"
 #include "worker/job.h"
@@ -38,6 +39,9 @@ struct SheetInput {
   std::vector<SubmittedFile> files;   // the shader modules (text)
   std::vector<SubmittedFile> images;  // the PNG files: saved frames, the Blender half's renders
   std::vector<SceneInput> scenes;
+  // Who the sheet is for: a TA's (the command line, a staff key) shows the purple-bunny answer in
+  // the reference's shading; a student's in their own code's, the reference being the staff's.
+  course::Viewer viewer{course::Role::staff};
 };
 
 // Errors: only what the service could not do (the pool full, no worker): whatever the shaders

@@ -27,6 +27,7 @@ std::vector<std::string> frames_lines(const CheckpointSection& s) {
   char lags[96] = "";
   if (hi >= lo && hi < 0.005) std::snprintf(lags, sizeof lags, " (drawn at their nominal angles)");
   else if (hi >= lo) std::snprintf(lags, sizeof lags, " (drawn %.2f to %.2f degrees behind their nominal angles)", lo, hi);
+  for (const auto& flag : r.flags) out.push_back("FLAGGED FOR THE TA: " + flag.message);
   out.push_back("saved frames: " + verdict(r) + lags);
   if (s.match_report) out.push_back("saved frames against the code: " + (s.match_report->messages.empty() ? verdict(*s.match_report) : s.match_report->messages[0]));
   return out;

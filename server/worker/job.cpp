@@ -90,7 +90,8 @@ json grade_json(const grade::GradeSpec& g) {
           {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants},
           {"referenceStore", g.reference_store.folder}, {"sharedStore", shared_store_json(g.reference_store.shared)},
           {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
-          {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}, {"heatmap", heatmap_names[static_cast<int>(g.heatmap)]}};
+          {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}, {"heatmap", heatmap_names[static_cast<int>(g.heatmap)]},
+          {"framesFromPage", g.frames_from_page}};
 }
 
 grade::GradeSpec grade_from(const json& g) {
@@ -111,6 +112,7 @@ grade::GradeSpec grade_from(const json& g) {
   const auto* named = std::find(std::begin(heatmap_names), std::end(heatmap_names), g.at("heatmap").get<std::string>());
   if (named == std::end(heatmap_names)) throw json::other_error::create(501, "unknown heat map policy", &g);
   spec.heatmap = static_cast<grade::HeatMap>(named - std::begin(heatmap_names));
+  spec.frames_from_page = g.at("framesFromPage");
   return spec;
 }
 
@@ -190,7 +192,7 @@ Message to_message(const Job& job, std::string mesh_bytes) {
   json header = {{"kind", to_string(job.kind)},     {"request", request_json(job.request)}, {"mesh", job.mesh},
                  {"meshEmbedded", job.mesh_embedded}, {"meshFormat", job.mesh_format},       {"fit", fit},
                  {"frameName", job.frame_name},     {"prefix", job.prefix},                 {"output", to_string(job.output)},
-                 {"format", to_string(job.format)}};
+                 {"format", to_string(job.format)}, {"notice", job.notice}};
   if (job.kind == JobKind::grade || job.kind == JobKind::grade_frames) header["grade"] = grade_json(job.grade);
   return {std::move(header), std::move(mesh_bytes)};
 }
@@ -241,6 +243,7 @@ Expected<Job> job_from_message(const Message& m) {
     job.prefix = j.at("prefix");
     job.output = enum_named(j.at("output"), {Output::grid, Output::frames, Output::json});
     job.format = enum_named(j.at("format"), {Format::png, Format::exr});
+    job.notice = j.at("notice");
     if (job.kind == JobKind::grade || job.kind == JobKind::grade_frames) job.grade = grade_from(j.at("grade"));
     return job;
   } catch (const json::exception& e) {

@@ -44,6 +44,9 @@ struct Job {
   std::string prefix = "render";
   Output output = Output::grid;
   Format format = Format::png;
+  // Written beside the frames of a zip as FOR_CHECKING_NOT_FOR_HANDING_IN.txt, when not empty (a
+  // course that wants frames saved from its page: Course::frames_download_notice).
+  std::string notice;
   grade::GradeSpec grade;  // for JobKind::grade and grade_frames
 };
 

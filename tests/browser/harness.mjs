@@ -47,14 +47,17 @@ export async function startBrowser() {
 }
 
 // A page with console errors collected; waits for the page's own start-up (the global it sets).
+// `responses`: every response the page receives, as {url, text} promises (a download's body too).
 export async function openPage(browser, base, { onDialog, path: pagePath = "/", ready = "shadelab" } = {}) {
   const context = await browser.newContext({ viewport: { width: 1400, height: 1000 }, acceptDownloads: true });
   const page = await context.newPage();
+  const responses = [];
+  page.on("response", (r) => responses.push(r.body().then((b) => ({ url: r.url(), text: b.toString("latin1") }), () => ({ url: r.url(), text: "" }))));
   if (onDialog) page.on("dialog", onDialog);
   const consoleErrors = [];
   page.on("console", (m) => m.type() === "error" && consoleErrors.push(m.text()));
   page.on("pageerror", (e) => consoleErrors.push(String(e)));
   await page.goto(base + pagePath);
   await page.waitForFunction((name) => window[name] !== undefined, ready, { timeout: 30000 });
-  return { page, context, consoleErrors };
+  return { page, context, consoleErrors, responses };
 }

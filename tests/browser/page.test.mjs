@@ -13,15 +13,26 @@ const { width, height } = course.canvas;
 const frameFile = (prefix, k, extension = "png") =>
   `${course.frames.fileName.replaceAll("{prefix}", prefix).replaceAll("{k}", String(k))}.${extension}`;
 
-let server, browser;
+// `server` as a class's server starts (the references the staff's); `open` started for one
+// learner's self-study (--open-references), where the page offers the references too.
+let server, open, browser;
 before(async () => {
-  server = await startServer();
+  [server, open] = await Promise.all([startServer(), startServer(["--open-references"])]);
   browser = await startBrowser();
 });
 after(async () => {
   await browser?.close();
-  await server?.stop();
+  await Promise.all([server?.stop(), open?.stop()]);
 });
+
+// Lines of the references' shaders (at least 24 characters) that the starter does not share:
+// what a student's page must never receive.
+const shaderText = (file) => readFileSync(path.join(repo, "shaders", file), "utf8");
+const starterText = course.presets.filter((p) => p.public).map((p) => shaderText(path.basename(p.vertex)) + shaderText(path.basename(p.fragment))).join("\n");
+const referenceLines = [...new Set(course.presets.filter((p) => !p.public)
+  .flatMap((p) => [p.vertex, p.fragment].map((f) => shaderText(path.basename(f))))
+  .flatMap((text) => text.split("\n").map((l) => l.trim()))
+  .filter((l) => l.length >= 24 && !starterText.includes(l)))];
 
 // Names of the files in a zip, from its central directory.
 function zipNames(buffer) {
@@ -91,11 +102,29 @@ describe("the page", () => {
     await context.close();
   });
 
+  test("opens with the starter as handed out, offers only the public presets, and never receives a reference", async () => {
+    const { page, context, consoleErrors, responses } = await openPage(browser, server.base);
+    assert.equal(await page.inputValue("#vertex"), shaderText("starter_vert.js"));
+    assert.equal(await page.inputValue("#fragment"), shaderText("starter_frag.js"));
+    assert.deepEqual(await page.$$eval("#preset option", (all) => all.map((o) => o.value)), course.presets.filter((p) => p.public).map((p) => p.name));
+    assert.match(await page.textContent("#frames-notice"), /for checking, not for handing in/);
+    // What a student does on it: render on the server, compare, download the frames.
+    await page.evaluate(async () => { await window.shadelab.renderOnServer(); await window.shadelab.compareFrame(0); });
+    await Promise.all([page.waitForEvent("download", { timeout: 60000 }), page.getByRole("button", { name: "Download frames (zip)" }).click()]);
+    const bodies = await Promise.all(responses);
+    assert.ok(bodies.length >= 4, `recorded ${bodies.length} responses`);
+    for (const { url, text } of bodies)
+      for (const line of referenceLines) assert.ok(!text.includes(line), `${url} quotes a reference: ${line}`);
+    assert.ok(referenceLines.length > 10);
+    assert.deepEqual(consoleErrors, []);
+    await context.close();
+  });
+
   test("a broken shader shows the error at the right line, locally and from the server", async () => {
     const { page, context } = await openPage(browser, server.base);
     const fragment = await page.inputValue("#fragment");
     const lines = fragment.split("\n");
-    const target = lines.findIndex((l) => l.includes("fragColor = color;"));
+    const target = lines.findIndex((l) => l.includes("fragColor ="));
     lines[target] = "    fragColor = colour;";  // an undeclared name on file line target + 1
     await page.fill("#fragment", lines.join("\n"));
     await page.getByRole("button", { name: "Apply locally" }).click();
@@ -105,24 +134,26 @@ describe("the page", () => {
     await page.getByRole("button", { name: "Render on server" }).click();
     await page.locator("#server-status.error").waitFor({ timeout: 30000 });
     const server_ = page.locator("#fragment-editor .diagnostics li").first();
-    assert.match(await server_.innerText(), new RegExp(`specular_frag\\.js:${target + 1}:\\d+: error:.*colour`));
+    assert.match(await server_.innerText(), new RegExp(`starter_frag\\.js:${target + 1}:\\d+: error:.*colour`));
     assert.equal(await page.locator("#fragment-editor .gutter .error-line").innerText(), String(target + 1));
     await page.screenshot({ path: path.join(artifacts, "broken_shader.png") });
     await context.close();
   });
 
-  test("downloading the frames gives the PNGs with the course's names", async () => {
+  test("downloading the frames gives the PNGs with the course's names, labelled for checking only", async () => {
     const { page, context } = await openPage(browser, server.base);
-    await page.selectOption("#preset", "diffuse");
     const [download] = await Promise.all([
       page.waitForEvent("download", { timeout: 60000 }),
       page.getByRole("button", { name: "Download frames (zip)" }).click(),
     ]);
-    assert.equal(download.suggestedFilename(), frameFile("diffuse", "frames", "zip"));
+    assert.equal(download.suggestedFilename(), frameFile("starter", "frames", "zip"));
     const file = path.join(artifacts, "frames.zip");
     await download.saveAs(file);
     const names = zipNames(readFileSync(file)).sort();
-    assert.deepEqual(names, Array.from({ length: course.frames.count }, (_, k) => frameFile("diffuse", k)).sort());
+    const frames = Array.from({ length: course.frames.count }, (_, k) => frameFile("starter", k));
+    assert.deepEqual(names, [...frames, "FOR_CHECKING_NOT_FOR_HANDING_IN.txt"].sort());
+    assert.match(await page.textContent("#server-status"), /for checking, not for handing in/);
+    await page.screenshot({ path: path.join(artifacts, "frames_download_notice.png") });
     await context.close();
   });
 
@@ -216,7 +247,7 @@ describe("fidelity: the browser's frames against the server's", () => {
   for (const { name: mesh } of course.meshes)
     for (const { name: preset } of course.presets)
       test(`${preset} on the ${mesh}`, async () => {
-        const { page, context } = await openPage(browser, server.base);
+        const { page, context } = await openPage(browser, open.base);
         await page.uncheck("#spin");
         const results = await page.evaluate(async ([p, m]) => {
           await window.shadelab.chooseMesh(m);

@@ -19,7 +19,7 @@ const LAG_TOLERANCE = 0.05;  // degrees, the issue's bound
 
 let server, browser, page, context;
 before(async () => {
-  server = await startServer();
+  server = await startServer(["--open-references"]);  // the references in the editors: a self-study server
   browser = await startBrowser();
   ({ page, context } = await openPage(browser, server.base));
   await page.uncheck("#spin");
@@ -71,6 +71,7 @@ describe("saved frames, made as the course's page makes them", () => {
         assert.ok(result, `${checkpoint.name} was graded`);
         assert.equal(results.length, course.checkpoints.indexOf(checkpoint) + 1, "every deliverable dropped so far is graded");
         assert.ok(result.frames.pass, `${checkpoint.name} at ${clock.hz} Hz: ${result.frames.diagnosis}: ${result.frames.messages.join(" | ")}`);
+        assert.deepEqual(result.frames.flags, [], `${checkpoint.name} at ${clock.hz} Hz: a page's own frames are not flagged`);
         if (checkpoint.code) assert.ok(result.code?.pass, `${checkpoint.name}: the frames are what the editors' code renders: ${result.code?.messages.join(" | ")}`);
         const found = result.frames.frames.map((f) => f.lagDegrees);
         console.log(`${checkpoint.name} at ${clock.hz} Hz: lags drawn ${lags.map((l) => l.toFixed(3)).join(" ")}; found ${found.map((l) => l.toFixed(3)).join(" ")}`);
@@ -82,6 +83,21 @@ describe("saved frames, made as the course's page makes them", () => {
       assert.deepEqual(shown, course.checkpoints.map((c) => [c.name, "verdict pass"]));
       await page.screenshot({ path: path.join(artifacts, `saved_frames_${clock.hz}hz.png`), fullPage: true });
     });
+
+  test("the server's own frames of the reference, dropped on the check, are named for what they are", async () => {
+    const normals = course.checkpoints.find((c) => c.name === "normals");
+    const result = await page.evaluate(async ([preset]) => {
+      const r = await (await fetch(`/api/render?preset=${preset}&output=json`)).json();
+      const files = await Promise.all(r.images.frames.map(async (f) => new File([await (await fetch(`data:image/png;base64,${f.data}`)).blob()], f.name, { type: "image/png" })));
+      document.getElementById("saved-code").value = "";
+      return (await window.shadelab.checkSavedFrames(files))[0];
+    }, [normals.reference]);
+    assert.equal(result.frames.pass, false);
+    assert.equal(result.frames.diagnosis, "made_by_shadelab");
+    assert.deepEqual(result.frames.flags.map((f) => f.id), ["made_by_shadelab"]);
+    assert.match(await page.textContent("#saved-results .flag"), /Flagged for the TA: made by ShadeLab, not saved from the page/);
+    await page.screenshot({ path: path.join(artifacts, "saved_frames_made_by_shadelab.png"), fullPage: true });
+  });
 
   test("frames chosen with the file input are checked, and a stray file is named", async () => {
     const specular = course.checkpoints.find((c) => c.name === "specular");

@@ -59,6 +59,7 @@ class LocalCluster {
       ::dup2(fd, 1);
       ::dup2(fd, 2);
       ::setenv("SHADELAB_BIN", SHADELAB_CLI, 1);
+      ::setenv("SHADELAB_OPEN_REFERENCES", "1", 1);  // the cluster tests draw the references by name
       ::execl("/bin/bash", "bash", script.c_str(), "--replicas", replicas_text.c_str(), "--port", port_text.c_str(), "--workers", "1",
               "--dir", dir_text.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);

@@ -32,6 +32,11 @@ const scene::Mesh& builtin(const std::string& name);
 // nominal angle minus its lag (degrees), as PNGs named as the page names them under `prefix`.
 std::vector<grade::SavedFrame> saved_frames(const std::string& preset, const std::string& prefix, const std::vector<double>& lags);
 
+// Where a 60 Hz page draws the course's 9 frames (each after the first 0.05-0.3 degrees behind its
+// nominal angle), for `shadelab render --angles`: frames as a student's page saves them, where
+// ShadeLab's own at the exact angles are no hand-in (grade/provenance.h).
+inline constexpr const char* kPageAngles = "0,19.88,39.79,59.95,79.7,99.83,119.74,139.91,159.77";
+
 // A request whose vertex shader covers the viewport with one triangle and whose fragment shader
 // is `fragment_body` inside main() writing `out vec4 c`.
 render::RenderRequest fullscreen_request(const std::string& fragment_body, const std::string& declarations = "");

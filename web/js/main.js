@@ -152,6 +152,8 @@ async function renderOnServer() {
 
 async function downloadFrames() {
   const response = await post("frames");
+  const notice = response.headers.get("X-ShadeLab-Notice");
+  if (notice) status("server-status", `Downloaded the server's frames: ${notice}.`);
   const url = URL.createObjectURL(await response.blob());
   const a = Object.assign(document.createElement("a"), { href: url, download: frameFile($("prefix").value, "frames", "zip") });
   document.body.append(a);
@@ -224,6 +226,9 @@ function showSavedResult(checkpoint, result) {
                               element("ul", {}, result.code.messages.map((m) => element("li", { textContent: m }))));
   for (const w of result.frames.warnings ?? []) parts.push(element("p", { className: "lags", textContent: w }));
   if (result.heatmap) parts.push(element("img", { src: `data:image/png;base64,${result.heatmap}`, alt: `${checkpoint.name}: where the frames differ from the reference` }));
+  // What the grader flags for the TA (frames ShadeLab made, frames with no lag), first and plain.
+  const flags = (result.frames.flags ?? []).map((f) => element("p", { className: "flag", textContent: `Flagged for the TA: ${f.message}` }));
+  parts.splice(1, 0, ...flags);
   const article = element("article", { className: "saved-result" }, parts);
   article.dataset.checkpoint = checkpoint.name;
   $("saved-results").append(article);
@@ -275,6 +280,7 @@ function wireSavedFrames() {
 // ---- wiring -------------------------------------------------------------------------------
 async function choosePreset(name, presets) {
   const p = presets.find((x) => x.name === name);
+  $("preset").value = name;  // the list says what the editors hold, however it was chosen
   editors.vertex.name = p.vertex.name;
   editors.fragment.name = p.fragment.name;
   $("vertex-name").textContent = p.vertex.name;
@@ -316,7 +322,9 @@ function fillControls(course) {
   $("degrees").value = course.frames.degreesPerFrame;
   $("width").value = course.canvas.width;
   $("height").value = course.canvas.height;
-  for (const p of course.presets) $("preset").append(new Option(p.name, p.name, false, p.name === course.defaultPreset));
+  for (const p of course.presets) $("preset").append(new Option(p.name, p.name, false, p.name === course.pagePreset));
+  const notice = course.viewer?.framesDownloadNotice;
+  if (notice) Object.assign($("frames-notice"), { hidden: false, textContent: `The server's frames and grid are ${notice}.` });
   const last = course.checkpoints.at(-1);
   if (last) $("saved-example").textContent = frameFile(last.prefix, 0);
 }
@@ -330,7 +338,8 @@ async function init() {
   state.view = new GlView($("glcanvas"), course);
   fillControls(course);
   await loadMesh(course.defaultMesh);
-  await choosePreset(course.defaultPreset, presets);
+  // The page opens as the course's index.html does: with the starter the students received.
+  await choosePreset(course.pagePreset ?? course.defaultPreset, presets);
   requestAnimationFrame(spin);
 
   $("preset").addEventListener("change", () => choosePreset($("preset").value, presets));
