@@ -267,6 +267,10 @@ TEST_F(CourseImportTest, TheFolderGivesTheCanvasValuesCameraMeshesAndExponent) {
   ASSERT_EQ(handout["id"], "handout_exponent");
   EXPECT_EQ(handout["edits"][0]["find"], "float specularAlpha = 10.0;");
   EXPECT_NE(handout["message"].get<std::string>().find("the course's starter uses 10.0"), std::string::npos) << handout;
+  // The folder's starter is what its students received: public; the solution's are references.
+  for (const auto& preset : p["presets"]) EXPECT_EQ(preset.value("public", false), preset["name"] == "starter") << preset;
+  EXPECT_NE(imported_.output.find("students see: starter; references, staff only: smooth normals diffuse specular"), std::string::npos)
+      << imported_.output;
 }
 
 TEST_F(CourseImportTest, TheImportedCourseRendersAndGradesWithItsCanvasAndLightOnTheCommandLine) {

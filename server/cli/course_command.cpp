@@ -11,6 +11,7 @@
 #include "cli/course_option.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
+#include "course/access.h"
 #include "course/course_import.h"
 #include "course/course_reader.h"
 #include "image/encode.h"
@@ -35,7 +36,14 @@ void summarise(const course::Course& c) {
   for (const auto& m : c.meshes) std::cout << " " << m.name << (m.name == c.default_mesh ? " (default)" : "");
   std::cout << "\n  checkpoints:";
   for (const auto& k : c.checkpoints) std::cout << " " << k.name << " (" << k.mistakes.size() << " known mistakes)";
-  std::cout << "\n";
+  std::cout << "\n  students see:";
+  const auto visible = course::visible_presets(c, course::Viewer{});
+  for (const course::Preset* p : visible) std::cout << " " << p->name;
+  std::cout << (visible.empty() ? " no preset (warning: mark the starter as handed out \"public\": true, or the page opens with nothing for them)" : "")
+            << "; references, staff only:";
+  for (const auto& p : c.presets)
+    if (!p.is_public) std::cout << " " << p.name;
+  std::cout << "\n  saved frames: " << (c.frames_from_page ? "from the page only (ShadeLab's own score 0)" : "ShadeLab's own accepted, flagged") << "\n";
 }
 
 int run_import(CourseFlags& f) {

@@ -60,6 +60,7 @@ int run_saved_frames(const course::Course& c, const GradeFlags& f) {
   else if (auto s = write_file(f.output, out.dump(2) + "\n"); !s) return fail(s.error());
   if (!f.heatmap.empty() && !r.heatmap_png.empty())
     if (auto s = write_file(f.heatmap, r.heatmap_png); !s) return fail(s.error());
+  for (const auto& flag : r.frames.flags) std::cerr << "frames: FLAGGED FOR THE TA: " << flag.message << "\n";
   for (const auto& m : r.frames.messages) std::cerr << "frames: " << m << "\n";
   if (r.code)
     for (const auto& m : r.code->messages) std::cerr << "code: " << m << "\n";
