@@ -1,9 +1,8 @@
 #include "cli/class_frames.h"
 
-#include <fstream>
 #include <iostream>
-#include <iterator>
 
+#include "cli/grade_runner.h"
 #include "cli/submission_files.h"
 #include "course/submission_files.h"
 #include "grade/provenance.h"
@@ -16,15 +15,6 @@ namespace shadelab::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::optional<std::string> read_bytes(const fs::path& path) {
-  std::error_code error;
-  if (fs::file_size(path, error) > (64u << 20) || error) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in && !in.eof()) return std::nullopt;
-  return bytes;
-}
 
 std::vector<const image::Image*> views(const std::vector<image::Image>& images) {
   std::vector<const image::Image*> out;
@@ -55,9 +45,9 @@ void ClassFrames::check(const Student& student, StudentGrade& grade) const {
   const course::SavedFrameFiles files = course::saved_frame_files(course_, checkpoint_, submitted_files(student.dir));
   std::vector<image::Image> frames;
   for (const auto& f : files.frames) {
-    if (!f) return;
-    const auto bytes = read_bytes(student.dir / *f);
-    auto decoded = bytes ? image::decode_png(*bytes) : Expected<image::Image>(make_error(ErrorCode::frames_invalid, ""));
+    std::error_code error;
+    if (!f || fs::file_size(student.dir / *f, error) > kMaxFrameBytes || error) return;
+    auto decoded = image::decode_png(read_text(student.dir / *f));
     if (!decoded) return;  // the frames' own grade says what is wrong with them; nothing to compare
     frames.push_back(std::move(*decoded));
   }

@@ -84,9 +84,6 @@ Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, c
 
 namespace {
 
-// A saved frame as a browser wrote it is ~0.1-1 MB at 512 x 512; a file far larger is not one.
-constexpr std::uintmax_t kMaxFrameBytes = 32u << 20;
-
 worker::FramesGradeSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps}; }
 
 }  // namespace

@@ -37,6 +37,9 @@ struct GradeFlags {
 
 std::string read_text(const std::filesystem::path& p);
 
+// A saved frame as a browser wrote it is ~0.1-1 MB at 512 x 512; a file far larger is not one.
+inline constexpr std::uintmax_t kMaxFrameBytes = 32u << 20;
+
 // The submission's shader pair for `checkpoint`: its files by the course's names for it
 // (course/submission_files.h), else the only *_vert.js / *_frag.js pair in the folder.
 std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair(const course::Course& course, const std::filesystem::path& dir,

@@ -95,11 +95,11 @@ bool without_lag(const std::vector<LagFit>& fits) {
 // The fits in words: the lags found, and what does not fit (a frame behind the window, one that
 // looks like another frame). Frames of the second kind fail.
 void describe_fits(const std::vector<LagFit>& fits, const LagGrid& grid, const std::vector<SavedFrame>& saved, Report& r) {
-  double lo = 1e9;
+  double lo = 1e9, hi = -1e9;
   for (size_t k = 0; k < fits.size(); ++k) {
     const LagFit& f = fits[k];
     r.frames[k].lag_degrees = f.lag_degrees;
-    if (k > 0) lo = std::min(lo, f.lag_degrees);
+    if (k > 0) lo = std::min(lo, f.lag_degrees), hi = std::max(hi, f.lag_degrees);
     if (f.beyond_window)
       r.messages.push_back(saved[k].name + " was drawn " + degrees(grid.window) + " degrees or more behind " + degrees(grid.nominal(f.frame)) +
                            " (the window searched): compared at that limit");
@@ -111,8 +111,6 @@ void describe_fits(const std::vector<LagFit>& fits, const LagGrid& grid, const s
                                                 "'s (" + degrees(grid.nominal(f.frame)) + "): saved out of order, or twice?");
     }
   }
-  double hi = 0;
-  for (size_t k = 1; k < fits.size(); ++k) hi = std::max(hi, fits[k].lag_degrees);
   if (without_lag(fits))
     r.messages.push_back("frames 1 to " + std::to_string(fits.size() - 1) + " were drawn at their nominal angles (no lag: a fixed clock)");
   else if (fits.size() > 1)
