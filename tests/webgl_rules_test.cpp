@@ -140,3 +140,62 @@ TEST(WebglRulesTest, WhatGlslangCannotParseIsLeftToTheDriver) {
   EXPECT_EQ(r.error().code, ErrorCode::compile_failed);
   EXPECT_FALSE(r.error().driver_log.empty());  // the driver's log, so the driver judged it
 }
+
+// The browser evaluates `#line 10 + 2`; the driver reads only numbers, and gets the number: its
+// errors after the directive name the line they would after `#line 12`.
+TEST(WebglRulesTest, ALineDirectiveWithAnExpressionGivesTheDriverItsNumber) {
+  const auto after = [](const std::string& directive) {
+    return refusal("f.glsl", "#version 300 es\n" + directive + "\nprecision mediump float;\nout vec4 c;\n" +
+                                 std::string(20, '\n') + "void main() { c = undefined_name; }\n");
+  };
+  const Diagnostic evaluated = after("#define ONE 1\n#line ONE + 2"), plain = after("#define ONE 1\n#line 3");
+  EXPECT_NE(evaluated.message.find("undefined_name"), std::string::npos) << evaluated.format();
+  EXPECT_EQ(evaluated.line, plain.line) << evaluated.format() << " / " << plain.format();
+  EXPECT_EQ(plain.line, 25);  // `#line 3` on line 3 numbers the next line 3: main, on line 26, is 25
+}
+
+// The preprocessor's output keeps each line in its place after a `#line`, so an extension below
+// one is found on its own line (warned there, and only that line left out for the driver).
+TEST(WebglRulesTest, DirectivesAfterALineDirectiveStayOnTheirLines) {
+  const auto r = compile_fragment("f.glsl", "#version 300 es\n#line 100\n#extension GL_EXT_frag_depth : enable\n"
+                                            "precision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n");
+  ASSERT_TRUE(r) << r.error().format();
+  ASSERT_EQ(r->diagnostics.size(), 1u);
+  EXPECT_EQ(r->diagnostics[0].line, 3) << r->diagnostics[0].format();
+  EXPECT_NE(r->diagnostics[0].message.find("'GL_EXT_frag_depth' : extension is not supported"), std::string::npos);
+}
+
+// Each language has its own reserved words: `sample` is reserved in GLSL ES 3.00, a free name in
+// 1.00; the four image*Shadow names the browser reserves in both. Located at the word.
+TEST(WebglRulesTest, ReservedWordsAreEachLanguagesOwn) {
+  const auto es300 = [](const std::string& name) {
+    return "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid main() { float " + name + " = 1.0; c = vec4(" + name + "); }\n";
+  };
+  const auto es100 = [](const std::string& name) {
+    return "#version 100\nprecision mediump float;\nvoid main() { float " + name + " = 1.0; gl_FragColor = vec4(" + name + "); }\n";
+  };
+  for (const std::string name : {"image1DShadow", "image2DShadow", "image1DArrayShadow", "image2DArrayShadow"}) {
+    for (const std::string& fragment : {es300(name), es100(name)}) {
+      const auto r = testkit::shared_renderer().compile({"v.glsl", fragment.substr(0, fragment.find('\n') + 1) +
+                                                                     "void main() { gl_Position = vec4(0.0); }\n"},
+                                                        {"f.glsl", fragment});
+      ASSERT_FALSE(r) << name;
+      const Diagnostic& d = *first_error(r.error());
+      EXPECT_NE(d.message.find("'" + name + "' : Illegal use of reserved word"), std::string::npos) << d.format();
+      EXPECT_EQ(d.column, 21) << d.format();
+    }
+  }
+  EXPECT_NE(refusal("f.glsl", es300("sample")).message.find("GLSL ES 3.00 section 3.8"), std::string::npos);
+  const auto free_in_es100 = testkit::shared_renderer().compile(
+      {"v.glsl", "#version 100\nvoid main() { gl_Position = vec4(0.0); }\n"}, {"f.glsl", es100("sample")});
+  EXPECT_TRUE(free_in_es100) << free_in_es100.error().format();
+}
+
+// A malformed #extension is located at the token the browser quotes.
+TEST(WebglRulesTest, AMalformedExtensionIsLocatedAtItsToken) {
+  const Diagnostic d = refusal("f.glsl", "#version 300 es\n#extension GL_EXT_frag_depth : enable now\nprecision mediump float;\n"
+                                         "out vec4 c;\nvoid main() { c = vec4(1.0); }\n");
+  EXPECT_EQ(d.line, 2);
+  EXPECT_EQ(d.column, 39) << d.format();
+  EXPECT_NE(d.message.find("'now' : unexpected token"), std::string::npos) << d.format();
+}

@@ -1,10 +1,13 @@
 #include "shader/glsl_facts.h"
 
+#include "shader/glsl_lines.h"
+
 #include <glslang/Include/intermediate.h>
 #include <glslang/MachineIndependent/localintermediate.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 
+#include <algorithm>
 #include <cctype>
 #include <mutex>
 #include <optional>
@@ -98,29 +101,6 @@ void add_members(const glslang::TType& type, const std::string& prefix, std::vec
     else
       out.push_back(variable(name, *field.type, field.loc));
   }
-}
-
-std::vector<std::string_view> lines_of(std::string_view text) {
-  std::vector<std::string_view> lines;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t end = text.find('\n', start);
-    lines.push_back(text.substr(start, end == std::string_view::npos ? text.size() - start : end - start));
-    if (end == std::string_view::npos) break;
-    start = end + 1;
-  }
-  return lines;
-}
-
-// Where `name` stands as a whole word in `line`, or npos.
-size_t whole_word(std::string_view line, std::string_view name) {
-  const auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-  for (size_t at = line.find(name); at != std::string_view::npos; at = line.find(name, at + 1)) {
-    const bool starts = at == 0 || !word_char(line[at - 1]);
-    const bool ends = at + name.size() >= line.size() || !word_char(line[at + name.size()]);
-    if (starts && ends) return at;
-  }
-  return std::string_view::npos;
 }
 
 class FactsTraverser : public glslang::TIntermTraverser {
@@ -250,28 +230,54 @@ std::string extensions_as_pragmas(std::string_view glsl) {
   return out;
 }
 
-// "#pragma shadelab_extensionGL_EXT_frag_depth:require" (the preprocessor drops the spaces).
-std::optional<ExtensionDirective> extension_pragma(const std::string& line, int number) {
-  const std::string_view prefix = kExtensionPragma.substr(0, kExtensionPragma.size() - 1);
-  if (line.rfind(prefix, 0) != 0) return std::nullopt;
-  std::string rest;
-  for (char c : line.substr(prefix.size()))
-    if (c != ' ' && c != '\t') rest += c;
-  const size_t colon = rest.find(':');
-  if (colon == std::string::npos) return std::nullopt;
-  return ExtensionDirective{rest.substr(0, colon), rest.substr(colon + 1), number};
+}  // namespace
+
+// `#extension NAME : BEHAVIOR`, token by token, as a WebGL preprocessor reads it: the first token
+// out of place decides the shape.
+ExtensionDirective read_extension_directive(std::string_view line, int number) {
+  const std::vector<GlslToken> tokens = tokens_of(line);
+  ExtensionDirective d;
+  d.line = number;
+  // tokens[0] is '#', tokens[1] is `extension`.
+  const auto at = [&](size_t k) -> const GlslToken* { return k < tokens.size() ? &tokens[k] : nullptr; };
+  const auto shape = [&](ExtensionDirective::Shape s, const GlslToken* t) {
+    d.shape = s;
+    d.token = t ? std::string(t->text) : "#extension";
+    d.column = t ? t->column : 0;
+    return d;
+  };
+  const GlslToken *name = at(2), *colon = at(3), *behavior = at(4), *extra = at(5);
+  if (!name) return shape(ExtensionDirective::Shape::unfinished, nullptr);
+  if (name->kind != GlslToken::Kind::identifier) return shape(ExtensionDirective::Shape::name_not_identifier, name);
+  d.name = std::string(name->text);
+  if (!colon) return shape(ExtensionDirective::Shape::unfinished, nullptr);
+  if (colon->text != ":") return shape(ExtensionDirective::Shape::unexpected_token, colon);
+  if (!behavior) return shape(ExtensionDirective::Shape::unfinished, nullptr);
+  d.behavior = std::string(behavior->text);
+  if (d.behavior != "require" && d.behavior != "enable" && d.behavior != "warn" && d.behavior != "disable")
+    return shape(ExtensionDirective::Shape::unknown_behavior, name);
+  if (extra) return shape(ExtensionDirective::Shape::unexpected_token, extra);
+  return d;
 }
 
+namespace {
+
 // Directives and layout qualifiers as the preprocessor leaves them: glslang keeps every line in
-// its place, so a line of its output is the same line of the input.
-void read_preprocessed(const std::string& text, GlslFacts& facts) {
+// its place (a `#line` it evaluated too), so a line of its output is the same line of the input.
+void read_preprocessed(const std::string& text, std::string_view source, GlslFacts& facts) {
+  const std::vector<std::string_view> source_lines = lines_of(source);
   std::istringstream in(text);
   int number = 0;
   bool in_layout = false;
   for (std::string line; std::getline(in, line);) {
     ++number;
-    if (auto directive = extension_pragma(line, number)) {
-      facts.extensions.push_back(std::move(*directive));
+    if (line.rfind(kExtensionPragma.substr(0, kExtensionPragma.size() - 1), 0) == 0) {
+      if (static_cast<size_t>(number) <= source_lines.size())
+        facts.extensions.push_back(read_extension_directive(source_lines[static_cast<size_t>(number - 1)], number));
+      continue;
+    }
+    if (line.rfind("#line", 0) == 0) {
+      facts.line_directives.push_back({number, line});
       continue;
     }
     // The preprocessor's output separates punctuation from words only where the source did, so
@@ -311,9 +317,10 @@ GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
   std::string preprocessed;
   if (preprocessor.preprocess(&resources, default_version(version), EEsProfile, false, false, EShMsgDefault,
                               &preprocessed, no_includes))
-    read_preprocessed(preprocessed, facts);
+    read_preprocessed(preprocessed, text, facts);
   else
     preprocessed.clear();
+  facts.preprocessed = preprocessed;
 
   glslang::TShader shader(language(stage));
   shader.setStrings(strings, 1);

@@ -47,9 +47,28 @@ struct UniformBlock {
   GlslPoint at;
 };
 
+// `#extension NAME : BEHAVIOR`, read from the student's line as the browser's preprocessor reads
+// it. `shape` says what is missing or out of place; `token` is the browser's quote for it.
 struct ExtensionDirective {
+  enum class Shape {
+    well_formed,
+    unfinished,           // the line ends before the name, the colon or the behavior
+    name_not_identifier,  // `#extension 12 : enable`
+    unexpected_token,     // where the colon should be, or after the behavior
+    unknown_behavior,     // not require, enable, warn or disable
+  };
   std::string name, behavior;  // "GL_EXT_frag_depth", "require"
   int line = 0;
+  Shape shape = Shape::well_formed;
+  std::string token;  // what the browser quotes where the shape is not well formed
+  int column = 0;     // where that token starts (1-based; 0 = the line)
+};
+
+// An active `#line` (one #if left in), with the numbers the preprocessor evaluated it to: the
+// browser evaluates `#line 10 + 2` or `#line L` (a macro), the driver takes only plain numbers.
+struct LineDirective {
+  int line = 0;                // where it stands
+  std::string evaluated;       // "#line 12" or "#line 12 3", as the preprocessor printed it
 };
 
 struct GlslFacts {
@@ -60,8 +79,13 @@ struct GlslFacts {
   std::vector<UniformBlock> uniform_blocks;
   std::vector<GlslVariable> inputs, outputs, uniforms;  // the stage's interface, blocks aside
   std::vector<ExtensionDirective> extensions;           // those #if left in
+  std::vector<LineDirective> line_directives;            // those #if left in
   std::vector<GlslPoint> shared_or_packed;               // `shared` / `packed` inside layout(...)
+  std::string preprocessed;  // the preprocessor's output, each line in its place ("" when it failed)
 };
+
+// One `#extension` line of the student's source (comments allowed), as the browser reads it.
+ExtensionDirective read_extension_directive(std::string_view line, int number);
 
 // The values glslang checks against, set as WebGL 2 sets them: texel offsets in [-8, 7] and, for
 // GLSL ES 1.00, Appendix A's loop and indexing limits.

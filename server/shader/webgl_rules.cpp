@@ -4,6 +4,9 @@
 #include <array>
 #include <map>
 
+#include "shader/glsl_lines.h"
+#include "shader/webgl_lexical.h"
+
 namespace shadelab::shader {
 
 namespace {
@@ -61,6 +64,10 @@ constexpr std::array kKnownErrors{
     KnownError{"limitation", "Non-constant-index-expression",
                "'[]' : Index expression must be constant: a constant, a loop index or an expression of them "
                "(GLSL ES 1.00 Appendix A section 5)"},
+    KnownError{"defined", "cannot use in preprocessor expression when expanded from macros",
+               "'defined' : unexpected token after conditional expression: a macro may not bring `defined` into "
+               "#if or #elif; write defined(NAME) in the directive itself (GLSL ES leaves it undefined; the browser "
+               "refuses it)"},
     KnownError{"texel offset", "value is out of range",
                "Texture offset value out of valid range: each component must lie in [-8, 7] "
                "(WebGL 2.0: invalid texture offsets)"},
@@ -84,17 +91,6 @@ std::string operator_message(const OperatorUse& use) {
     case OperatorUse::Operand::void_value: return "'?:' : ternary operator is not allowed for void (WebGL 2.0)";
   }
   return {};
-}
-
-std::string_view line_of(std::string_view text, int number) {
-  size_t start = 0;
-  for (int k = 1; k < number; ++k) {
-    start = text.find('\n', start);
-    if (start == std::string_view::npos) return {};
-    ++start;
-  }
-  const size_t end = text.find('\n', start);
-  return text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
 }
 
 // The preprocessor's output moves words along their line; the word's column in the source is
@@ -127,11 +123,38 @@ void layout_rules(const StageInput& s, std::vector<Diagnostic>& errors) {
   }
 }
 
-// `require` of an extension the browser does not support fails the compile; `enable` and `warn`
-// are the browser's warning.
+std::string malformed_extension(const ExtensionDirective& d) {
+  constexpr std::string_view form = " (GLSL ES: #extension NAME : BEHAVIOR, the behavior require, enable, warn or disable)";
+  switch (d.shape) {
+    case ExtensionDirective::Shape::well_formed: break;
+    case ExtensionDirective::Shape::unfinished:
+      return "'" + d.token + "' : invalid extension directive: it ends before its name, colon or behavior" + std::string(form);
+    case ExtensionDirective::Shape::name_not_identifier:
+      return "'" + d.token + "' : invalid extension name: a name starts with a letter or _" + std::string(form);
+    case ExtensionDirective::Shape::unexpected_token:
+      return "'" + d.token + "' : unexpected token in the extension directive" + std::string(form);
+    case ExtensionDirective::Shape::unknown_behavior:
+      return "'" + d.token + "' : behavior invalid: '" + d.behavior + "' is not require, enable, warn or disable" +
+             std::string(form);
+  }
+  return {};
+}
+
+// A directive out of shape fails the compile, as does `require` of an extension the browser does
+// not support or of `all`; `enable` and `warn` of an unsupported one are the browser's warning.
 void extension_rules(const StageInput& s, std::vector<Diagnostic>& errors, std::vector<Diagnostic>& warnings) {
   for (const auto& d : s.facts.extensions) {
-    if (d.name == "all" || d.behavior == "disable" || extension_supported(d.name, s.source.version)) continue;
+    if (d.shape != ExtensionDirective::Shape::well_formed) {
+      errors.push_back(stage_error(s, {d.line, d.column}, malformed_extension(d)));
+      continue;
+    }
+    if (d.name == "all") {
+      if (d.behavior == "require" || d.behavior == "enable")
+        errors.push_back(stage_error(s, {d.line, 0}, "'all' : extension cannot have '" + d.behavior +
+                                                         "' behavior: `all` takes warn or disable (GLSL ES: #extension all)"));
+      continue;
+    }
+    if (d.behavior == "disable" || extension_supported(d.name, s.source.version)) continue;
     std::string message = "'" + d.name + "' : extension is not supported";
     message += promoted_to_es300(d.name)
                    ? " (a WebGL 2 context has no WebGL 1 shader extensions; GLSL ES 3.00 has this one built in)"
@@ -146,6 +169,7 @@ void extension_rules(const StageInput& s, std::vector<Diagnostic>& errors, std::
 // Every rule one stage breaks, in line order.
 std::vector<Diagnostic> stage_rules(const StageInput& s, std::vector<Diagnostic>& warnings) {
   std::vector<Diagnostic> errors = known_errors(s);
+  for (auto& e : lexical_errors(s.source.glsl, s.source.version, s.facts)) errors.push_back(stage_error(s, e.at, std::move(e.message)));
   for (const auto& use : s.facts.operators) errors.push_back(stage_error(s, use.at, operator_message(use)));
   layout_rules(s, errors);
   for (const auto& at : s.facts.frag_data_nonzero)
@@ -188,14 +212,6 @@ Error rule_error(ErrorCode code, std::string what, std::vector<Diagnostic> diagn
   return e;
 }
 
-// Blanks the directive's line (its newline stays, so no line moves).
-void leave_out_line(std::string& glsl, int number) {
-  const std::string_view line = line_of(glsl, number);
-  if (line.empty()) return;
-  const size_t start = static_cast<size_t>(line.data() - glsl.data());
-  glsl.erase(start, line.size());
-}
-
 // `layout(std140) uniform;` after the directives (#version, #extension), then `#line` gives the
 // next line the number it had: GLSL ES 3.00 section 3.4 numbers the line after `#line N` as N.
 void default_to_std140(std::string& glsl, const GlslFacts& facts) {
@@ -209,9 +225,10 @@ void default_to_std140(std::string& glsl, const GlslFacts& facts) {
 }
 
 void rewrite_for_driver(StageInput& s) {
+  evaluate_line_directives(s.source.glsl, s.facts);
   for (const auto& d : s.facts.extensions)
     if (d.name != "all" && d.behavior != "disable" && d.behavior != "require" && !extension_supported(d.name, s.source.version))
-      leave_out_line(s.source.glsl, d.line);
+      replace_line(s.source.glsl, d.line, "");
   if (s.source.version == GlslVersion::es300 && !s.facts.uniform_blocks.empty()) default_to_std140(s.source.glsl, s.facts);
 }
 
