@@ -48,7 +48,7 @@ class FramesTest : public ::testing::Test {
       code = c.render_request(p->vertex, p->fragment);
     }
     auto out = session().grade_frames(spec, code, saved, [] { return Expected<const scene::Mesh*>(&bunny()); }, "bunny",
-                                      [](const char*) -> Status { return Ok{}; });
+                                      [](JobPhase) -> Status { return Ok{}; });
     EXPECT_TRUE(out.ok()) << (out ? "" : out.error().message);
     return out ? std::move(*out) : grade::FramesGradeOutput{};
   }
@@ -266,7 +266,7 @@ TEST_F(FramesTest, CodeThatDoesNotCompileIsTheCodesReportNotTheFrames) {
   shader::ShaderFile broken = p->fragment;
   broken.text.replace(broken.text.find("void main"), 9, "float broken() { return undeclared_name; }\nvoid main");
   auto out = session().grade_frames(spec, c.render_request(p->vertex, broken), saved_frames("specular", "specular"),
-                                    [] { return Expected<const scene::Mesh*>(&bunny()); }, "bunny", [](const char*) -> Status { return Ok{}; });
+                                    [] { return Expected<const scene::Mesh*>(&bunny()); }, "bunny", [](JobPhase) -> Status { return Ok{}; });
   ASSERT_TRUE(out.ok());
   EXPECT_TRUE(out->frames.pass);
   ASSERT_TRUE(out->code.has_value());

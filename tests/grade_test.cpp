@@ -509,7 +509,7 @@ TEST(GradeHeatMapTest, IsDrawnOnlyWhereItIsShown) {
     r.frames = 1;
     r.width = r.height = 64;
     auto out = session.grade(spec, r, [] { return Expected<const scene::Mesh*>(&testkit::builtin(testkit::course().default_mesh)); },
-                             "bunny", [](const char*) -> Status { return Ok{}; });
+                             "bunny", [](JobPhase) -> Status { return Ok{}; });
     EXPECT_TRUE(out) << out.error().format();
     EXPECT_EQ(out->report.pass, &p == right);
     return out ? out->heatmap_png : std::string();

@@ -250,7 +250,7 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   std::optional<Error> code_error;
   if (has_code)
     if (auto compiled = renderer_.compile(code.vertex, code.fragment); !compiled) code_error = compiled.error();
-  if (auto s = enter("grader"); !s) return s.take_error();
+  if (auto s = enter(JobPhase::grader); !s) return s.take_error();
   auto frames = decode_all(saved, code.width, code.height);
   if (!frames) return failed(frames.error());
   if (frames->size() != static_cast<size_t>(code.frames))
@@ -307,9 +307,9 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
     render::RenderRequest at = code;
     at.angles = angles;
     at.pixel_type = image::PixelType::u8;
-    if (auto s = enter("render"); !s) return s.take_error();
+    if (auto s = enter(JobPhase::render); !s) return s.take_error();
     auto rendered = frames_of(at, **mesh);
-    if (auto s = enter("grader"); !s) return s.take_error();
+    if (auto s = enter(JobPhase::grader); !s) return s.take_error();
     out.code = rendered ? code_match(*frames, *rendered, *reference, out.frames, spec, options)
                         : failed_submission(rendered.error(), spec.reference_name, spec.options.max_score);
   }

@@ -152,7 +152,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   begin(spec);
   auto compiled = renderer_.compile(submission.vertex, submission.fragment);
   if (!compiled) return ungradable(compiled.error());
-  if (auto s = enter("render"); !s) return s.take_error();
+  if (auto s = enter(JobPhase::render); !s) return s.take_error();
   auto mesh = mesh_source();
   if (!mesh) return mesh.take_error();
 
@@ -169,7 +169,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
     student = submission_under_lights(spec, as_compiled, **mesh);
   }
   if (!student) return ungradable(student.error());
-  if (auto s = enter("grader"); !s) return s.take_error();
+  if (auto s = enter(JobPhase::grader); !s) return s.take_error();
 
   // The reference gets the same uniform values as the submission: a grader that changes the
   // colours grades against the reference with those colours.

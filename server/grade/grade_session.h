@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "core/job_phase.h"
 #include "grade/grade_spec.h"
 #include "grade/lag_fit.h"
 #include "grade/reference_cache.h"
@@ -28,11 +29,11 @@ struct GradeOutput {
 // The job's mesh, loaded once the submission has compiled.
 using MeshSource = std::function<Expected<const scene::Mesh*>()>;
 
-// Where a grade's work changes hands, for the worker to tell its pool (worker/pool.h's phases):
-// "render" once the submission has compiled (from then a hang or a crash is its render's),
-// "grader" while the grader does its own work (the reference, the known mistakes, the
-// comparisons: bounded separately and never charged to the submission).
-using EnterPhase = std::function<Status(const char* phase)>;
+// Where a grade's work changes hands, for the worker to tell its pool (core/job_phase.h):
+// render once the submission has compiled (from then a hang or a crash is its render's), grader
+// while the grader does its own work (the reference, the known mistakes, the comparisons: bounded
+// separately and never charged to the submission).
+using EnterPhase = std::function<Status(JobPhase phase)>;
 
 struct FramesGradeOutput {
   Report frames;              // the saved frames against the reference

@@ -1,4 +1,6 @@
 #include "worker/pool.h"
+
+#include "core/job_phase.h"
 #include "worker/launch.h"
 #include "worker/result.h"
 
@@ -82,13 +84,8 @@ bool is_exiting(pid_t pid) {
   return (fields >> flags) && (flags & 0x4) != 0;
 }
 
-// What the worker was doing in a phase, in words.
-std::string doing(const std::string& phase) {
-  return phase == "compile" ? "compiling" : phase == "grader" ? "rendering the grader's references" : "rendering";
-}
-
-Error lost(const std::string& phase, const std::string& how) {
-  return worker_error(ErrorCode::worker_lost, "the render worker " + how + " while " + doing(phase) +
+Error lost(JobPhase phase, const std::string& how) {
+  return worker_error(ErrorCode::worker_lost, "the render worker " + how + " while " + std::string(doing(phase)) +
                                                   " (not the shader's doing); it was replaced: send the request again");
 }
 
@@ -111,24 +108,24 @@ std::chrono::nanoseconds cpu_time(pid_t pid) {
 
 // What a phase of a job may use: CPU time, and a far larger wall-clock backstop.
 struct PhaseBudget {
-  std::string phase;
+  JobPhase phase;
   std::chrono::milliseconds cpu;
   std::chrono::nanoseconds cpu_at_start;
   Clock::time_point wall_cap;
 
-  PhaseBudget(std::string p, std::chrono::milliseconds limit, pid_t pid, int wall_factor)
-      : phase(std::move(p)), cpu(limit), cpu_at_start(cpu_time(pid)), wall_cap(Clock::now() + limit * std::max(1, wall_factor)) {}
+  PhaseBudget(JobPhase p, std::chrono::milliseconds limit, pid_t pid, int wall_factor)
+      : phase(p), cpu(limit), cpu_at_start(cpu_time(pid)), wall_cap(Clock::now() + limit * std::max(1, wall_factor)) {}
 
   bool cpu_spent(pid_t pid) const { return cpu_time(pid) - cpu_at_start >= cpu; }
   bool wall_spent() const { return Clock::now() >= wall_cap; }
 
   Error timeout(bool by_wall_clock, int wall_factor) const {
-    if (phase == "grader")
+    if (phase == JobPhase::grader)
       return worker_error(ErrorCode::grader_failed, "the grader's own renders (the reference and the known mistakes) " +
                                                         std::string(by_wall_clock ? "stopped making progress" : "used more than " +
                                                                     std::to_string(cpu.count()) + " ms of CPU time") +
                                                         "; not the submission's doing: it was not graded, so grade it again");
-    const bool compile = phase == "compile";
+    const bool compile = phase == JobPhase::compile;
     const std::string verb = compile ? "compile" : "render";
     const std::string why = by_wall_clock ? "did not " + verb + " within " + std::to_string(cpu.count() * wall_factor) +
                                                 " ms of wall-clock time (the worker stopped making progress)"
@@ -237,11 +234,11 @@ struct WorkerPool::Slot {
   }
 
   // Why a worker died, as the error the client gets.
-  Error death(int status, const std::string& phase, bool over_memory, const std::string& kind) {
+  Error death(int status, JobPhase phase, bool over_memory, const std::string& kind) {
     // Under a cgroup cap the kernel's OOM killer ends the worker with SIGKILL (we only send
     // SIGKILL after reaping, so a SIGKILL we did not send is the cap's).
     const bool cgroup_oom = cgroup_capped && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
-    if (phase == "grader") {
+    if (phase == JobPhase::grader) {
       (over_memory || cgroup_oom ? pool.out_of_memory_ : pool.crashes_)++;
       return worker_error(ErrorCode::grader_failed, std::string("the worker ") + (over_memory || cgroup_oom ? "ran out of memory" : "crashed") +
                                                         " rendering the grader's references; not the submission's doing: "
@@ -249,7 +246,7 @@ struct WorkerPool::Slot {
     }
     if (over_memory || cgroup_oom) {
       pool.out_of_memory_++;
-      return worker_error(ErrorCode::out_of_memory, "the " + phase + " used more than the worker's memory limit of " +
+      return worker_error(ErrorCode::out_of_memory, "the " + std::string(to_string(phase)) + " used more than the worker's memory limit of " +
                                                          std::to_string(pool.config_.memory_limit_bytes >> 20) + " MiB");
     }
     pool.crashes_++;
@@ -259,8 +256,8 @@ struct WorkerPool::Slot {
     if (kind == "mesh_check")  // the mesh library (assimp) crashed on the uploaded file
       return worker_error(ErrorCode::mesh_parse_failed, "the mesh file crashed the mesh reader (" + how +
                                                             "); it cannot be read; other requests are not affected");
-    return worker_error(phase == "compile" ? ErrorCode::compile_crashed : ErrorCode::render_crashed,
-                        "the graphics driver crashed while " + std::string(phase == "compile" ? "compiling" : "rendering") +
+    return worker_error(phase == JobPhase::compile ? ErrorCode::compile_crashed : ErrorCode::render_crashed,
+                        "the graphics driver crashed while " + std::string(doing(phase)) +
                             " this shader (" + how + "); other requests are not affected");
   }
 
@@ -291,12 +288,12 @@ struct WorkerPool::Slot {
         return result;
       }
       if (!write_message(fd, job)) {
-        result.error = lost("compile", "could not take the job");
+        result.error = lost(JobPhase::compile, "could not take the job");
         return result;
       }
     }
     const PoolConfig& c = pool.config_;
-    PhaseBudget budget("compile", c.compile_deadline, pid, c.wall_clock_factor);
+    PhaseBudget budget(JobPhase::compile, c.compile_deadline, pid, c.wall_clock_factor);
     PeakResident peak(pool, kind);
     while (true) {
       Message in;
@@ -305,8 +302,8 @@ struct WorkerPool::Slot {
       if (status == ReadStatus::ok) {
         const std::string event = text_field(in.header, "event");
         if (event == "phase") {
-          const std::string phase = text_field(in.header, "phase", "render");
-          budget = PhaseBudget(phase, phase == "grader" ? c.grader_deadline : c.render_deadline, pid, c.wall_clock_factor);
+          const JobPhase phase = job_phase_named(text_field(in.header, "phase")).value_or(JobPhase::render);
+          budget = PhaseBudget(phase, phase == JobPhase::grader ? c.grader_deadline : c.render_deadline, pid, c.wall_clock_factor);
           continue;
         }
         const auto& caches = in.header.is_object() && in.header.contains("caches") ? in.header["caches"] : nlohmann::json();

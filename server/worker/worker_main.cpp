@@ -142,11 +142,11 @@ class Worker {
 
   // Tells the server which phase the job is in (worker/pool.h): "render" once the compile is
   // over, "grader" once a grade's own work begins.
-  Status enter_phase(const char* phase) {
-    if (write_message(fd_, {{{"event", "phase"}, {"phase", phase}}, {}})) return Ok{};
+  Status enter_phase(JobPhase phase) {
+    if (write_message(fd_, {{{"event", "phase"}, {"phase", to_string(phase)}}, {}})) return Ok{};
     return make_error(ErrorCode::io_error, "lost the server");
   }
-  Status enter_render_phase() { return enter_phase("render"); }
+  Status enter_render_phase() { return enter_phase(JobPhase::render); }
 
   Expected<const scene::Mesh*> mesh(const Job& job, const std::string& payload) {
     if (const scene::Mesh* hit = meshes_.find(job.mesh)) return hit;
@@ -236,7 +236,7 @@ class Worker {
 
   Expected<GradeResult> grade(const Job& job, const std::string& payload) {
     auto graded = grading_.grade(job.grade, job.request, [&] { return job_mesh(job, payload); },
-                                 fitted_key(job), [&](const char* phase) { return enter_phase(phase); });
+                                 fitted_key(job), [&](JobPhase phase) { return enter_phase(phase); });
     if (!graded) return graded.take_error();
     return GradeResult{std::move(graded->report), std::move(graded->heatmap_png)};
   }
@@ -245,7 +245,7 @@ class Worker {
     auto payload = frames_payload_from(in);
     if (!payload) return payload.take_error();
     auto graded = grading_.grade_frames(job.grade, job.request, payload->saved, [&] { return job_mesh(job, payload->mesh); },
-                                        fitted_key(job), [&](const char* phase) { return enter_phase(phase); });
+                                        fitted_key(job), [&](JobPhase phase) { return enter_phase(phase); });
     if (!graded) return graded.take_error();
     return FramesGradeResult{std::move(graded->frames), std::move(graded->code), std::move(graded->heatmap_png)};
   }
