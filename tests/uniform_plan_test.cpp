@@ -17,7 +17,7 @@ const std::vector<render::ConstantUniform>& page() {
 }
 
 std::vector<float> course_value(const std::string& role) {
-  const auto& v = course::builtin_course().uniform_with_role(role)->value;
+  const auto& v = course::builtin_course().uniform_with_role(*course::uniform_role_named(role))->value;
   return {v.begin(), v.end()};
 }
 

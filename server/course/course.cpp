@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/embedded_files.h"
+#include "core/enum_names.h"
 
 namespace shadelab::course {
 
@@ -28,7 +29,23 @@ const CourseMesh* Course::mesh(std::string_view name) const {
   return nullptr;
 }
 
-const PageUniform* Course::uniform_with_role(std::string_view role) const {
+namespace {
+constexpr EnumName<UniformRole> kUniformRoles[] = {{UniformRole::ambient, "ambient"},
+                                                   {UniformRole::diffuse, "diffuse"},
+                                                   {UniformRole::specular, "specular"},
+                                                   {UniformRole::light_position, "lightPosition"},
+                                                   {UniformRole::light_color, "lightColor"}};
+}  // namespace
+
+std::string_view to_string(UniformRole role) { return name_in(kUniformRoles, role); }
+std::optional<UniformRole> uniform_role_named(std::string_view name) { return value_in(kUniformRoles, name); }
+std::vector<std::string> uniform_role_names() {
+  std::vector<std::string> out;
+  for (const auto& row : kUniformRoles) out.emplace_back(row.name);
+  return out;
+}
+
+const PageUniform* Course::uniform_with_role(UniformRole role) const {
   for (const auto& u : uniforms)
     if (u.role == role) return &u;
   return nullptr;
@@ -171,7 +188,7 @@ std::string Course::frame_file(std::string_view prefix, int k, std::string_view 
 }
 
 std::vector<std::string> Course::light_position_names() const {
-  const PageUniform* light = uniform_with_role("lightPosition");
+  const PageUniform* light = uniform_with_role(UniformRole::light_position);
   return light ? light->names : std::vector<std::string>{};
 }
 

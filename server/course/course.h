@@ -84,13 +84,20 @@ struct Alias {
   std::string name, checkpoint, note;
 };
 
+// The homework quantities a page uniform can be, named in a profile as ambient, diffuse,
+// specular, lightPosition and lightColor (course.cpp's table).
+enum class UniformRole { ambient, diffuse, specular, light_position, light_color };
+std::string_view to_string(UniformRole role);
+std::optional<UniformRole> uniform_role_named(std::string_view name);
+std::vector<std::string> uniform_role_names();
+
 // A constant uniform the page sets, under every name it feeds it by; `role` says which
-// homework quantity it is (ambient, diffuse, specular, lightPosition, lightColor) when it is one.
+// homework quantity it is, when it is one.
 struct PageUniform {
   std::vector<std::string> names;
   std::string type;  // vec3, vec4, float
   std::vector<double> value;
-  std::string role;
+  std::optional<UniformRole> role;
 };
 
 // A question of the notebook the sheet shows with the student's answer.
@@ -153,7 +160,7 @@ struct Course {
 
   const Preset* preset(std::string_view name) const;
   const CourseMesh* mesh(std::string_view name) const;
-  const PageUniform* uniform_with_role(std::string_view role) const;
+  const PageUniform* uniform_with_role(UniformRole role) const;
   std::vector<std::string> preset_names() const;
   std::vector<std::string> checkpoint_names() const;
   std::vector<std::string> mesh_names() const;

@@ -80,14 +80,15 @@ std::string block_after(const std::string& s, size_t at) {
 }
 
 // Which homework quantity a uniform's (or a value's) name is, by the words in it.
-std::string role_of(const std::string& name) {
+std::optional<UniformRole> role_of(const std::string& name) {
   const std::string n = lower(name);
-  if (n.find("ambient") != std::string::npos) return "ambient";
-  if (n.find("diffuse") != std::string::npos) return "diffuse";
-  if (n.find("specular") != std::string::npos) return "specular";
-  if (n.find("light") != std::string::npos && n.find("pos") != std::string::npos) return "lightPosition";
-  if (n.find("light") != std::string::npos && n.find("col") != std::string::npos) return "lightColor";
-  return "";
+  const auto has = [&](const char* word) { return n.find(word) != std::string::npos; };
+  if (has("ambient")) return UniformRole::ambient;
+  if (has("diffuse")) return UniformRole::diffuse;
+  if (has("specular")) return UniformRole::specular;
+  if (has("light") && has("pos")) return UniformRole::light_position;
+  if (has("light") && has("col")) return UniformRole::light_color;
+  return std::nullopt;
 }
 
 // uAmbientColor -> ambientColor: the other spelling the handout allows.
@@ -99,13 +100,12 @@ std::string plain_spelling(const std::string& name) {
 
 // The name hw2.js would use for `role` when it does not look it up yet (the students' TODO for
 // diffuse and specular): as it names ambient, with the role's word in place ("uDiffuseColor").
-std::string name_like_ambient(const std::map<std::string, std::string>& names, const std::string& role) {
-  static const std::map<std::string, std::string> words = {{"diffuse", "diffuse"}, {"specular", "specular"}};
-  const auto ambient = names.find("ambient");
-  if (!words.count(role) || ambient == names.end()) return {};
+std::string name_like_ambient(const std::map<UniformRole, std::string>& names, UniformRole role) {
+  const auto ambient = names.find(UniformRole::ambient);
+  if ((role != UniformRole::diffuse && role != UniformRole::specular) || ambient == names.end()) return {};
   const std::string& n = ambient->second;
   const size_t at = lower(n).find("ambient");
-  std::string word = words.at(role);
+  std::string word(to_string(role));
   if (std::isupper(static_cast<unsigned char>(n[at]))) word[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(word[0])));
   return n.substr(0, at) + word + n.substr(at + 7);
 }
@@ -200,22 +200,25 @@ class Importer {
 
   // uniformValues' numbers, and the names hw2.js looks the uniforms up by.
   void uniforms(const std::string& js, const std::string& where) {
-    std::map<std::string, std::string> names;  // role -> the name hw2.js uses
+    std::map<UniformRole, std::string> names;  // role -> the name hw2.js uses
     static const std::regex lookup("getUniformLocation\\s*\\([^,]*,\\s*[\"']([A-Za-z_][A-Za-z0-9_]*)[\"']");
     for (std::sregex_iterator it(js.begin(), js.end(), lookup), end; it != end; ++it)
-      if (const std::string role = role_of((*it)[1]); !role.empty() && !names.count(role)) names[role] = (*it)[1];
-    std::map<std::string, std::vector<double>> values;
+      if (const auto role = role_of((*it)[1]); role && !names.count(*role)) names[*role] = (*it)[1];
+    std::map<UniformRole, std::vector<double>> values;
     const size_t at = js.find("uniformValues");
     const std::string block = at == std::string::npos ? std::string() : block_after(js, at);
     static const std::regex key("([A-Za-z_][A-Za-z0-9_]*)\\s*:");
     for (std::sregex_iterator it(block.begin(), block.end(), key), end; it != end; ++it)
-      if (const std::string role = role_of((*it)[1]); !role.empty() && !values.count(role))
-        values[role] = numbers_after(block, static_cast<size_t>(it->position() + it->length()));
+      if (const auto role = role_of((*it)[1]); role && !values.count(*role))
+        values[*role] = numbers_after(block, static_cast<size_t>(it->position() + it->length()));
     for (auto& u : p_["uniforms"]) {
-      const std::string role = u.value("role", "");
+      const auto known = uniform_role_named(u.value("role", ""));
+      if (!known) continue;  // the built-in course gives every uniform a role
+      const UniformRole role = *known;
+      const std::string role_name(to_string(role));
       const std::string builtin_name = u["names"][0];
       std::string name = names.count(role) ? names[role] : name_like_ambient(names, role);
-      if (!names.count(role) && !name.empty()) assumed(role + " is named " + name + " (hw2.js does not look it up: the students' TODO)");
+      if (!names.count(role) && !name.empty()) assumed(role_name + " is named " + name + " (hw2.js does not look it up: the students' TODO)");
       if (name.empty()) name = builtin_name;
       if (name != builtin_name) course_names_[builtin_name] = name;
       json spellings = json::array({name});
@@ -224,9 +227,9 @@ class Importer {
       const size_t components = u["value"].size();
       if (values.count(role) && values[role].size() >= components) {
         u["value"] = std::vector<double>(values[role].begin(), values[role].begin() + static_cast<long>(components));
-        found(role + " = " + u["value"].dump() + " as " + name + where);
+        found(role_name + " = " + u["value"].dump() + " as " + name + where);
       } else {
-        assumed(role + " = " + u["value"].dump() + " (the built-in course's; not in uniformValues" + where + ")");
+        assumed(role_name + " = " + u["value"].dump() + " (the built-in course's; not in uniformValues" + where + ")");
       }
     }
   }

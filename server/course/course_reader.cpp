@@ -123,7 +123,8 @@ class Parser {
   }
 
   void uniforms(const JsonReader& r) {
-    static const std::set<std::string> roles = {"ambient", "diffuse", "specular", "lightPosition", "lightColor"};
+    const std::vector<std::string> role_names = uniform_role_names();
+    const std::set<std::string> roles(role_names.begin(), role_names.end());
     std::set<std::string> names, seen_roles;
     for (const JsonReader& u : r.objects("uniforms")) {
       u.only({"names", "type", "value", "role"});
@@ -140,8 +141,9 @@ class Parser {
       out.value = u.numbers("value", {}, 1, 4, -1e9, 1e9);
       if (n > 0 && u.has("value") && static_cast<int>(out.value.size()) != n)
         u.fail_at(u.at("value"), "a " + out.type + " takes " + std::to_string(n) + " numbers");
-      out.role = u.text("role", "", roles);
-      if (!out.role.empty() && !seen_roles.insert(out.role).second) u.fail_at(u.at("role"), "the role '" + out.role + "' is given twice");
+      const std::string role = u.text("role", "", roles);
+      out.role = uniform_role_named(role);
+      if (out.role && !seen_roles.insert(role).second) u.fail_at(u.at("role"), "the role '" + role + "' is given twice");
       course_.uniforms.push_back(std::move(out));
     }
   }
@@ -308,7 +310,7 @@ class Parser {
         p.require("name") && p.require("lightPosition");
         const glm::dvec3 at = p.vec3("lightPosition", glm::dvec3(0.0), -1e7, 1e7);
         out.probes.push_back({p.text("name", ""), {float(at.x), float(at.y), float(at.z)}, p.text("checks", "")});
-        if (!course_.uniform_with_role("lightPosition"))
+        if (!course_.uniform_with_role(UniformRole::light_position))
           p.fail(p.path() + ": a probe moves the light, but no uniform has the role lightPosition");
       }
       course_.checkpoints.push_back(std::move(out));
@@ -409,7 +411,7 @@ json to_json(const Course& c, bool portable) {
   json uniforms = json::array();
   for (const auto& u : c.uniforms) {
     json entry = {{"names", u.names}, {"type", u.type}, {"value", u.value}};
-    if (!u.role.empty()) entry["role"] = u.role;
+    if (u.role) entry["role"] = to_string(*u.role);
     uniforms.push_back(std::move(entry));
   }
   json meshes = json::array();

@@ -252,7 +252,9 @@ Expected<std::string> colours_render(worker::WorkerPool& pool, const course::Cou
   (void)worker::attach_course_mesh(course, course.default_mesh, job.job, job.payload);
   job.job.request = course.render_request(shaders.first, shaders.second);
   job.job.request.frames = 1;
-  for (const auto& [role, rgb] : {std::pair{"ambient", colours.ambient}, {"diffuse", colours.diffuse}, {"specular", colours.specular}})
+  for (const auto& [role, rgb] : {std::pair{course::UniformRole::ambient, colours.ambient},
+                                  {course::UniformRole::diffuse, colours.diffuse},
+                                  {course::UniformRole::specular, colours.specular}})
     if (const course::PageUniform* u = course.uniform_with_role(role))
       for (const auto& name : u->names) job.job.request.uniforms.push_back({name, {rgb[0], rgb[1], rgb[2], 1.0}});
   return grid(pool, std::move(job));
