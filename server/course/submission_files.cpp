@@ -1,5 +1,7 @@
 #include "course/submission_files.h"
 
+#include "core/words.h"
+
 #include <algorithm>
 
 namespace shadelab::course {
@@ -97,8 +99,9 @@ std::string wanted_files(const Course& course, const Checkpoint& c) {
 
 std::string listing(const std::vector<fs::path>& files) {
   if (files.empty()) return "nothing";
-  std::string out;
-  for (size_t i = 0; i < files.size() && i < 20; ++i) out += (i ? ", " : "") + files[i].string();
+  std::vector<std::string> first;
+  for (size_t i = 0; i < files.size() && i < 20; ++i) first.push_back(files[i].string());
+  const std::string out = comma_list(first);
   return files.size() > 20 ? out + " and " + std::to_string(files.size() - 20) + " more" : out;
 }
 

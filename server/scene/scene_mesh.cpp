@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/words.h"
 #include "scene/blender_convention.h"
 
 namespace shadelab::scene {
@@ -80,9 +81,7 @@ Expected<Mesh> builtin_scene_mesh(const std::string& name) {
     to_scene_space(*m, "obj");
     return m;
   }
-  std::string list;
-  for (const auto& n : builtin_scene_mesh_names()) list += (list.empty() ? "" : ", ") + n;
-  return make_error(ErrorCode::mesh_not_found, "there is no built-in scene mesh '" + name + "' (built-ins: " + list +
+  return make_error(ErrorCode::mesh_not_found, "there is no built-in scene mesh '" + name + "' (built-ins: " + comma_list(builtin_scene_mesh_names()) +
                                                    "; or an id from POST /api/meshes)");
 }
 

@@ -1,5 +1,6 @@
 #include "shader/invariant_outputs.h"
 
+#include "core/words.h"
 #include "shader/global_scan.h"
 
 namespace shadelab::shader {
@@ -22,7 +23,7 @@ std::string with_invariant_outputs(std::string_view glsl, Stage stage) {
     out.append(glsl.substr(copied, s.semicolon + 1 - copied));
     copied = s.semicolon + 1;
     out += " invariant ";
-    for (size_t k = 0; k < names.size(); ++k) out += (k ? ", " : "") + names[k];
+    out += comma_list(names);
     out += ";";
   }
   out.append(glsl.substr(copied));

@@ -5,6 +5,7 @@
 #include <future>
 #include <optional>
 
+#include "core/words.h"
 #include "course/submission_files.h"
 #include "image/png_info.h"
 #include "render/render_request.h"
@@ -121,9 +122,7 @@ Status add_saved_frames(worker::WorkerPool& pool, const course::Course& course, 
     if (auto grid_png = saved_frames_grid(shown)) s.saved_grid_png = std::move(*grid_png);
   const grade::GradeOptions options{.max_score = checkpoint.points};
   if (!missing.empty()) {
-    std::string names;
-    for (const auto& m : missing) names += (names.empty() ? "" : ", ") + m;
-    s.frames_report = grade::failed_submission(make_error(ErrorCode::frames_invalid, "missing: " + names), checkpoint.name, checkpoint.points);
+    s.frames_report = grade::failed_submission(make_error(ErrorCode::frames_invalid, "missing: " + comma_list(missing)), checkpoint.name, checkpoint.points);
     return Ok{};
   }
   worker::Job job = worker::course_job(course, worker::JobKind::grade_frames);

@@ -1,5 +1,7 @@
 #include "sheet/sheet.h"
 
+#include "core/words.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -43,13 +45,13 @@ std::set<int> lines_pointed_at(const grade::Report& report, const std::string& f
 }
 
 std::string framing_verdict(const SceneSection& scene) {
-  std::string out_of_frame;
+  std::vector<std::string> out_of_frame;
   for (const auto& f : scene.framing)
-    if (f.drawn && !f.fully_visible) out_of_frame += (out_of_frame.empty() ? "" : ", ") + f.name;
+    if (f.drawn && !f.fully_visible) out_of_frame.push_back(f.name);
   if (scene.framing.empty()) return "no framing report";
   if (out_of_frame.empty())
     return scene.framing.size() == 2 ? "both objects fully in the image" : "every object fully in the image";
-  return "not fully in the image: " + out_of_frame;
+  return "not fully in the image: " + comma_list(out_of_frame);
 }
 
 std::string framing_line(const scene_render::ObjectFraming& f) {
