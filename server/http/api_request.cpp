@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/hash.h"
+#include "http/request_fields.h"
 #include "scene/mesh.h"
 #include "worker/course_job.h"
 
@@ -14,8 +15,6 @@ using nlohmann::json;
 
 namespace {
 
-Error bad(std::string message) { return make_error(ErrorCode::invalid_argument, std::move(message)); }
-
 // A string from a form: JSON literal where it is one ("9", "true", "[1,2]"), else the string.
 json form_value(const std::string& text) {
   json parsed = json::parse(text, nullptr, false);
@@ -23,39 +22,17 @@ json form_value(const std::string& text) {
   return text;
 }
 
-Expected<int> integer(const json& fields, const char* name, int fallback) {
-  if (!fields.contains(name)) return fallback;
-  const json& v = fields[name];
-  if (!v.is_number() || (v.is_number_float() && std::trunc(v.get<double>()) != v.get<double>()))
-    return bad(std::string("'") + name + "' must be a whole number; got " + v.dump());
-  const double d = v.get<double>();
-  if (d < -1e9 || d > 1e9) return bad(std::string("'") + name + "' is out of range");
-  return static_cast<int>(d);
-}
-
-Expected<double> number(const json& fields, const char* name, double fallback) {
-  if (!fields.contains(name)) return fallback;
-  if (!fields[name].is_number()) return bad(std::string("'") + name + "' must be a number; got " + fields[name].dump());
-  return fields[name].get<double>();
-}
-
-Expected<std::string> text(const json& fields, const char* name, const std::string& fallback) {
-  if (!fields.contains(name)) return fallback;
-  if (!fields[name].is_string()) return bad(std::string("'") + name + "' must be a string; got " + fields[name].dump());
-  return fields[name].get<std::string>();
-}
-
 Expected<std::vector<render::UniformSetting>> uniforms(const json& fields) {
   std::vector<render::UniformSetting> out;
   if (!fields.contains("uniforms")) return out;
   const json& u = fields["uniforms"];
-  if (!u.is_object()) return bad("'uniforms' must be an object of GLSL name -> number, boolean or array of numbers");
+  if (!u.is_object()) return bad_request("'uniforms' must be an object of GLSL name -> number, boolean or array of numbers");
   for (const auto& [name, value] : u.items()) {
     render::UniformSetting s{name, {}};
     const auto add = [&](const json& v) -> Status {
       if (v.is_boolean()) s.values.push_back(v.get<bool>() ? 1.0 : 0.0);
       else if (v.is_number()) s.values.push_back(v.get<double>());
-      else return bad("uniform '" + s.name + "' must be numbers or booleans; got " + v.dump());
+      else return bad_request("uniform '" + s.name + "' must be numbers or booleans; got " + v.dump());
       return Ok{};
     };
     if (value.is_array()) {
@@ -83,8 +60,8 @@ std::string mesh_id(const std::string& bytes) { return "m" + sha256_hex(bytes).s
 Expected<RawRequest> from_json_body(const std::string& body) {
   RawRequest raw;
   raw.fields = json::parse(body, nullptr, false);
-  if (raw.fields.is_discarded()) return bad("the request body is not valid JSON");
-  if (!raw.fields.is_object()) return bad("the request body must be a JSON object");
+  if (raw.fields.is_discarded()) return bad_request("the request body is not valid JSON");
+  if (!raw.fields.is_object()) return bad_request("the request body must be a JSON object");
   return raw;
 }
 
@@ -114,14 +91,14 @@ std::string prefix_of(const course::Course& c, const course::Preset& p) {
 Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& limits, const course::Course& course, ParsedJob& out) {
   worker::Job& job = out.job;
   const json& f = raw.fields;
-  auto preset = text(f, "preset", "");
+  auto preset = text_field(f, "preset", "");
   if (!preset) return preset.take_error();
   const auto source = [&](const char* field, const char* name_field) -> Expected<shader::ShaderFile> {
     if (auto it = raw.files.find(field); it != raw.files.end())
       return shader::ShaderFile{it->second.filename.empty() ? std::string(field) : it->second.filename, it->second.content};
-    auto t = text(f, field, "");
+    auto t = text_field(f, field, "");
     if (!t) return t.take_error();
-    auto n = text(f, name_field, std::string(field) + ".glsl");
+    auto n = text_field(f, name_field, std::string(field) + ".glsl");
     if (!n) return n.take_error();
     return shader::ShaderFile{*n, *t};
   };
@@ -132,7 +109,7 @@ Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& l
   const bool has_sources = !vertex->text.empty() || !fragment->text.empty() || raw.files.count("vertex") ||
                            raw.files.count("fragment") || f.contains("vertex") || f.contains("fragment");
   if (!preset->empty()) {
-    if (has_sources) return bad("give either 'preset' or 'vertex' and 'fragment', not both");
+    if (has_sources) return bad_request("give either 'preset' or 'vertex' and 'fragment', not both");
     auto found = course.find_preset(*preset);
     if (!found) return found.take_error();
     if (found->alias) out.warnings.push_back(found->alias->note);
@@ -143,7 +120,7 @@ Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& l
     return Ok{};
   }
   if (kind == worker::JobKind::mesh_check) return Ok{};
-  if (!has_sources) return bad("give 'vertex' and 'fragment' shader sources, or a 'preset'");
+  if (!has_sources) return bad_request("give 'vertex' and 'fragment' shader sources, or a 'preset'");
   job.request.vertex = std::move(*vertex);
   job.request.fragment = std::move(*fragment);
   for (const auto* s : {&job.request.vertex, &job.request.fragment})
@@ -155,11 +132,11 @@ Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& l
 
 // Size, frames, rotation, samples and uniform values.
 Status read_render_settings(const json& f, render::RenderRequest& r) {
-  auto width = integer(f, "width", r.width);
-  auto height = integer(f, "height", r.height);
-  auto frames = integer(f, "frames", r.frames);
-  auto msaa = integer(f, "msaa", r.msaa);
-  auto degrees = number(f, "degreesPerFrame", r.degrees_per_frame);
+  auto width = integer_field(f, "width", r.width);
+  auto height = integer_field(f, "height", r.height);
+  auto frames = integer_field(f, "frames", r.frames);
+  auto msaa = integer_field(f, "msaa", r.msaa);
+  auto degrees = number_field(f, "degreesPerFrame", r.degrees_per_frame);
   for (const Error* e : {width ? nullptr : &width.error(), height ? nullptr : &height.error(),
                          frames ? nullptr : &frames.error(), msaa ? nullptr : &msaa.error(), degrees ? nullptr : &degrees.error()})
     if (e) return *e;
@@ -176,24 +153,24 @@ Status read_render_settings(const json& f, render::RenderRequest& r) {
 
 // What comes back and how: fit, prefix, output and format.
 Status read_output(const json& f, const course::Course& course, worker::Job& job) {
-  if (f.contains("fit") && !f["fit"].is_boolean()) return bad("'fit' must be true or false");
+  if (f.contains("fit") && !f["fit"].is_boolean()) return bad_request("'fit' must be true or false");
   if (f.value("fit", false)) {
     auto target = course::fit_bounds(course);
     if (!target) return target.take_error();
     job.fit = *target;
   }
-  auto prefix = text(f, "prefix", job.prefix);
+  auto prefix = text_field(f, "prefix", job.prefix);
   if (!prefix) return prefix.take_error();
   static const std::regex safe_prefix("[A-Za-z0-9_-]{1,64}");
-  if (!std::regex_match(*prefix, safe_prefix)) return bad("'prefix' may hold only letters, digits, '_' and '-' (at most 64)");
+  if (!std::regex_match(*prefix, safe_prefix)) return bad_request("'prefix' may hold only letters, digits, '_' and '-' (at most 64)");
   job.prefix = *prefix;
-  auto output = text(f, "output", "grid");
+  auto output = text_field(f, "output", "grid");
   if (!output) return output.take_error();
-  if (*output != "grid" && *output != "frames" && *output != "json") return bad("'output' must be grid, frames or json");
+  if (*output != "grid" && *output != "frames" && *output != "json") return bad_request("'output' must be grid, frames or json");
   job.output = *output == "grid" ? worker::Output::grid : *output == "frames" ? worker::Output::frames : worker::Output::json;
-  auto format = text(f, "format", "png");
+  auto format = text_field(f, "format", "png");
   if (!format) return format.take_error();
-  if (*format != "png" && *format != "exr") return bad("'format' must be png or exr");
+  if (*format != "png" && *format != "exr") return bad_request("'format' must be png or exr");
   job.format = *format == "png" ? worker::Format::png : worker::Format::exr;
   job.request.pixel_type = job.format == worker::Format::png ? image::PixelType::u8 : image::PixelType::f32;
   return Ok{};
@@ -210,7 +187,7 @@ Status read_mesh(const RawRequest& raw, const Limits& limits, const course::Cour
     out.job.mesh_format = scene::mesh_format_of(it->second.filename);
     return Ok{};
   }
-  auto mesh = text(raw.fields, "mesh", course.default_mesh);
+  auto mesh = text_field(raw.fields, "mesh", course.default_mesh);
   if (!mesh) return mesh.take_error();
   if (course.mesh(*mesh)) return worker::attach_course_mesh(course, *mesh, out.job, out.course_mesh_bytes);
   out.job.mesh = *mesh;
@@ -220,7 +197,7 @@ Status read_mesh(const RawRequest& raw, const Limits& limits, const course::Cour
 }  // namespace
 
 Expected<const course::Course*> course_of(const RawRequest& raw, const course::CourseSet& courses) {
-  auto id = text(raw.fields, "course", "");
+  auto id = text_field(raw.fields, "course", "");
   if (!id) return id.take_error();
   return courses.named(*id);
 }
@@ -247,9 +224,9 @@ namespace shadelab::http {
 
 Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, const course::Course& course) {
   ParsedGrade out;
-  auto format = text(raw.fields, "format", "json");
+  auto format = text_field(raw.fields, "format", "json");
   if (!format) return format.take_error();
-  if (*format != "json" && *format != "gradescope") return bad("'format' must be json or gradescope");
+  if (*format != "json" && *format != "gradescope") return bad_request("'format' must be json or gradescope");
   out.result_format = *format;
   raw.fields.erase("format");
   const json f = raw.fields;
@@ -258,18 +235,18 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, cons
   out.parsed = std::move(*parsed);
   auto& spec = out.parsed.job.grade;
 
-  auto reference = text(f, "reference", "");
+  auto reference = text_field(f, "reference", "");
   if (!reference) return reference.take_error();
   const bool custom = raw.files.count("referenceVertex") || f.contains("referenceVertex");
   if (!reference->empty() == custom) {
     std::string names;
     for (const auto& n : course.checkpoint_names()) names += (names.empty() ? "" : ", ") + n;
-    return bad("give either 'reference' (a checkpoint: " + names + ") or 'referenceVertex' and 'referenceFragment'");
+    return bad_request("give either 'reference' (a checkpoint: " + names + ") or 'referenceVertex' and 'referenceFragment'");
   }
   if (custom) {
     const auto source = [&](const char* field) -> Expected<shader::ShaderFile> {
       if (auto it = raw.files.find(field); it != raw.files.end()) return shader::ShaderFile{it->second.filename, it->second.content};
-      auto t = text(f, field, "");
+      auto t = text_field(f, field, "");
       if (!t) return t.take_error();
       return shader::ShaderFile{field, *t};
     };
@@ -287,14 +264,14 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, cons
     if (found->alias) out.parsed.warnings.push_back(found->alias->note);
     spec = course.grade_spec(*found->checkpoint, grade::GradeOptions{.max_score = found->checkpoint->points});
   }
-  auto threshold = number(f, "threshold", spec.options.compare.threshold);
-  auto failing = number(f, "maxFailingFraction", spec.options.max_failing_fraction);
-  auto max_score = number(f, "maxScore", spec.options.max_score);
+  auto threshold = number_field(f, "threshold", spec.options.compare.threshold);
+  auto failing = number_field(f, "maxFailingFraction", spec.options.max_failing_fraction);
+  auto max_score = number_field(f, "maxScore", spec.options.max_score);
   for (const Error* e : {threshold ? nullptr : &threshold.error(), failing ? nullptr : &failing.error(), max_score ? nullptr : &max_score.error()})
     if (e) return *e;
   if (*threshold < 0 || *threshold > 1 || *failing < 0 || *failing > 1 || *max_score < 0)
-    return bad("'threshold' and 'maxFailingFraction' must be in [0, 1], 'maxScore' not negative");
-  if (f.contains("spatialTolerance") && !f["spatialTolerance"].is_boolean()) return bad("'spatialTolerance' must be true or false");
+    return bad_request("'threshold' and 'maxFailingFraction' must be in [0, 1], 'maxScore' not negative");
+  if (f.contains("spatialTolerance") && !f["spatialTolerance"].is_boolean()) return bad_request("'spatialTolerance' must be true or false");
   spec.options.compare.threshold = *threshold;
   spec.options.max_failing_fraction = *failing;
   spec.options.max_score = *max_score;

@@ -6,6 +6,7 @@
 #include "core/base64.h"
 #include "core/words.h"
 #include "course/submission_files.h"
+#include "http/request_fields.h"
 
 namespace shadelab::http {
 
@@ -13,39 +14,31 @@ using nlohmann::json;
 
 namespace {
 
-Error bad(std::string message) { return make_error(ErrorCode::invalid_argument, std::move(message)); }
-
 const std::set<std::string> kFramesFields = {"course", "reference", "mesh", "maxScore", "format", "vertex", "fragment",
                                              "vertexName", "fragmentName", "savedFrames"};
 
 // The JSON form's frames: [{"name": "hw2_specular_0.png", "png": base64}, ...].
 Expected<std::vector<UploadedFile>> json_frames(const json& fields) {
   const json& list = fields["savedFrames"];
-  if (!list.is_array()) return bad("'savedFrames' must be an array of {\"name\", \"png\"} (the PNG in base64)");
+  if (!list.is_array()) return bad_request("'savedFrames' must be an array of {\"name\", \"png\"} (the PNG in base64)");
   std::vector<UploadedFile> out;
   for (const auto& item : list) {
     if (!item.is_object() || !item.contains("name") || !item["name"].is_string() || !item.contains("png") || !item["png"].is_string())
-      return bad("each of 'savedFrames' must be {\"name\": \"hw2_specular_0.png\", \"png\": \"<base64>\"}; got " + item.dump().substr(0, 80));
+      return bad_request("each of 'savedFrames' must be {\"name\": \"hw2_specular_0.png\", \"png\": \"<base64>\"}; got " + item.dump().substr(0, 80));
     auto bytes = base64_decode(item["png"].get<std::string>());
-    if (!bytes) return bad("'savedFrames' item '" + item["name"].get<std::string>() + "': 'png' is not base64");
+    if (!bytes) return bad_request("'savedFrames' item '" + item["name"].get<std::string>() + "': 'png' is not base64");
     out.push_back({item["name"].get<std::string>(), std::move(*bytes)});
   }
   return out;
 }
 
-Expected<std::string> text_field(const json& fields, const char* name) {
-  if (!fields.contains(name)) return std::string();
-  if (!fields[name].is_string()) return bad(std::string("'") + name + "' must be a string; got " + fields[name].dump());
-  return fields[name].get<std::string>();
-}
-
 // A shader beside the frames: an uploaded file, or the field's text named by `<stage>Name`.
 Expected<std::optional<shader::ShaderFile>> shader_of(const RawRequest& raw, const std::string& stage) {
   if (auto it = raw.files.find(stage); it != raw.files.end()) return std::optional(shader::ShaderFile{it->second.filename, it->second.content});
-  auto source = text_field(raw.fields, stage.c_str());
+  auto source = text_field(raw.fields, stage.c_str(), "");
   if (!source) return source.take_error();
   if (source->empty()) return std::optional<shader::ShaderFile>();
-  auto name = text_field(raw.fields, (stage + "Name").c_str());
+  auto name = text_field(raw.fields, (stage + "Name").c_str(), "");
   if (!name) return name.take_error();
   return std::optional(shader::ShaderFile{name->empty() ? stage : *name, std::move(*source)});
 }
@@ -58,7 +51,7 @@ Status read_code(const RawRequest& raw, worker::FramesSubmission& out) {
   auto fragment = shader_of(raw, "fragment");
   if (!fragment) return fragment.take_error();
   if (vertex->has_value() != fragment->has_value())
-    return bad("give both 'vertex' and 'fragment' (the code the frames were made with), or neither (the frames alone)");
+    return bad_request("give both 'vertex' and 'fragment' (the code the frames were made with), or neither (the frames alone)");
   if (!vertex->has_value()) return Ok{};
   out.code = std::pair{std::move(**vertex), std::move(**fragment)};
   return Ok{};
@@ -94,23 +87,23 @@ Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw, const cour
   ParsedFramesGrade out;
   for (const auto& [k, v] : raw.fields.items())
     if (!kFramesFields.count(k)) out.warnings.push_back("field '" + k + "' is not used in a grade of saved frames and was ignored");
-  auto format = text_field(raw.fields, "format");
+  auto format = text_field(raw.fields, "format", "");
   if (!format) return format.take_error();
   if (!format->empty() && *format != "json")
-    return bad("saved frames are graded as JSON; for Gradescope's results.json of a whole HW2 folder run `shadelab autograde`");
-  auto reference = text_field(raw.fields, "reference");
+    return bad_request("saved frames are graded as JSON; for Gradescope's results.json of a whole HW2 folder run `shadelab autograde`");
+  auto reference = text_field(raw.fields, "reference", "");
   if (!reference) return reference.take_error();
-  if (reference->empty()) return bad("give 'reference': the deliverable the frames are of (" + and_list(course.checkpoint_names()) + ")");
+  if (reference->empty()) return bad_request("give 'reference': the deliverable the frames are of (" + and_list(course.checkpoint_names()) + ")");
   auto found = course.checkpoint(*reference);
   if (!found) return found.take_error();
   if (found->alias) out.warnings.push_back(found->alias->note);
   out.checkpoint = found->checkpoint;
-  auto mesh = text_field(raw.fields, "mesh");
+  auto mesh = text_field(raw.fields, "mesh", "");
   if (!mesh) return mesh.take_error();
   out.settings.mesh = *mesh;
   out.settings.max_score = found->checkpoint->points;
   if (raw.fields.contains("maxScore")) {
-    if (!raw.fields["maxScore"].is_number() || raw.fields["maxScore"].get<double>() < 0) return bad("'maxScore' must be a number, not negative");
+    if (!raw.fields["maxScore"].is_number() || raw.fields["maxScore"].get<double>() < 0) return bad_request("'maxScore' must be a number, not negative");
     out.settings.max_score = raw.fields["maxScore"].get<double>();
   }
   if (auto s = read_code(raw, out.submission); !s) return s.take_error();

@@ -14,6 +14,7 @@
 #include <algorithm>
 
 #include "core/base64.h"
+#include "http/request_fields.h"
 #include "http/route_context.h"
 #include "sheet/assemble.h"
 #include "sheet/sheet_html.h"
@@ -39,15 +40,6 @@ bool safe_path(const std::string& path) {
     at = slash + 1;
   }
   return true;
-}
-
-Expected<std::string> text_field(const RawRequest& raw, const char* name, size_t max, std::string fallback) {
-  if (!raw.fields.contains(name)) return fallback;
-  const json& v = raw.fields[name];
-  if (!v.is_string()) return make_error(ErrorCode::invalid_argument, std::string(name) + ": expected a string");
-  if (v.get_ref<const std::string&>().size() > max)
-    return make_error(ErrorCode::payload_too_large, std::string(name) + ": more than " + std::to_string(max) + " bytes");
-  return v.get<std::string>();
 }
 
 Status add_image(sheet::SheetInput& input, const std::string& path, std::string bytes) {
@@ -102,8 +94,8 @@ Status add_scenes(sheet::SheetInput& input, const RawRequest& raw) {
 
 Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& limits) {
   sheet::SheetInput input;
-  auto title = text_field(raw, "title", kMaxTitle, input.title);
-  auto answers = text_field(raw, "answers", kMaxAnswers, "");
+  auto title = text_field(raw.fields, "title", input.title, kMaxTitle);
+  auto answers = text_field(raw.fields, "answers", "", kMaxAnswers);
   for (auto* f : {&title, &answers})
     if (!*f) return f->error();
   input.title = *title;
@@ -136,7 +128,7 @@ Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& lim
 void sheet(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
-  auto format = text_field(*raw, "format", 8, "pdf");
+  auto format = text_field(raw->fields, "format", "pdf", 8);
   if (!format) return send_problem(res, format.error(), req.path);
   if (*format != "pdf" && *format != "html")
     return send_problem(res, make_error(ErrorCode::invalid_argument, "format: pdf or html, not '" + *format + "'"), req.path);
