@@ -128,11 +128,9 @@ Command add_autograde_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("-o,--results", f->results, "Where results.json goes")->required();
   cmd->add_option("--heatmaps", f->heatmaps, "Folder for the heat map of each failed test (<checkpoint>.png, <checkpoint>_frames.png)");
-  add_course_option(cmd, f->grade.course);
-  add_cache_option(cmd, f->grade.cache_dir);
+  add_grader_options(cmd, f->grade.course, f->grade.cache_dir, f->grade.software);
   cmd->add_option("--max-score", f->max_score, "Points per checkpoint, shared among its tests (default: the course's points for each)");
   cmd->add_option("--timeout-ms", f->grade.timeout_ms, "Compile and render deadline per checkpoint, in CPU time")->capture_default_str();
-  cmd->add_flag("--software", f->grade.software, "Force Mesa's software renderer");
   return [f] {
     f->grade.heatmaps = f->heatmaps.empty() ? grade::HeatMap::never : grade::HeatMap::when_failing;
     return run_autograde(*f);

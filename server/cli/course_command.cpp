@@ -120,9 +120,7 @@ Command add_course_command(CLI::App& app) {
   auto* show = cmd->add_subcommand("show", "Print a profile as JSON, its files named where they were read (builtin:... or absolute)");
   add_course_option(show, f->show);
   auto* warm = cmd->add_subcommand("warm", "Render a course's references and known mistakes once into the reference store");
-  add_course_option(warm, f->warm.course);
-  add_cache_option(warm, f->warm.cache_dir);
-  warm->add_flag("--software", f->warm.software, "Force Mesa's software renderer");
+  add_grader_options(warm, f->warm.course, f->warm.cache_dir, f->warm.software);
   return [f, import, check, show, warm] {
     if (*import) return run_import(*f);
     if (*warm) return run_warm(f->warm);

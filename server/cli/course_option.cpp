@@ -13,6 +13,23 @@ void add_course_option(CLI::App* command, std::string& path) {
       ->envname("SHADELAB_COURSE");
 }
 
+void add_software_option(CLI::App* command, bool& software) {
+  command->add_flag("--software", software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
+}
+
+void add_cache_option(CLI::App* command, std::string& folder) {
+  command->add_option("--cache-dir", folder,
+                      "Where reference renders are kept across runs, rendered once per course and checkpoint "
+                      "(also SHADELAB_CACHE_DIR; an empty string keeps them in memory only)")
+      ->capture_default_str();
+}
+
+void add_grader_options(CLI::App* command, std::string& course, std::string& cache_dir, bool& software) {
+  add_course_option(command, course);
+  add_cache_option(command, cache_dir);
+  add_software_option(command, software);
+}
+
 Expected<std::shared_ptr<const course::Course>> load_course(const std::string& path) {
   if (path.empty()) return std::shared_ptr<const course::Course>(&course::builtin_course(), [](const course::Course*) {});
   auto loaded = course::load_course_file(path);

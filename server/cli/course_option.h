@@ -1,4 +1,5 @@
 #pragma once
+// The options the commands share, set up once here.
 // `--course FILE` on every command that renders or grades: the course profile whose facts
 // (canvas, frames, meshes, references, checkpoints) the command uses; the built-in one
 // (courses/cs148-summer2022.json) when it is not given. Flags given explicitly (--size, --frames,
@@ -15,6 +16,12 @@
 namespace shadelab::cli {
 
 void add_course_option(CLI::App* command, std::string& path);
+// --software: Mesa's software renderer whatever the machine has (also SHADELAB_SOFTWARE=1).
+void add_software_option(CLI::App* command, bool& software);
+// --cache-dir on a grading command: where reference renders are kept across runs.
+void add_cache_option(CLI::App* command, std::string& folder);
+// What every command that grades takes: --course, --cache-dir and --software.
+void add_grader_options(CLI::App* command, std::string& course, std::string& cache_dir, bool& software);
 // The course at `path`, or the built-in one for an empty path; shared, never copied per job.
 Expected<std::shared_ptr<const course::Course>> load_course(const std::string& path);
 

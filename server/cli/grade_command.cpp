@@ -13,6 +13,7 @@
 #include "cli/grade_runner.h"
 #include "cli/server_grader.h"
 #include "cli/submission_files.h"
+#include "core/words.h"
 #include "course/course_reader.h"
 #include "course/submission_files.h"
 #include "grade/report.h"
@@ -154,11 +155,8 @@ Command add_grade_command(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--submissions", f->submissions, "A folder with one folder per student holding their shaders/*.js");
   const course::Course& builtin = course::builtin_course();
-  std::string checkpoints;
-  for (const auto& n : builtin.checkpoint_names()) checkpoints += (checkpoints.empty() ? "" : ", ") + n;
-  add_course_option(cmd, f->course);
-  add_cache_option(cmd, f->cache_dir);
-  cmd->add_option("--reference", f->reference, "A checkpoint of the course (built-in: " + checkpoints + "; default " +
+  add_grader_options(cmd, f->course, f->cache_dir, f->software);
+  cmd->add_option("--reference", f->reference, "A checkpoint of the course (built-in: " + comma_list(builtin.checkpoint_names()) + "; default " +
                                                     builtin.default_checkpoint + ")");
   cmd->add_option("--mesh", f->mesh, "A mesh of the course (default: its default mesh, " + builtin.default_mesh + ")");
   cmd->add_option("--frames", f->frames, "Frames (default: the course's)");
@@ -181,7 +179,6 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--retry-for-s", f->retry_for_s, "Batch with --server: how long to keep retrying one submission, then stop")
       ->capture_default_str();
   cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission, in CPU time (a timeout is retried once)")->capture_default_str();
-  cmd->add_flag("--software", f->software, "Force Mesa's software renderer");
   return [f] {
     auto loaded = load_course(f->course);
     if (!loaded) return fail(loaded.error());

@@ -114,13 +114,6 @@ Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course
   return worker::grade_frame_set(pool, c, checkpoint, std::move(submission), frames_settings(f));
 }
 
-void add_cache_option(CLI::App* command, std::string& folder) {
-  command->add_option("--cache-dir", folder,
-                      "Where reference renders are kept across runs, rendered once per course and checkpoint "
-                      "(also SHADELAB_CACHE_DIR; an empty string keeps them in memory only)")
-      ->capture_default_str();
-}
-
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
   worker::PoolConfig c;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -72,9 +72,6 @@ Expected<GradedFrames> grade_frame_set(worker::WorkerPool& pool, const course::C
                                        const course::Checkpoint& checkpoint, std::vector<grade::SavedFrame> saved,
                                        const std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>>& code);
 
-// --cache-dir on a grading command: where reference renders are kept across runs.
-void add_cache_option(CLI::App* command, std::string& folder);
-
 // Workers for `jobs` submissions: one per core at most, the cores shared among them.
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs);
 

@@ -3,6 +3,7 @@
 #include <GLES3/gl32.h>
 
 #include "cli/commands.h"
+#include "cli/course_option.h"
 #include "cli/environment.h"
 #include "egl/headless_context.h"
 
@@ -11,7 +12,7 @@ namespace shadelab::cli {
 Command add_info_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Print the EGL devices and the GL context ShadeLab would render with");
   auto software = std::make_shared<bool>(software_from_environment());
-  cmd->add_flag("--software", *software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
+  add_software_option(cmd, *software);
   auto extensions = std::make_shared<bool>(false);
   cmd->add_flag("--extensions", *extensions, "Also list the GL extensions, one per line");
   return [software, extensions] {

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <iterator>
 
+#include "core/words.h"
 #include "cli/commands.h"
 #include "cli/course_option.h"
 #include "course/course_reader.h"
@@ -161,15 +162,10 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--vert", flags->vert, "Vertex shader: GLSL or the homework's JS module (phong_vert.js)");
   cmd->add_option("--frag", flags->frag, "Fragment shader: GLSL or JS module");
   const course::Course& builtin = course::builtin_course();
-  const auto names = [](const std::vector<std::string>& list) {
-    std::string out;
-    for (const auto& n : list) out += (out.empty() ? "" : ", ") + n;
-    return out;
-  };
   add_course_option(cmd, flags->course);
-  cmd->add_option("--preset", flags->preset, "Reference shaders of the course (built-in: " + names(builtin.preset_names()) +
+  cmd->add_option("--preset", flags->preset, "Reference shaders of the course (built-in: " + comma_list(builtin.preset_names()) +
                                                  "; default " + builtin.default_preset + ")");
-  cmd->add_option("--mesh", flags->mesh, "A mesh of the course (built-in: " + names(builtin.mesh_names()) + "; default " +
+  cmd->add_option("--mesh", flags->mesh, "A mesh of the course (built-in: " + comma_list(builtin.mesh_names()) + "; default " +
                                              builtin.default_mesh + ") or a mesh file (OBJ, PLY, STL, glTF/GLB)");
   cmd->add_flag("--fit", flags->fit, "Scale and place the mesh as the course's default mesh stands (its height, base and centre)");
   cmd->add_option("--frames", flags->frames, "Number of frames (default: the course's, " + std::to_string(builtin.frames) + ")");
@@ -188,7 +184,7 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--format", flags->format, "png (as the browser saves) or exr (float, exact)")
       ->check(CLI::IsMember({"png", "exr"}))
       ->capture_default_str();
-  cmd->add_flag("--software", flags->software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
+  add_software_option(cmd, flags->software);
   cmd->add_flag("--timings", flags->timings, "Print the time of each phase");
   cmd->add_option("--readback", flags->readback,
                   "How frames leave the driver: direct (glReadPixels into memory), pixel-buffer (a pixel pack buffer "

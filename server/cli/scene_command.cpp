@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "cli/commands.h"
+#include "cli/course_option.h"
 #include "cli/file_output.h"
 #include "cli/environment.h"
 #include "egl/headless_context.h"
@@ -57,7 +58,7 @@ Command add_scene_command(CLI::App& app) {
   cmd->add_option("file", flags->file, "Scene JSON (docs/scenes.md); mesh paths are relative to it")->required();
   cmd->add_option("-o,--output", flags->output, "Where to write the PNG")->capture_default_str();
   cmd->add_option("--report", flags->report, "Write the report (passes, timings, framing) as JSON here; - for stdout");
-  cmd->add_flag("--software", flags->software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
+  add_software_option(cmd, flags->software);
   return [flags] {
     auto j = read_json(flags->file);
     if (!j) return fail(j.error());

@@ -45,7 +45,7 @@ void add_worker_flags(CLI::App* cmd, http::ServiceConfig& config, int& lp_thread
       ->envname("SHADELAB_MEMORY_MB")->capture_default_str();
   cmd->add_option("--cpu-limit-s", config.pool.cpu_limit_seconds, "RLIMIT_CPU per worker process (a backstop)")
       ->envname("SHADELAB_CPU_LIMIT_S")->capture_default_str();
-  cmd->add_flag("--software", config.pool.force_software, "Force Mesa's software renderer (also SHADELAB_SOFTWARE=1)");
+  add_software_option(cmd, config.pool.force_software);
 }
 
 void add_connection_flags(CLI::App* cmd, http::ConnectionLimits& c) {

@@ -96,9 +96,7 @@ Command add_sheet_command(CLI::App& app) {
   cmd->add_option("--scene", f->scenes, "A Blender-half scene (JSON, docs/scenes.md) to render with its framing report; repeat for more")
       ->check(CLI::ExistingFile);
   cmd->add_option("--title", f->title, "The sheet's title (e.g. the student's name)")->capture_default_str();
-  add_course_option(cmd, f->grade.course);
-  add_cache_option(cmd, f->grade.cache_dir);
-  cmd->add_flag("--software", f->grade.software, "Force Mesa's software renderer");
+  add_grader_options(cmd, f->grade.course, f->grade.cache_dir, f->grade.software);
   return [f] { return run_sheet(*f); };
 }
 
