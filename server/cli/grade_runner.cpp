@@ -10,8 +10,6 @@
 #include "course/submission_files.h"
 #include "grade/report.h"
 #include "render/render_request.h"
-#include "worker/course_job.h"
-#include "worker/frames_job.h"
 
 namespace shadelab::cli {
 
@@ -30,35 +28,32 @@ std::optional<std::pair<fs::path, fs::path>> find_pair(const course::Course& cou
 
 namespace {
 
-// The grade job for one submission and its mesh's bytes, built and checked as POST /api/grade builds it.
-struct GradeJob {
-  worker::Job job;
-  std::string payload;
-};
-
-Expected<GradeJob> grade_job(const course::Course& c, const GradeFlags& f, shader::ShaderFile vert, shader::ShaderFile frag) {
+// The grading options the flags set.
+grade::GradeOptions options_of(const GradeFlags& f) {
   grade::GradeOptions options;
   options.compare.threshold = f.threshold;
   options.compare.spatial_tolerance = f.spatial;
   options.max_failing_fraction = f.max_failing;
   options.max_score = f.max_score;
+  return options;
+}
+
+// The course's submission of the pair, as the flags draw it.
+Expected<grade::CodeSubmission> submission_of(const course::Course& c, const GradeFlags& f, shader::ShaderFile vert, shader::ShaderFile frag) {
   auto checkpoint = c.checkpoint(f.reference.empty() ? c.default_checkpoint : f.reference);
   if (!checkpoint) return checkpoint.take_error();
-  GradeJob out{worker::course_job(c, worker::JobKind::grade), {}};
-  worker::Job& job = out.job;
-  if (auto s = worker::attach_course_mesh(c, f.mesh.empty() ? c.default_mesh : f.mesh, job, out.payload); !s) return s.take_error();
-  job.grade = c.grade_spec(*checkpoint->checkpoint, options);
-  job.grade.reference_store.folder = f.cache_dir;
-  job.grade.heatmap = f.heatmaps;
-  auto& r = job.request;
-  r = c.render_request(std::move(vert), std::move(frag));
-  if (!f.size.empty())
-    if (auto s = parse_size(f.size, "--size", r.width, r.height); !s) return s.take_error();
-  r.frames = f.frames.value_or(r.frames);
-  const render::RenderLimits limits;
-  if (auto valid = render::validate(r, limits); !valid) return valid.take_error();
-  if (auto sources = render::check_sources(r, limits); !sources) return sources.take_error();
-  return out;
+  grade::CourseRender render{f.mesh, std::nullopt, std::nullopt, f.frames};
+  if (!f.size.empty()) {
+    int width = 0, height = 0;
+    if (auto s = parse_size(f.size, "--size", width, height); !s) return s.take_error();
+    render.width = width;
+    render.height = height;
+  }
+  auto submission = grade::course_code(c, *checkpoint->checkpoint, options_of(f), render, std::move(vert), std::move(frag));
+  if (!submission) return submission.take_error();
+  submission->spec.reference_store.folder = f.cache_dir;
+  submission->spec.heatmap = f.heatmaps;
+  return submission;
 }
 
 }  // namespace
@@ -70,34 +65,27 @@ Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& c, co
 
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, shader::ShaderFile vert,
                             shader::ShaderFile frag) {
-  const std::string checkpoint = f.reference.empty() ? c.default_checkpoint : f.reference;
-  const auto ungradable = [&](Error e) -> Expected<Graded> {
-    if (!info(e.code).submission_caused) return e;
-    return Graded{{grade::failed_submission(e, checkpoint, f.max_score), {}}, 0};
-  };
-  auto job = grade_job(c, f, std::move(vert), std::move(frag));
-  if (!job) return ungradable(job.take_error());
-  auto answered = worker::grade(pool, job->job, std::move(job->payload));
-  if (!answered) return ungradable(answered.take_error());
-  return Graded{std::move(answered->result), (answered->queue_ms + answered->worker_ms) / 1000};
+  auto submission = submission_of(c, f, std::move(vert), std::move(frag));
+  if (!submission) return submission.take_error();
+  return grade::grade_code(pool, std::move(*submission));
 }
 
 namespace {
 
-worker::FramesGradeSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps}; }
+grade::FramesSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps}; }
 
 }  // namespace
 
 Expected<GradedFrames> grade_frame_set(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
                                        const course::Checkpoint& checkpoint, std::vector<grade::SavedFrame> saved,
                                        const std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>>& code) {
-  return worker::grade_frame_set(pool, c, checkpoint, {std::move(saved), {}, {}, code}, frames_settings(f));
+  return grade::grade_frames(pool, c, checkpoint, {std::move(saved), {}, {}, code}, frames_settings(f));
 }
 
 Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
                                           const course::Checkpoint& checkpoint, const fs::path& root, const course::SavedFrameFiles& files,
                                           const std::optional<std::pair<fs::path, fs::path>>& code) {
-  worker::FramesSubmission submission{{}, files.missing(c, checkpoint), {}, std::nullopt};
+  grade::FramesSubmission submission{{}, files.missing(c, checkpoint), {}, std::nullopt};
   if (code)
     submission.code = std::pair{shader::ShaderFile{code->first.filename().string(), read_text(root / code->first)},
                                 shader::ShaderFile{code->second.filename().string(), read_text(root / code->second)}};
@@ -111,7 +99,7 @@ Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course
     }
     submission.saved.push_back({frame->filename().string(), read_text(root / *frame)});
   }
-  return worker::grade_frame_set(pool, c, checkpoint, std::move(submission), frames_settings(f));
+  return grade::grade_frames(pool, c, checkpoint, std::move(submission), frames_settings(f));
 }
 
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {

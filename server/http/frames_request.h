@@ -11,7 +11,7 @@
 #include "core/expected.h"
 #include "course/course.h"
 #include "http/api_request.h"
-#include "worker/frames_job.h"
+#include "grade/submission.h"
 
 namespace shadelab::http {
 
@@ -20,8 +20,8 @@ bool has_saved_frames(const RawRequest& raw);
 
 struct ParsedFramesGrade {
   const course::Checkpoint* checkpoint = nullptr;
-  worker::FramesSubmission submission;
-  worker::FramesGradeSettings settings;
+  grade::FramesSubmission submission;
+  grade::FramesSettings settings;
   std::vector<std::string> warnings;
 };
 Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw, const course::Course& course);

@@ -1,5 +1,8 @@
-// POST /api/grade: a submission against a checkpoint or a custom reference, through a worker.
+// POST /api/grade: a submission against a checkpoint or a custom reference, through the grading
+// road (grade/submission.h). This file parses the request and formats the report; the road
+// decides.
 #include "core/base64.h"
+#include "grade/submission.h"
 #include "http/frames_request.h"
 #include "http/route_context.h"
 
@@ -24,7 +27,7 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
   auto parsed = parse_frames_grade(raw, course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
   parsed->settings.reference_store = c.config.reference_places();
-  auto graded = worker::grade_frame_set(c.pool, course, *parsed->checkpoint, std::move(parsed->submission), parsed->settings);
+  auto graded = grade::grade_frames(c.pool, course, *parsed->checkpoint, std::move(parsed->submission), parsed->settings);
   if (!graded) return send_problem(res, graded.error(), req.path);
   auto& result = graded->result;
   result.frames.warnings.insert(result.frames.warnings.end(), parsed->warnings.begin(), parsed->warnings.end());
@@ -34,42 +37,39 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
   send_json(res, 200, body);
 }
 
+// The code's grade: the road's answer for what parsed, or for what the student's source made
+// unparseable (with the checkpoint and points the request named, read leniently: a source problem
+// is the student's grade even beside a mistyped field).
+Expected<grade::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, const course::Course& course, const httplib::Request& req) {
+  auto parsed = parse_grade_job(raw, c.config.limits, course);
+  if (!parsed)
+    return grade::grade_unreadable(parsed.error(), field_or<std::string>(raw.fields, "reference", "custom"),
+                                   field_or<double>(raw.fields, "maxScore", 1.0));
+  if (auto visible = c.may_draw(parsed->parsed, course, req); !visible) return visible.take_error();
+  auto mesh = c.mesh_bytes(parsed->parsed);
+  if (!mesh) return mesh.take_error();
+  grade::GradeSpec spec = std::move(parsed->parsed.job.grade);
+  spec.reference_store = c.config.reference_places();
+  auto graded = grade::grade_code(c.pool, {std::move(parsed->parsed.job), std::move(*mesh), std::move(spec)});
+  if (graded) {
+    auto& warnings = graded->result.report.warnings;
+    warnings.insert(warnings.end(), parsed->parsed.warnings.begin(), parsed->parsed.warnings.end());
+  }
+  return graded;
+}
+
 void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
-  if (has_saved_frames(*raw)) {
-    auto course = course_of(*raw, c.courses);
-    if (!course) return send_problem(res, course.error(), req.path);
-    return grade_saved(c, *raw, **course, req, res);
-  }
-  // Read without throwing: parse_grade_job type-checks these, but its error path below still
-  // needs them, whatever the client sent.
-  const std::string checkpoint = field_or<std::string>(raw->fields, "reference", "custom");
-  const std::string format = field_or<std::string>(raw->fields, "format", "json");
-  const double max_score = field_or<double>(raw->fields, "maxScore", 1.0);
   auto course = course_of(*raw, c.courses);
   if (!course) return send_problem(res, course.error(), req.path);
-  auto parsed = parse_grade_job(*raw, c.config.limits, **course);
-  worker::GradeResult graded;
-  double seconds = 0;
-  if (!parsed) {
-    // The submission's own source problems are its grade; a malformed request is not.
-    if (!info(parsed.error().code).submission_caused) return send_problem(res, parsed.error(), req.path);
-    graded.report = grade::failed_submission(parsed.error(), checkpoint, max_score);
-  } else {
-    if (auto visible = c.may_draw(parsed->parsed, **course, req); !visible) return send_problem(res, visible.error(), req.path);
-    auto mesh = c.mesh_bytes(parsed->parsed);
-    if (!mesh) return send_problem(res, mesh.error(), req.path);
-    parsed->parsed.job.grade.reference_store = c.config.reference_places();
-    auto answered = worker::grade(c.pool, parsed->parsed.job, std::move(*mesh));
-    if (!answered) return send_problem(res, answered.error(), req.path);
-    graded = std::move(answered->result);
-    seconds = (answered->queue_ms + answered->worker_ms) / 1000;
-    graded.report.warnings.insert(graded.report.warnings.end(), parsed->parsed.warnings.begin(), parsed->parsed.warnings.end());
-  }
-  if (format == "gradescope") return send_json(res, 200, grade::to_gradescope(graded.report, seconds));
-  json body = grade::to_json(graded.report);
-  if (!graded.heatmap_png.empty()) body["heatmap"] = base64_encode(graded.heatmap_png);
+  if (has_saved_frames(*raw)) return grade_saved(c, *raw, **course, req, res);
+  auto graded = graded_code(c, *raw, **course, req);
+  if (!graded) return send_problem(res, graded.error(), req.path);
+  if (field_or<std::string>(raw->fields, "format", "json") == "gradescope")
+    return send_json(res, 200, grade::to_gradescope(graded->result.report, graded->seconds));
+  json body = grade::to_json(graded->result.report);
+  if (!graded->result.heatmap_png.empty()) body["heatmap"] = base64_encode(graded->result.heatmap_png);
   send_json(res, 200, body);
 }
 

@@ -5,13 +5,13 @@
 #include <future>
 #include <optional>
 
-#include "core/words.h"
 #include "course/submission_files.h"
 #include "image/png_info.h"
 #include "render/render_request.h"
 #include "sheet/notebook.h"
 #include "sheet/saved_grid.h"
 #include "scene/scene_description.h"
+#include "grade/submission.h"
 #include "worker/client.h"
 #include "worker/course_job.h"
 
@@ -53,13 +53,15 @@ Expected<std::string> grid(worker::WorkerPool& pool, CourseJob job) {
   return rendered.take_error();
 }
 
-Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, CourseJob job,
-                               const grade::ReferenceStorePlaces& reference_store) {
-  job.job.grade = course.grade_spec(checkpoint, grade::GradeOptions{.max_score = checkpoint.points});
-  job.job.grade.reference_store = reference_store;
-  if (auto sources = render::check_sources(job.job.request, render::RenderLimits{}); !sources)
-    return grade::failed_submission(sources.error(), checkpoint.name, checkpoint.points);
-  auto answered = worker::grade(pool, job.job, std::move(job.payload));
+// The code's grade by the grading road, as Gradescope's: the checkpoint's points, the course's mesh.
+Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, const SheetInput& input,
+                               const std::pair<fs::path, fs::path>& pair, const grade::ReferenceStorePlaces& reference_store) {
+  auto submission = grade::course_code(course, checkpoint, grade::GradeOptions{.max_score = checkpoint.points}, {},
+                                       {pair.first.filename().string(), text_of(input, pair.first)},
+                                       {pair.second.filename().string(), text_of(input, pair.second)});
+  if (!submission) return submission.take_error();
+  submission->spec.reference_store = reference_store;
+  auto answered = grade::grade_code(pool, std::move(*submission));
   if (!answered) return answered.take_error();
   return std::move(answered->result.report);
 }
@@ -101,49 +103,32 @@ CheckpointSection from_saved_frames(const course::Course& course, const course::
   return s;
 }
 
-// The deliverable's saved frames graded at their lags, with the code when the section has some
-// (`pair`), and shown beside the code's grid; nothing when none were saved.
+// The deliverable's saved frames graded at their lags by the grading road, with the code when the
+// section has some (`pair`), and shown beside the code's grid; nothing when none were saved.
 Status add_saved_frames(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input, const course::Checkpoint& checkpoint,
                         const std::optional<std::pair<fs::path, fs::path>>& pair, const grade::ReferenceStorePlaces& reference_store, CheckpointSection& s) {
-  worker::FramesPayload payload;
+  grade::FramesSubmission submission;
   std::vector<std::pair<std::string, std::string>> shown;
-  std::vector<std::string> missing;
   for (int k = 0; k < course.frames; ++k) {
     const std::string name = course.frame_file(checkpoint.prefix, k, "png");
     if (const SubmittedFile* f = image_named(input, name)) {
-      payload.saved.push_back({name, f->text});
+      submission.saved.push_back({name, f->text});
       shown.emplace_back(f->path.string(), f->text);
     } else {
-      missing.push_back(name);
+      submission.missing.push_back(name);
     }
   }
-  if (payload.saved.empty()) return Ok{};
-  if (pair)
-    if (auto grid_png = saved_frames_grid(shown)) s.saved_grid_png = std::move(*grid_png);
-  const grade::GradeOptions options{.max_score = checkpoint.points};
-  if (!missing.empty()) {
-    s.frames_report = grade::failed_submission(make_error(ErrorCode::frames_invalid, "missing: " + comma_list(missing)), checkpoint.name, checkpoint.points);
-    return Ok{};
-  }
-  worker::Job job = worker::course_job(course, worker::JobKind::grade_frames);
-  (void)worker::attach_course_mesh(course, course.default_mesh, job, payload.mesh);  // the default mesh is the course's own
-  job.grade = course.frames_grade_spec(checkpoint, options);
-  job.grade.reference_store = reference_store;
+  if (submission.saved.empty()) return Ok{};
   if (pair) {
-    job.request = course.render_request({pair->first.filename().string(), text_of(input, pair->first)},
-                                        {pair->second.filename().string(), text_of(input, pair->second)});
-    if (!render::check_sources(job.request, render::RenderLimits{})) job.request = course.render_request({}, {});  // its section says why
-  } else {
-    job.request = course.render_request({}, {});
+    if (auto grid_png = saved_frames_grid(shown)) s.saved_grid_png = std::move(*grid_png);
+    submission.code = std::pair{shader::ShaderFile{pair->first.filename().string(), text_of(input, pair->first)},
+                                shader::ShaderFile{pair->second.filename().string(), text_of(input, pair->second)}};
   }
-  auto answered = worker::grade_frames(pool, job, payload);
-  if (!answered) {
-    if (!info(answered.error().code).submission_caused) return answered.take_error();
-    s.frames_report = grade::failed_submission(answered.error(), checkpoint.name, checkpoint.points);
-    return Ok{};
-  }
-  s.frames_report = std::move(answered->result.frames);
-  s.match_report = std::move(answered->result.code);
+  // The sheet shows no heat map.
+  auto graded = grade::grade_frames(pool, course, checkpoint, std::move(submission), {course.default_mesh, checkpoint.points, reference_store, grade::HeatMap::never});
+  if (!graded) return graded.take_error();
+  s.frames_report = std::move(graded->result.frames);
+  s.match_report = std::move(graded->result.code);
   return Ok{};
 }
 
@@ -153,7 +138,7 @@ Expected<CheckpointSection> code_section(worker::WorkerPool& pool, const course:
                                          const grade::ReferenceStorePlaces& reference_store) {
   CheckpointSection s{checkpoint.name, checkpoint.title};
   s.graded = true;
-  auto report = graded(pool, course, checkpoint, job_for(course, worker::JobKind::grade, input, pair.first, pair.second), reference_store);
+  auto report = graded(pool, course, checkpoint, input, pair, reference_store);
   if (!report) return report.take_error();
   s.report = std::move(*report);
   auto png = grid(pool, job_for(course, worker::JobKind::render, input, pair.first, pair.second));

@@ -1,6 +1,6 @@
 #pragma once
-// Typed jobs through the pool: send a job, wait for the worker, read its typed answer. The HTTP
-// routes and the CLI call these and read fields; neither sees a worker's JSON.
+// Typed jobs through the pool: send a job, wait for the worker, read its typed answer. Transport
+// only: what an answer or an error means for a grade is grade/submission.h's to say.
 #include <string>
 
 #include "core/expected.h"
@@ -30,14 +30,27 @@ Expected<Answered<Result>> run(WorkerPool& pool, Message job, WorkerPool::Lane l
   return Answered<Result>{std::move(*result), done.queue_ms, done.worker_ms};
 }
 
-// Grading's rule: whatever the submission causes (it does not compile, hangs, crashes the driver:
-// ErrorCodeInfo::submission_caused) is its grade, score 0 and the reason; an Error is only what
-// the service itself could not do (queue full, no worker, the reference does not render). A
-// submission that runs out of time is graded once more before its 0 stands (report.attempts).
-Expected<Answered<GradeResult>> grade(WorkerPool& pool, const Job& job, std::string mesh_bytes);
+// A job run once more, ahead of the queue on a fresh worker, when its first attempt was stopped
+// (a timeout) or its worker was lost: either may be the machine's doing, so neither counts until
+// it happens twice.
+template <class Result>
+struct Attempted {
+  Expected<Answered<Result>> answered;
+  std::string first_failure;  // why the first attempt was stopped; empty when it stood
+  int attempts() const { return first_failure.empty() ? 1 : 2; }
+  std::string retried() const { return "the first attempt was stopped (" + first_failure + ") and the submission was graded again"; }
+};
 
-// Saved frames graded (a grade_frames job), by the same rule. The code handed in with them can
-// hang or crash its render: that is the code's grade, and the frames are graded again without it.
-Expected<Answered<FramesGradeResult>> grade_frames(WorkerPool& pool, const Job& job, const FramesPayload& payload);
+bool worth_a_second_try(const Error& e);
+
+template <class Result>
+Attempted<Result> run_twice_if_stopped(WorkerPool& pool, const Message& job) {
+  Attempted<Result> a{run<Result>(pool, job), {}};
+  if (!a.answered && worth_a_second_try(a.answered.error())) {
+    a.first_failure = a.answered.error().message;
+    a.answered = run<Result>(pool, job, WorkerPool::Lane::retry);
+  }
+  return a;
+}
 
 }  // namespace shadelab::worker

@@ -1,0 +1,135 @@
+#include "grade/submission.h"
+
+#include <chrono>
+
+#include "core/words.h"
+#include "render/render_request.h"
+#include "worker/client.h"
+#include "worker/course_job.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+double seconds_of(double queue_ms, double worker_ms) { return (queue_ms + worker_ms) / 1000; }
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void note_attempts(Report& report, int attempts, const std::string& retried) {
+  report.attempts = attempts;
+  if (attempts == 2) report.messages.push_back(retried);
+}
+
+// The frames' grade when the set cannot be graded: the problem named, with what the set should be.
+FramesGrade unsendable(const course::Course& c, const course::Checkpoint& checkpoint, const FramesSettings& s, const std::string& why,
+                       bool with_code) {
+  const Error e = make_error(ErrorCode::frames_invalid, why);
+  FramesGrade out{{failed_submission(e, checkpoint.name, s.max_score), std::nullopt, {}}, 0};
+  out.result.frames.messages.push_back("the deliverable is " + c.frame_file(checkpoint.prefix, 0, "png") + " to " +
+                                       c.frame_file(checkpoint.prefix, c.frames - 1, "png") + ", as the page saves them");
+  if (with_code) out.result.code = failed_submission(make_error(ErrorCode::frames_invalid, "not compared: " + why), checkpoint.name, s.max_score);
+  return out;
+}
+
+// The frames' job: the course's, on its mesh, with the code when there is some.
+Expected<worker::Job> frames_job(const course::Course& c, const course::Checkpoint& checkpoint, const FramesSettings& s,
+                                 const FramesSubmission& submission, std::string& mesh_bytes) {
+  worker::Job job = worker::course_job(c, worker::JobKind::grade_frames);
+  if (auto a = worker::attach_course_mesh(c, s.mesh.empty() ? c.default_mesh : s.mesh, job, mesh_bytes); !a) return a.take_error();
+  job.grade = c.frames_grade_spec(checkpoint, GradeOptions{.max_score = s.max_score});
+  job.grade.reference_store = s.reference_store;
+  job.grade.heatmap = s.heatmap;
+  job.request = submission.code ? c.render_request(submission.code->first, submission.code->second) : c.render_request({}, {});
+  return job;
+}
+
+}  // namespace
+
+Expected<CodeGrade> grade_unreadable(const Error& error, const std::string& checkpoint, double max_score) {
+  if (!info(error.code).submission_caused) return error;
+  return CodeGrade{{failed_submission(error, checkpoint, max_score), {}}, 0};
+}
+
+Report not_handed_in(const std::string& looked_for, const std::string& checkpoint, double max_score) {
+  return failed_submission(make_error(ErrorCode::invalid_argument, looked_for), checkpoint, max_score);
+}
+
+Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submission) {
+  worker::Job& job = submission.render;
+  job.kind = worker::JobKind::grade;
+  job.grade = std::move(submission.spec);
+  const GradeSpec& spec = job.grade;
+  if (auto sources = render::check_sources(job.request, render::RenderLimits{}); !sources)
+    return grade_unreadable(sources.error(), spec.reference_name, spec.options.max_score);
+  const auto start = std::chrono::steady_clock::now();
+  auto a = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(job, std::move(submission.mesh_bytes)));
+  if (a.answered) {
+    note_attempts(a.answered->result.report, a.attempts(), a.retried());
+    return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
+  }
+  auto failed = grade_unreadable(a.answered.error(), spec.reference_name, spec.options.max_score);
+  if (failed) {
+    note_attempts(failed->result.report, a.attempts(), a.retried());
+    failed->seconds = seconds_since(start);  // the attempts' time: no worker answered
+  }
+  return failed;
+}
+
+Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const GradeOptions& options,
+                                     const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
+  CodeSubmission out{worker::course_job(c, worker::JobKind::grade), {}, c.grade_spec(checkpoint, options)};
+  if (auto s = worker::attach_course_mesh(c, render.mesh.empty() ? c.default_mesh : render.mesh, out.render, out.mesh_bytes); !s)
+    return s.take_error();
+  auto& r = out.render.request;
+  r = c.render_request(std::move(vertex), std::move(fragment));
+  r.width = render.width.value_or(r.width);
+  r.height = render.height.value_or(r.height);
+  r.frames = render.frames.value_or(r.frames);
+  if (auto valid = render::validate(r, render::RenderLimits{}); !valid) return valid.take_error();
+  return out;
+}
+
+Expected<FramesGrade> grade_frames(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint,
+                                   FramesSubmission submission, const FramesSettings& s) {
+  const bool with_code = submission.code.has_value();
+  if (!submission.missing.empty())
+    return unsendable(c, checkpoint, s, and_list(submission.missing) + (submission.missing.size() == 1 ? " is" : " are") + " missing",
+                      with_code);
+  if (!submission.unreadable.empty()) return unsendable(c, checkpoint, s, submission.unreadable, with_code);
+  worker::FramesPayload payload{{}, std::move(submission.saved)};
+  auto job = frames_job(c, checkpoint, s, submission, payload.mesh);
+  if (!job) return job.take_error();
+  if (with_code)
+    if (auto sources = render::check_sources(job->request, render::RenderLimits{}); !sources) {
+      if (!info(sources.error().code).submission_caused) return sources.take_error();
+      // Code that cannot be sent is the code's grade; the frames are graded without it.
+      auto without = grade_frames(pool, c, checkpoint, {std::move(payload.saved), {}, {}, std::nullopt}, s);
+      if (without) without->result.code = failed_submission(sources.error(), checkpoint.name, s.max_score);
+      return without;
+    }
+  auto a = worker::run_twice_if_stopped<worker::FramesGradeResult>(pool, worker::to_message(*job, payload));
+  if (a.answered) {
+    if (a.answered->result.code) note_attempts(*a.answered->result.code, a.attempts(), a.retried());
+    return FramesGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
+  }
+  const Error e = a.answered.error();
+  if (!info(e.code).submission_caused) return e;
+  if (!with_code) return unsendable(c, checkpoint, s, e.message, false);
+  // Only the code can hang or crash a worker (the frames are decoded and compared by the grader):
+  // the frames are graded again without it, and the code's grade is the failure.
+  worker::Job frames_only = *job;
+  frames_only.request.vertex = {};
+  frames_only.request.fragment = {};
+  auto again = worker::run<worker::FramesGradeResult>(pool, worker::to_message(frames_only, payload), worker::WorkerPool::Lane::retry);
+  if (!again) {
+    if (!info(again.error().code).submission_caused) return again.take_error();
+    return unsendable(c, checkpoint, s, again.error().message, with_code);
+  }
+  again->result.code = failed_submission(e, checkpoint.name, s.max_score);
+  note_attempts(*again->result.code, a.attempts(), a.retried());
+  return FramesGrade{std::move(again->result), seconds_of(again->queue_ms, again->worker_ms)};
+}
+
+}  // namespace shadelab::grade
