@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "grade/diagnosis.h"
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/metrics.h"
@@ -190,7 +191,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   // A catalogued mistake says what went wrong already; otherwise a changed starter constant may.
   if (!out.report.pass && out.report.diagnosis.empty())
     for (const auto& found : changed_starter_constants(spec.starter_constants, submission.fragment.text)) {
-      if (out.report.diagnosis.empty()) out.report.diagnosis = "changed_" + found.variable;
+      if (out.report.diagnosis.empty()) out.report.diagnosis = changed_constant_diagnosis(found.variable);
       out.report.messages.insert(out.report.messages.begin(), found.message);
     }
   if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r);  // the homework light's

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/check.h"
+#include "grade/diagnosis.h"
 
 namespace shadelab::grade {
 
@@ -112,7 +113,7 @@ GradeResult assess(const SharedFrames& student, const std::vector<image::NonFini
   const auto& w = r.frames[worst].metrics;
   const double worst_object = r.frames[worst].failing_fraction_of_object;
   if (nan > 0) {
-    r.diagnosis = "nan";
+    r.diagnosis = to_string(Diagnosis::nan);
     r.messages.push_back("NaN in " + percent(static_cast<double>(nan) / pixels) +
                          " of pixels: the browser shows them black or transparent (a division by zero, or normalize() "
                          "of a zero vector?)");
@@ -148,7 +149,7 @@ void explain(GradeResult& r, const SharedFrames& student, const SharedFrames& re
     if (r.diagnosis.empty()) r.diagnosis = best->id;
     r.messages.push_back(best->message);
   } else if (const std::string swap = swapped_channels(student, reference, options); !swap.empty()) {
-    if (r.diagnosis.empty()) r.diagnosis = "swapped_channels";
+    if (r.diagnosis.empty()) r.diagnosis = to_string(Diagnosis::swapped_channels);
     r.messages.push_back(swap);
   }
   r.messages.push_back(std::to_string(student.size() - static_cast<size_t>(passing)) + " of " + std::to_string(student.size()) +
