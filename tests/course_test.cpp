@@ -131,6 +131,29 @@ std::string schema_error(const json& profile) {
 // other refuses among the mistakes a schema can see. (What only the reader can check, that a file
 // exists, that a mistake's edit is in its reference, that a name is not used twice, is the
 // reader's alone: ABadProfileIsRefusedWithTheFieldAndTheReason.)
+// A course's tolerance reaches every grade of it (Course::grade_options), written back only where
+// it is not the default; out of range or unknown, it is refused by field.
+TEST(CourseProfileTest, ACoursesToleranceIsItsGradesThresholds) {
+  json j = builtin_json();
+  j["tolerance"] = {{"threshold", 0.05}, {"sameOutline", 0.8}};
+  auto read = course::read_course(j.dump(), course::embedded_source("courses"), "test.json");
+  ASSERT_TRUE(read) << read.error().message;
+  const auto& specular = *read->checkpoint("specular")->checkpoint;
+  const grade::GradeOptions options = read->grade_options(specular);
+  EXPECT_EQ(options.compare.threshold, 0.05);
+  EXPECT_EQ(options.same_outline, 0.8);
+  EXPECT_EQ(options.max_failing_fraction, grade::GradeOptions{}.max_failing_fraction);
+  EXPECT_EQ(options.max_score, specular.points);
+  EXPECT_EQ(read->grade_spec(specular, options).options.compare.threshold, 0.05);
+  EXPECT_EQ(course::to_json(*read, false)["tolerance"], j["tolerance"]);
+  EXPECT_FALSE(course::to_json(course::builtin_course(), false).contains("tolerance")) << "the defaults are not written";
+  j["tolerance"] = {{"threshold", 2}};
+  EXPECT_EQ(error_of(j), "test.json: tolerance.threshold: expected a number in [0, 1]");
+  EXPECT_TRUE(schema_error(j).starts_with("tolerance/threshold:")) << schema_error(j);
+  j["tolerance"] = {{"treshold", 0.1}};
+  EXPECT_EQ(error_of(j), "test.json: tolerance.treshold: unknown field");
+}
+
 TEST(CourseProfileTest, TheSchemaAndTheReaderAgree) {
   EXPECT_EQ(schema_error(builtin_json()), "");
   EXPECT_EQ(error_of(builtin_json()), "(read)");

@@ -73,9 +73,10 @@ int run_saved_frames(const course::Course& c, const GradeFlags& f) {
 nlohmann::json server_request(const course::Course& c, const GradeFlags& f, const fs::path& vert, const fs::path& frag) {
   json request = {{"course", c.id}, {"vertex", read_text(vert)}, {"vertexName", vert.filename().string()},
                   {"fragment", read_text(frag)}, {"fragmentName", frag.filename().string()},
-                  {"reference", f.reference.empty() ? c.default_checkpoint : f.reference}, {"threshold", f.threshold},
-                  {"maxFailingFraction", f.max_failing}, {"spatialTolerance", f.spatial}, {"maxScore", f.max_score},
-                  {"format", "json"}};
+                  {"reference", f.reference.empty() ? c.default_checkpoint : f.reference}, {"spatialTolerance", f.spatial},
+                  {"maxScore", f.max_score}, {"format", "json"}};
+  if (f.threshold) request["threshold"] = *f.threshold;
+  if (f.max_failing) request["maxFailingFraction"] = *f.max_failing;
   if (!f.mesh.empty()) request["mesh"] = f.mesh;
   if (f.frames) request["frames"] = *f.frames;
   int width = 0, height = 0;
@@ -161,8 +162,8 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--mesh", f->mesh, "A mesh of the course (default: its default mesh, " + builtin.default_mesh + ")");
   cmd->add_option("--frames", f->frames, "Frames (default: the course's)");
   cmd->add_option("--size", f->size, "Frame size WIDTHxHEIGHT (default: the course's canvas)");
-  cmd->add_option("--threshold", f->threshold, "Per-channel difference a pixel may have")->capture_default_str();
-  cmd->add_option("--max-failing", f->max_failing, "Share of failing pixels a frame may have")->capture_default_str();
+  cmd->add_option("--threshold", f->threshold, "Per-channel difference a pixel may have (default: the course's tolerance, 0.016)");
+  cmd->add_option("--max-failing", f->max_failing, "Share of failing pixels a frame may have (default: the course's tolerance, 0.01)");
   cmd->add_flag("--spatial", f->spatial, "Accept a pixel matching the reference within one pixel");
   cmd->add_option("--max-score", f->max_score, "Points for the checkpoint")->capture_default_str();
   cmd->add_option("--format", f->format, "json or gradescope (single submission)")->check(CLI::IsMember({"json", "gradescope"}));

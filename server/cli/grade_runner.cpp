@@ -28,12 +28,12 @@ std::optional<std::pair<fs::path, fs::path>> find_pair(const course::Course& cou
 
 namespace {
 
-// The grading options the flags set.
-grade::GradeOptions options_of(const GradeFlags& f) {
-  grade::GradeOptions options;
-  options.compare.threshold = f.threshold;
+// The course's tolerance for the checkpoint, with what the flags set.
+grade::GradeOptions options_of(const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f) {
+  grade::GradeOptions options = c.grade_options(checkpoint);
+  options.compare.threshold = f.threshold.value_or(options.compare.threshold);
   options.compare.spatial_tolerance = f.spatial;
-  options.max_failing_fraction = f.max_failing;
+  options.max_failing_fraction = f.max_failing.value_or(options.max_failing_fraction);
   options.max_score = f.max_score;
   return options;
 }
@@ -49,7 +49,8 @@ Expected<grade::CodeSubmission> submission_of(const course::Course& c, const Gra
     render.width = width;
     render.height = height;
   }
-  auto submission = grade::course_code(c, *checkpoint->checkpoint, options_of(f), render, std::move(vert), std::move(frag));
+  auto submission = grade::course_code(c, *checkpoint->checkpoint, options_of(c, *checkpoint->checkpoint, f), render, std::move(vert),
+                                       std::move(frag));
   if (!submission) return submission.take_error();
   submission->spec.reference_store.folder = f.cache_dir;
   submission->spec.heatmap = f.heatmaps;

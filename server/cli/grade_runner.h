@@ -27,7 +27,8 @@ struct GradeFlags {
   int workers = 0, concurrency = 0;
   std::string server, api_key, shard = "0/1";
   long retry_for_s = 300;
-  double threshold = 0.016, max_failing = 0.01, max_score = 1.0;
+  std::optional<double> threshold, max_failing;  // unset: the course's tolerance
+  double max_score = 1.0;
   bool spatial = false;
   grade::HeatMap heatmaps = grade::HeatMap::never;  // a class batch writes none; a command that does says when
   long timeout_ms = 10000;

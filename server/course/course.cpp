@@ -146,6 +146,12 @@ double Checkpoint::max_score(DeliverableTest test, double of) const {
   return sum > 0 ? of * weight(test) / sum : 0;
 }
 
+grade::GradeOptions Course::grade_options(const Checkpoint& c) const {
+  grade::GradeOptions options = tolerance;
+  options.max_score = c.points;
+  return options;
+}
+
 grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {
   grade::GradeSpec spec;
   spec.reference_name = c.name;

@@ -144,6 +144,9 @@ struct Course {
   // reference at the exact angles, which no browser produces) lose the saved-frames test. False:
   // they are only flagged for the TA.
   bool frames_from_page = true;
+  // The verdict's thresholds (the profile's `tolerance`; GradeOptions' defaults where it says
+  // nothing). Its max_score is unused: a checkpoint's points are its score.
+  grade::GradeOptions tolerance;
   render::PageCamera camera;
   std::vector<PageUniform> uniforms;
   std::vector<grade::StarterConstant> starter_constants;  // specularAlpha = 6.0
@@ -182,6 +185,8 @@ struct Course {
   render::PageSetup page() const;
   // A request of the course's job for these shaders: its canvas, frames, rotation, samples, page.
   render::RenderRequest render_request(shader::ShaderFile vertex, shader::ShaderFile fragment) const;
+  // What a submission of `checkpoint` is graded with: the course's tolerance, the checkpoint's points.
+  grade::GradeOptions grade_options(const Checkpoint& checkpoint) const;
   // What a submission of `checkpoint` is graded against, with `options`' tolerance.
   grade::GradeSpec grade_spec(const Checkpoint& checkpoint, const grade::GradeOptions& options) const;
   // What a checkpoint's saved frames are graded against: its grade spec without probe lights (the

@@ -19,7 +19,6 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kFormat = "shadelab-course-1";
 constexpr const char* kBuiltinPrefix = "builtin:";
 
 // "courses/../assets/bunny.obj" -> "assets/bunny.obj": how an embedded path is looked up.
@@ -49,9 +48,9 @@ class Parser {
   Expected<Course> parse(const json& j) {
     JsonReader root(j, "", &error_, "a course profile");
     root.only({"format", "id", "title", "source", "canvas", "frames", "msaa", "camera", "uniforms", "specularExponent", "meshes",
-               "defaultMesh", "presets", "defaultPreset", "checkpoints", "defaultCheckpoint", "aliases", "notebook"});
-    if (root.require("format") && root.text("format", "") != kFormat)
-      root.fail_at("format", std::string("expected \"") + kFormat + "\" (this ShadeLab reads that version of the format)");
+               "defaultMesh", "presets", "defaultPreset", "checkpoints", "defaultCheckpoint", "aliases", "notebook", "tolerance"});
+    if (root.require("format") && root.text("format", "") != kCourseFormat)
+      root.fail_at("format", std::string("expected \"") + kCourseFormat + "\" (this ShadeLab reads that version of the format)");
     header(root);
     page(root);
     meshes(root);
@@ -98,6 +97,7 @@ class Parser {
 
     r.require("msaa");
     course_.msaa = r.integer("msaa", 0, 0, 64);
+    tolerance(r);
 
     const JsonReader camera = r.object("camera");
     if (r.require("camera")) {
@@ -146,6 +146,18 @@ class Parser {
       if (out.role && !seen_roles.insert(role).second) u.fail_at(u.at("role"), "the role '" + role + "' is given twice");
       course_.uniforms.push_back(std::move(out));
     }
+  }
+
+  // The verdict's thresholds, each optional.
+  void tolerance(const JsonReader& r) {
+    if (!r.has("tolerance")) return;
+    const JsonReader t = r.object("tolerance");
+    t.only({"threshold", "maxFailingFraction", "sameOutline", "savedFramesCloserThanReference"});
+    grade::GradeOptions& o = course_.tolerance;
+    o.compare.threshold = t.number("threshold", o.compare.threshold, 0, 1);
+    o.max_failing_fraction = t.number("maxFailingFraction", o.max_failing_fraction, 0, 1);
+    o.same_outline = t.number("sameOutline", o.same_outline, 0, 1);
+    o.saved_frames_closer_than_reference = t.number("savedFramesCloserThanReference", o.saved_frames_closer_than_reference, 0, 1);
   }
 
   void meshes(const JsonReader& r) {
@@ -405,94 +417,6 @@ const Course& builtin_course() {
     return std::move(*read);
   }();
   return course;
-}
-
-json to_json(const Course& c, bool portable) {
-  json uniforms = json::array();
-  for (const auto& u : c.uniforms) {
-    json entry = {{"names", u.names}, {"type", u.type}, {"value", u.value}};
-    if (u.role) entry["role"] = to_string(*u.role);
-    uniforms.push_back(std::move(entry));
-  }
-  json meshes = json::array();
-  for (const auto& m : c.meshes) meshes.push_back({{"name", m.name}, {"file", portable ? m.source : m.file}});
-  json presets = json::array();
-  for (const auto& p : c.presets) {
-    presets.push_back({{"name", p.name}, {"description", p.description}, {"vertex", portable ? p.vertex_source : p.vertex_file},
-                       {"fragment", portable ? p.fragment_source : p.fragment_file}});
-    if (p.is_public) presets.back()["public"] = true;
-  }
-  json checkpoints = json::array();
-  for (const auto& k : c.checkpoints) {
-    json mistakes = json::array();
-    for (const auto& m : k.mistakes) {
-      json entry = {{"id", m.id}, {"message", m.message}};
-      if (!m.preset.empty()) {
-        entry["preset"] = m.preset;
-      } else {
-        json edits = json::array();
-        for (const auto& e : m.edits)
-          edits.push_back({{"stage", e.stage == Stage::vertex ? "vertex" : "fragment"}, {"find", e.find}, {"replace", e.replace}});
-        entry["edits"] = std::move(edits);
-      }
-      mistakes.push_back(std::move(entry));
-    }
-    json probes = json::array();
-    for (const auto& p : k.probes) {
-      probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
-      if (!p.checks.empty()) probes.back()["checks"] = p.checks;
-    }
-    json entry = {{"name", k.name}, {"title", k.title}, {"prefix", k.prefix}, {"reference", k.reference}, {"points", k.points}};
-    // The weights of the tests that apply, when one is not the default.
-    const auto& w = k.weights;
-    const TestWeights defaults;
-    if (w.frames != defaults.frames || w.code != defaults.code || w.probe != defaults.probe || w.match != defaults.match) {
-      json weights = {{"frames", w.frames}};
-      if (k.applies(DeliverableTest::code)) weights["code"] = w.code;
-      if (k.applies(DeliverableTest::probe)) weights["probe"] = w.probe;
-      if (k.applies(DeliverableTest::match)) weights["match"] = w.match;
-      entry["weights"] = std::move(weights);
-    }
-    if (!k.code.empty()) entry["code"] = k.code;
-    if (!mistakes.empty()) entry["mistakes"] = std::move(mistakes);
-    if (!probes.empty()) entry["probes"] = std::move(probes);
-    checkpoints.push_back(std::move(entry));
-  }
-  json aliases = json::array();
-  for (const auto& a : c.aliases) aliases.push_back({{"name", a.name}, {"checkpoint", a.checkpoint}, {"note", a.note}});
-  const auto& cam = c.camera;
-  json out = {{"format", kFormat},
-              {"id", c.id},
-              {"title", c.title},
-              {"canvas", {{"width", c.width}, {"height", c.height}}},
-              {"frames", {{"count", c.frames}, {"degreesPerFrame", c.degrees_per_frame}, {"fileName", c.frame_name},
-                          {"savedFromPage", c.frames_from_page}}},
-              {"msaa", c.msaa},
-              {"camera", {{"fovYDegrees", cam.fov_y_degrees}, {"near", cam.near}, {"far", cam.far},
-                          {"meshTranslation", {cam.mesh_translation.x, cam.mesh_translation.y, cam.mesh_translation.z}}}},
-              {"uniforms", uniforms},
-              {"meshes", meshes},
-              {"defaultMesh", c.default_mesh},
-              {"presets", presets},
-              {"defaultPreset", c.default_preset},
-              {"checkpoints", checkpoints},
-              {"defaultCheckpoint", c.default_checkpoint},
-              {"aliases", aliases}};
-  if (!c.source.empty()) out["source"] = c.source;
-  if (!c.questions.empty() || !c.images.empty()) {
-    json questions = json::array(), images = json::array();
-    for (const auto& q : c.questions) {
-      json one = {{"id", q.id}, {"text", q.text}};
-      if (!q.cell.empty()) one["cell"] = q.cell;
-      if (!q.render_colours.empty()) one["renderColours"] = q.render_colours;
-      questions.push_back(one);
-    }
-    for (const auto& i : c.images) images.push_back({{"file", i.file}, {"title", i.title}});
-    out["notebook"] = {{"questions", questions}, {"images", images}};
-  }
-  for (const auto& k : c.starter_constants)
-    if (k.meaning == "exponent") out["specularExponent"] = {{"value", k.value}, {"variable", k.variable}};
-  return out;
 }
 
 }  // namespace shadelab::course

@@ -40,6 +40,8 @@ Expected<Course> load_course_file(const std::filesystem::path& path);
 // The offering the handout describes, compiled in (courses/cs148-summer2022.json).
 const Course& builtin_course();
 inline constexpr const char* kBuiltinCoursePath = "courses/cs148-summer2022.json";
+// The format a profile declares (`format`): the one this ShadeLab reads and writes.
+inline constexpr const char* kCourseFormat = "shadelab-course-1";
 
 // The profile as its format writes it: read_course(to_json(c)) gives c back, field for field.
 // `portable`: each file named by where it was read ("builtin:assets/bunny.obj", or an absolute

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "core/words.h"
+#include "grade/diagnosis.h"
 #include "grade/grade_session.h"
 #include "grade/lag_fit.h"
 #include "grade/provenance.h"
@@ -75,14 +76,13 @@ double outline_overlap(const image::Image& a, const image::Image& b) {
   return either == 0 ? 1 : static_cast<double>(both) / static_cast<double>(either);
 }
 
-// The lowest outline overlap over the frames: under ~0.9 the saved frames show another shape
-// (another mesh, another camera) than the one rendered, whatever the shading.
+// The lowest outline overlap over the frames: under GradeOptions::same_outline the saved frames
+// show another shape (another mesh, another camera) than the one rendered, whatever the shading.
 double worst_outline_overlap(const SharedFrames& a, const SharedFrames& b) {
   double worst = 1;
   for (size_t k = 0; k < a.size(); ++k) worst = std::min(worst, outline_overlap(*a[k], *b[k]));
   return worst;
 }
-constexpr double kSameOutline = 0.9;
 
 // Whether frames 1 on were drawn at exactly their nominal angles: what a page with a fixed clock gives.
 bool without_lag(const std::vector<LagFit>& fits) {
@@ -105,7 +105,7 @@ void describe_fits(const std::vector<LagFit>& fits, const LagGrid& grid, const s
                            " (the window searched): compared at that limit");
     if (f.looks_like) {
       r.frames[k].grade.pass = false;
-      if (r.diagnosis.empty()) r.diagnosis = "frames_out_of_order";
+      if (r.diagnosis.empty()) r.diagnosis = to_string(Diagnosis::frames_out_of_order);
       r.messages.insert(r.messages.begin(), saved[k].name + " shows frame " + std::to_string(*f.looks_like) + "'s rotation (" +
                                                 degrees(grid.nominal(*f.looks_like)) + " degrees), not frame " + std::to_string(k) +
                                                 "'s (" + degrees(grid.nominal(f.frame)) + "): saved out of order, or twice?");
@@ -130,7 +130,7 @@ void judge_provenance(Report& r, const std::vector<const image::Image*>& saved, 
     if (frames_from_page) {
       r.pass = false;
       r.score = 0;
-      r.diagnosis = std::string(to_string(FlagKind::made_by_shadelab));
+      r.diagnosis = to_string(Diagnosis::made_by_shadelab);
       r.messages.insert(r.messages.begin(), save_from_the_page());
     }
   } else if (without_lag(fits)) {
@@ -164,23 +164,23 @@ Report code_match(const SharedFrames& saved, const SharedFrames& code, const Sha
   }
   const bool code_right = code_matches_reference == static_cast<int>(saved.size());
   const double outline = worst_outline_overlap(saved, code);
-  if (outline < kSameOutline) {
-    r.diagnosis = "frames_of_another_shape";
+  if (outline < options.same_outline) {
+    r.diagnosis = to_string(Diagnosis::frames_of_another_shape);
     r.messages.push_back("the saved frames show another shape than your code renders on this mesh (the outlines overlap by " + percent(outline) +
                          " at worst): saved with another mesh selected on the page?");
   } else if (differing.size() < saved.size()) {
-    r.diagnosis = "edited_frames";
+    r.diagnosis = to_string(Diagnosis::edited_frames);
     r.messages.push_back("frame " + frame_list(differing) + (differing.size() == 1 ? " differs" : " differ") +
                          " from what your code renders, the others match: edited, or saved from another run?");
   } else if (code_right) {
-    r.diagnosis = "stale_frames";
+    r.diagnosis = to_string(Diagnosis::stale_frames);
     r.messages.push_back("your code renders the reference, but the saved frames are not what it renders: saved from an earlier version of your code?" +
                          (frames_report.messages.empty() ? std::string() : " (the frames: " + frames_report.messages.front() + ")"));
   } else if (frames_report.pass) {
-    r.diagnosis = "frames_not_from_code";
+    r.diagnosis = to_string(Diagnosis::frames_not_from_code);
     r.messages.push_back("the saved frames match the reference, but your code renders something else: they were not made by this code");
   } else {
-    r.diagnosis = "frames_not_from_code";
+    r.diagnosis = to_string(Diagnosis::frames_not_from_code);
     r.messages.push_back("the saved frames are not what your code renders, and neither matches the reference");
   }
   return r;
@@ -282,7 +282,7 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   GradeOptions options = spec.options;
   options.compare.spatial_tolerance = true;
   options.compare.outline_tolerance = true;
-  options.closer_than_reference = 0.25;
+  options.closer_than_reference = options.saved_frames_closer_than_reference;
   GradeResult result = grade::grade(*frames, {}, *reference, {}, options);
   std::vector<LagFit> diagnosed_fits = fits;
   if (!result.pass) {
@@ -294,8 +294,8 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   FramesGradeOutput out{report(result, spec.reference_name, {"homework"}, fits.size()), {}, {}};
   describe_fits(diagnosed_fits, grid, saved, out.frames);
   if (!result.pass && out.frames.diagnosis.empty())
-    if (const double outline = worst_outline_overlap(*frames, *reference); outline < kSameOutline) {
-      out.frames.diagnosis = "frames_of_another_shape";
+    if (const double outline = worst_outline_overlap(*frames, *reference); outline < options.same_outline) {
+      out.frames.diagnosis = to_string(Diagnosis::frames_of_another_shape);
       out.frames.messages.insert(out.frames.messages.begin(), "the saved frames show another shape than the reference on this mesh (the outlines overlap by " +
                                                                   percent(outline) + " at worst): saved with another mesh selected on the page?");
     }

@@ -9,10 +9,17 @@
 
 namespace shadelab::grade {
 
+// Every threshold of a verdict. A course profile's `tolerance` sets its own (Course::tolerance);
+// these are the defaults where it says nothing.
 struct GradeOptions {
-  image::CompareOptions compare;        // per-channel threshold 0.016, spatial tolerance off
+  image::CompareOptions compare;        // per-channel threshold 0.016 (~4/255), spatial tolerance off
   double max_failing_fraction = 0.01;   // a frame fails past 1% failing object pixels (Blender's tests: 1%)
   double max_score = 1.0;
+  // Saved frames (another rasteriser's): closer_than_reference below, for them.
+  double saved_frames_closer_than_reference = 0.25;
+  // Saved frames whose outline overlaps the one rendered by less than this (at the worst frame)
+  // show another shape (another mesh, another camera), whatever the shading.
+  double same_outline = 0.9;
   // A known mistake explains frames when every frame matches its render. Frames from another
   // rasteriser (a student's saved frames) may not match a mistake whose pixels are each a
   // triangle's own colour (flat shading on a mesh of pixel-sized triangles), so for them a mistake

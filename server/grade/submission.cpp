@@ -38,7 +38,9 @@ Expected<worker::Job> frames_job(const course::Course& c, const course::Checkpoi
                                  const FramesSubmission& submission, std::string& mesh_bytes) {
   worker::Job job = worker::course_job(c, worker::JobKind::grade_frames);
   if (auto a = worker::attach_course_mesh(c, s.mesh.empty() ? c.default_mesh : s.mesh, job, mesh_bytes); !a) return a.take_error();
-  job.grade = c.frames_grade_spec(checkpoint, GradeOptions{.max_score = s.max_score});
+  GradeOptions options = c.grade_options(checkpoint);
+  options.max_score = s.max_score;
+  job.grade = c.frames_grade_spec(checkpoint, options);
   job.grade.reference_store = s.reference_store;
   job.grade.heatmap = s.heatmap;
   job.request = submission.code ? c.render_request(submission.code->first, submission.code->second) : c.render_request({}, {});

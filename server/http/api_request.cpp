@@ -258,11 +258,13 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, cons
     spec.reference_vertex = std::move(*v);
     spec.reference_fragment = std::move(*fr);
     spec.light_position_uniforms = course.light_position_names();
+    spec.options = course.tolerance;
+    spec.options.max_score = 1;
   } else {
     auto found = course.checkpoint(*reference);
     if (!found) return found.take_error();
     if (found->alias) out.parsed.warnings.push_back(found->alias->note);
-    spec = course.grade_spec(*found->checkpoint, grade::GradeOptions{.max_score = found->checkpoint->points});
+    spec = course.grade_spec(*found->checkpoint, course.grade_options(*found->checkpoint));
   }
   auto threshold = number_field(f, "threshold", spec.options.compare.threshold);
   auto failing = number_field(f, "maxFailingFraction", spec.options.max_failing_fraction);

@@ -56,7 +56,7 @@ Expected<std::string> grid(worker::WorkerPool& pool, CourseJob job) {
 // The code's grade by the grading road, as Gradescope's: the checkpoint's points, the course's mesh.
 Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, const SheetInput& input,
                                const std::pair<fs::path, fs::path>& pair, const grade::ReferenceStorePlaces& reference_store) {
-  auto submission = grade::course_code(course, checkpoint, grade::GradeOptions{.max_score = checkpoint.points}, {},
+  auto submission = grade::course_code(course, checkpoint, course.grade_options(checkpoint), {},
                                        {pair.first.filename().string(), text_of(input, pair.first)},
                                        {pair.second.filename().string(), text_of(input, pair.second)});
   if (!submission) return submission.take_error();

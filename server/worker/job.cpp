@@ -90,7 +90,8 @@ json grade_json(const grade::GradeSpec& g) {
           {"lightPositionUniforms", g.light_position_uniforms}, {"starterConstants", constants},
           {"referenceStore", g.reference_store.folder}, {"sharedStore", shared_store_json(g.reference_store.shared)},
           {"threshold", o.compare.threshold}, {"spatialTolerance", o.compare.spatial_tolerance},
-          {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}, {"heatmap", heatmap_names[static_cast<int>(g.heatmap)]},
+          {"maxFailingFraction", o.max_failing_fraction}, {"maxScore", o.max_score}, {"sameOutline", o.same_outline},
+          {"savedFramesCloserThanReference", o.saved_frames_closer_than_reference}, {"heatmap", heatmap_names[static_cast<int>(g.heatmap)]},
           {"framesFromPage", g.frames_from_page}};
 }
 
@@ -109,6 +110,8 @@ grade::GradeSpec grade_from(const json& g) {
   spec.options.compare.spatial_tolerance = g.at("spatialTolerance");
   spec.options.max_failing_fraction = g.at("maxFailingFraction");
   spec.options.max_score = g.at("maxScore");
+  spec.options.same_outline = g.at("sameOutline");
+  spec.options.saved_frames_closer_than_reference = g.at("savedFramesCloserThanReference");
   const auto* named = std::find(std::begin(heatmap_names), std::end(heatmap_names), g.at("heatmap").get<std::string>());
   if (named == std::end(heatmap_names)) throw json::other_error::create(501, "unknown heat map policy", &g);
   spec.heatmap = static_cast<grade::HeatMap>(named - std::begin(heatmap_names));
