@@ -8,39 +8,11 @@ using nlohmann::json;
 
 namespace {
 
-json frame_json(const FrameReport& f, size_t index) {
-  const auto& m = f.grade.metrics;
-  return {{"frame", index},
-          {"light", f.light},
-          {"pass", f.grade.pass},
-          {"identical", m.identical},
-          {"rmse", m.rmse},
-          {"psnr", m.psnr ? json(*m.psnr) : json(nullptr)},  // null: identical
-          {"ssim", m.ssim},
-          {"maxAbsError", m.max_abs},
-          {"failingFraction", m.failing_fraction},
-          {"failingFractionOfObject", f.grade.failing_fraction_of_object},
-          {"nanPixels", f.grade.non_finite.nan},
-          {"infPixels", f.grade.non_finite.inf},
-          {"lagDegrees", f.lag_degrees ? json(*f.lag_degrees) : json(nullptr)}};
-}
+json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 
-FrameReport frame_from_json(const json& j) {
-  FrameReport f;
-  f.light = j.at("light");
-  f.grade.pass = j.at("pass");
-  auto& m = f.grade.metrics;
-  m.identical = j.at("identical");
-  m.rmse = j.at("rmse");
-  if (!j.at("psnr").is_null()) m.psnr = j.at("psnr").get<double>();
-  m.ssim = j.at("ssim");
-  m.max_abs = j.at("maxAbsError");
-  m.failing_fraction = j.at("failingFraction");
-  f.grade.failing_fraction_of_object = j.at("failingFractionOfObject");
-  f.grade.non_finite.nan = j.at("nanPixels");
-  f.grade.non_finite.inf = j.at("infPixels");
-  if (j.contains("lagDegrees") && !j.at("lagDegrees").is_null()) f.lag_degrees = j.at("lagDegrees").get<double>();
-  return f;
+std::optional<double> optional_number(const json& j, const char* key) {
+  if (!j.contains(key) || j.at(key).is_null()) return std::nullopt;
+  return j.at(key).get<double>();
 }
 
 }  // namespace
@@ -93,41 +65,85 @@ Report part_of(const Report& whole, bool probes, double max_score) {
   return out;
 }
 
-json to_json(const Report& r) {
-  json frames = json::array(), diagnostics = json::array(), flags = json::array();
-  for (const auto& f : r.flags) flags.push_back({{"id", to_string(f.kind)}, {"message", f.message}});
-  for (size_t k = 0; k < r.frames.size(); ++k) frames.push_back(frame_json(r.frames[k], k));
-  for (const auto& d : r.diagnostics) diagnostics.push_back(to_json(d));
-  return {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},           {"maxScore", r.max_score},
-          {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},           {"diagnostics", diagnostics},
-          {"warnings", r.warnings},     {"flags", flags},         {"attempts", r.attempts},
-          {"graderWork", {{"rendered", r.grader_work.rendered}, {"fromStore", r.grader_work.from_store},
-                          {"fromMemory", r.grader_work.from_memory}}}};
+// The wire: one to_json / from_json pair per struct.
+
+void to_json(json& j, const FrameReport& f) {
+  const auto& m = f.grade.metrics;
+  j = {{"light", f.light},
+       {"pass", f.grade.pass},
+       {"identical", m.identical},
+       {"rmse", m.rmse},
+       {"psnr", m.psnr ? json(*m.psnr) : json(nullptr)},  // null: identical
+       {"ssim", m.ssim},
+       {"maxAbsError", m.max_abs},
+       {"failingFraction", m.failing_fraction},
+       {"failingFractionOfObject", f.grade.failing_fraction_of_object},
+       {"nanPixels", f.grade.non_finite.nan},
+       {"infPixels", f.grade.non_finite.inf},
+       {"lagDegrees", optional_number(f.lag_degrees)}};
 }
+
+void from_json(const json& j, FrameReport& f) {
+  f.light = j.at("light");
+  f.grade.pass = j.at("pass");
+  auto& m = f.grade.metrics;
+  m.identical = j.at("identical");
+  m.rmse = j.at("rmse");
+  if (!j.at("psnr").is_null()) m.psnr = j.at("psnr").get<double>();
+  m.ssim = j.at("ssim");
+  m.max_abs = j.at("maxAbsError");
+  m.failing_fraction = j.at("failingFraction");
+  f.grade.failing_fraction_of_object = j.at("failingFractionOfObject");
+  f.grade.non_finite.nan = j.at("nanPixels");
+  f.grade.non_finite.inf = j.at("infPixels");
+  f.lag_degrees = optional_number(j, "lagDegrees");
+}
+
+void to_json(json& j, const Flag& f) { j = {{"id", to_string(f.kind)}, {"message", f.message}}; }
+
+void from_json(const json& j, Flag& f) {
+  const auto kind = flag_named(j.at("id").get<std::string>());
+  if (!kind) throw json::other_error::create(501, "unknown flag " + j.at("id").dump(), &j);
+  f = {*kind, j.at("message")};
+}
+
+void to_json(json& j, const Report::GraderWork& w) {
+  j = {{"rendered", w.rendered}, {"fromStore", w.from_store}, {"fromMemory", w.from_memory}};
+}
+
+void from_json(const json& j, Report::GraderWork& w) { w = {j.at("rendered"), j.at("fromStore"), j.at("fromMemory")}; }
+
+void to_json(json& j, const Report& r) {
+  json frames = r.frames;
+  for (size_t k = 0; k < frames.size(); ++k) frames[k]["frame"] = k;  // each frame's index, first
+  json diagnostics = json::array();
+  for (const auto& d : r.diagnostics) diagnostics.push_back(to_json(d));
+  j = {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},   {"maxScore", r.max_score},
+       {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},   {"diagnostics", diagnostics},
+       {"warnings", r.warnings},     {"flags", r.flags},       {"attempts", r.attempts}, {"graderWork", r.grader_work}};
+}
+
+void from_json(const json& j, Report& r) {
+  r.checkpoint = j.at("checkpoint");
+  r.pass = j.at("pass");
+  r.score = j.at("score");
+  r.max_score = j.at("maxScore");
+  r.diagnosis = j.at("diagnosis");
+  r.messages = j.at("messages").get<std::vector<std::string>>();
+  r.frames = j.at("frames").get<std::vector<FrameReport>>();
+  r.diagnostics.clear();
+  for (const auto& d : j.at("diagnostics")) r.diagnostics.push_back(diagnostic_from_json(d));
+  r.warnings = j.at("warnings").get<std::vector<std::string>>();
+  r.attempts = j.value("attempts", 1);
+  r.flags = j.value("flags", json::array()).get<std::vector<Flag>>();
+  if (j.contains("graderWork")) r.grader_work = j.at("graderWork").get<Report::GraderWork>();
+}
+
+json to_json(const Report& r) { return r; }
 
 Expected<Report> report_from_json(const json& j) {
   try {
-    Report r;
-    r.checkpoint = j.at("checkpoint");
-    r.pass = j.at("pass");
-    r.score = j.at("score");
-    r.max_score = j.at("maxScore");
-    r.diagnosis = j.at("diagnosis");
-    r.messages = j.at("messages").get<std::vector<std::string>>();
-    for (const auto& f : j.at("frames")) r.frames.push_back(frame_from_json(f));
-    for (const auto& d : j.at("diagnostics")) r.diagnostics.push_back(diagnostic_from_json(d));
-    r.warnings = j.at("warnings").get<std::vector<std::string>>();
-    r.attempts = j.value("attempts", 1);
-    for (const auto& f : j.value("flags", json::array())) {
-      const auto kind = flag_named(f.at("id").get<std::string>());
-      if (!kind) return make_error(ErrorCode::worker_protocol, "a grade report with an unknown flag: " + f.at("id").dump());
-      r.flags.push_back({*kind, f.at("message")});
-    }
-    if (j.contains("graderWork")) {
-      const json& w = j.at("graderWork");
-      r.grader_work = {w.at("rendered"), w.at("fromStore"), w.at("fromMemory")};
-    }
-    return r;
+    return j.get<Report>();
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed grade report: ") + e.what());
   }

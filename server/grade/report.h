@@ -65,7 +65,19 @@ Report failed_submission(const Error& error, const std::string& checkpoint, doub
 // A report with no frames (the code did not compile) is the same failure for either part.
 Report part_of(const Report& whole, bool probes, double max_score);
 
+// The wire, one declaration per struct (nlohmann finds these pairs by their argument's type);
+// `from_json` throws nlohmann::json::exception on a malformed report.
+void to_json(nlohmann::json& j, const FrameReport& f);  // its index ("frame") is the report's to write
+void from_json(const nlohmann::json& j, FrameReport& f);
+void to_json(nlohmann::json& j, const Flag& f);
+void from_json(const nlohmann::json& j, Flag& f);
+void to_json(nlohmann::json& j, const Report::GraderWork& w);
+void from_json(const nlohmann::json& j, Report::GraderWork& w);
+void to_json(nlohmann::json& j, const Report& r);
+void from_json(const nlohmann::json& j, Report& r);
+
 nlohmann::json to_json(const Report& report);
+// A malformed report is worker_protocol.
 Expected<Report> report_from_json(const nlohmann::json& j);
 
 // What a test's output says: the flags first ("FLAGGED FOR THE TA: ..."), then the messages, a
