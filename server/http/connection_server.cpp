@@ -21,70 +21,12 @@
 #include <unordered_map>
 #include <vector>
 
+#include "http/connection.h"
 #include "http/listening_socket.h"
-#include "http/problem.h"
 
 namespace shadelab::http {
 
-namespace {
-
-using Clock = std::chrono::steady_clock;
-constexpr size_t kReadChunk = 64u << 10;
-constexpr size_t kReadPerEvent = 1u << 20;  // then other connections get a turn
-constexpr auto kDrainGrace = std::chrono::seconds(5);
-constexpr auto kRefusalWrite = std::chrono::seconds(1);
-// After an error reply the client may still be sending (a body over the limit): its bytes are
-// read and dropped for a while, so the reply is not lost to a reset (nginx's lingering close).
-// A quiet client is let go after kLinger; one that keeps sending, after kLingerAtMost or
-// kLingerBodies bodies' worth of bytes (a 17 MiB body against a 16 MiB limit must still be read).
-constexpr auto kLinger = std::chrono::seconds(2);
-constexpr auto kLingerAtMost = std::chrono::seconds(10);
-constexpr size_t kLingerBodies = 4;
-
-// A complete HTTP/1.1 response that closes the connection, for what this layer answers itself.
-std::string refusal(const Error& error) {
-  const std::string body = problem(error, "").dump();
-  const ErrorCodeInfo& code = info(error.code);
-  std::string head = "HTTP/1.1 " + std::to_string(code.status) + " " + std::string(code.title) + "\r\n";
-  head += "Content-Type: application/problem+json\r\nConnection: close\r\n";
-  if (code.retry_later) head += "Retry-After: 1\r\n";
-  return head + "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
-}
-
-enum class Phase { reading, handling, writing, lingering };
-enum class Wait { idle, head, body, write, linger };  // what the connection's deadline is for
-
-struct Connection {
-  int fd = -1;
-  std::uint64_t serial = 0;
-  PeerAddress peer, local;
-  Phase phase = Phase::reading;
-  std::string in;               // bytes read and not yet handed over
-  bool continue_sent = false;   // for the request being read
-  bool read_closed = false;     // the client shut down its side: answer what it sent, then close
-  int requests = 0;
-  std::string out;              // the response being written
-  size_t out_sent = 0;
-  bool close_after_write = false;
-  bool linger_after_write = false;  // an error reply: drain what the client still sends, then close
-  size_t drained = 0;
-  Clock::time_point linger_until;
-  Wait wait = Wait::head;
-  Clock::time_point deadline;
-};
-
-struct Task {
-  int fd;
-  std::uint64_t serial;
-  IncomingRequest request;
-};
-struct Done {
-  int fd;
-  std::uint64_t serial;
-  OutgoingResponse response;
-};
-
-}  // namespace
+using namespace connections;  // the connection layer's own types and deadlines (connection.h)
 
 struct ConnectionServer::Impl {
   ConnectionLimits limits;
