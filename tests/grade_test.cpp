@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "core/base64.h"
 #include "core/lru_cache.h"
+#include "grade/diagnosis.h"
 #include "grade/grade_session.h"
 #include "grade/reference_cache.h"
 #include "grade/starter_constants.h"
@@ -374,6 +376,21 @@ TEST_F(GradeTest, MetricsReportWhatEachWorkerKeeps) {
 
 // The reference cache keeps what fits its byte budget, the least recently used out first, so a
 // worker that has graded many checkpoints holds at most the budget.
+// The grader's own diagnoses: each id names one diagnosis and reads back as it, each says what it
+// means, and none is an error code's or a flag's word for something else.
+TEST(DiagnosisTest, EachIdIsOneDiagnosisWithItsMeaning) {
+  std::set<std::string> ids;
+  for (int k = 0; k <= static_cast<int>(grade::Diagnosis::made_by_shadelab); ++k) {
+    const auto d = static_cast<grade::Diagnosis>(k);
+    const std::string id = grade::to_string(d);
+    EXPECT_TRUE(ids.insert(id).second) << id << " twice";
+    EXPECT_EQ(grade::diagnosis_named(id), d) << id;
+    EXPECT_FALSE(grade::meaning(d).empty()) << id;
+  }
+  EXPECT_FALSE(grade::diagnosis_named("missing_specular")) << "the catalogue's ids are the course's";
+  EXPECT_EQ(grade::changed_constant_diagnosis("specularAlpha"), "changed_specularAlpha");
+}
+
 TEST(ReferenceCacheTest, EvictsTheLeastRecentlyUsedWithinItsBudget) {
   const auto frames_of_bytes = [](std::size_t n) {
     auto image = std::make_shared<image::Image>();

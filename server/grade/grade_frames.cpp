@@ -138,7 +138,8 @@ void judge_provenance(Report& r, const std::vector<const image::Image*>& saved, 
   }
 }
 
-// Pass when every frame passes (after the fits' findings); the score is all or nothing, as a code grade's.
+// Pass when every frame passes (after the fits' findings). Saved frames score all or nothing; a
+// code grade gives a share per passing frame (grader.cpp's assess).
 void settle(Report& r) {
   r.pass = !r.frames.empty();
   for (const auto& f : r.frames) r.pass = r.pass && f.grade.pass;

@@ -7,7 +7,8 @@
 // | JSON field   | meaning                                                                    |
 // |--------------|----------------------------------------------------------------------------|
 // | checkpoint   | the course's checkpoint (normals, diffuse, specular), or custom            |
-// | pass, score, maxScore | the verdict; score is maxScore or 0                               |
+// | pass, score, maxScore | the verdict; a code grade scores maxScore x the share of frames     |
+// |              | that pass, saved frames all or nothing                                     |
 // | diagnosis    | the recognised mistake's id, "swapped_channels", "nan", an error code, ""  |
 // | messages[]   | what the student reads, most important first                               |
 // | frames[]     | per frame and light: metrics, failing share of the object, NaN/Inf counts; |
