@@ -78,7 +78,7 @@ TEST(WireTest, ASceneTravelsParsedAndArrivesUnchanged) {
     const auto message = worker::to_message(job);
     auto back = worker::scene_job_from_message(message);
     ASSERT_TRUE(back) << back.error().message;
-    EXPECT_EQ(worker::to_json(back->scene), worker::to_json(job.scene)) << name;
+    EXPECT_EQ(nlohmann::json(back->scene), nlohmann::json(job.scene)) << name;
     EXPECT_EQ(back->scene.camera.rotation_degrees, job.scene.camera.rotation_degrees);
     ASSERT_EQ(back->meshes.size(), 1u);
     EXPECT_EQ(back->meshes[0].reference, "my_mesh");
@@ -148,7 +148,7 @@ TEST(WireTest, CompileMeshGradeAndSceneResultsRoundTrip) {
   scene.report.camera = {39.6, 30.3, scene::Projection::orthographic};
   scene.png = "png";
   const auto back = round_trip(scene);
-  EXPECT_EQ(worker::to_json(back.report), worker::to_json(scene.report));
+  EXPECT_EQ(nlohmann::json(back.report), nlohmann::json(scene.report));
   EXPECT_EQ(back.report.passes[1].name(), "main");
   EXPECT_EQ(back.report.detail<scene_render::FramingDetail>()->guard_band_renders, 1);
   EXPECT_EQ(back.png, "png");

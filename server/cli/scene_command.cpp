@@ -76,7 +76,7 @@ Command add_scene_command(CLI::App& app) {
     if (!png) return fail(png.error());
     if (auto s = write_file(flags->output, {reinterpret_cast<const char*>(png->data()), png->size()}); !s) return fail(s.error());
 
-    const nlohmann::json report = worker::to_json(rendered->report);
+    const nlohmann::json report = rendered->report;
     if (flags->report == "-") {
       std::cout << report.dump(2) << "\n";
     } else if (!flags->report.empty()) {

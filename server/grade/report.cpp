@@ -17,16 +17,6 @@ std::optional<double> optional_number(const json& j, const char* key) {
 
 }  // namespace
 
-json to_json(const Diagnostic& d) {
-  return {{"stage", d.stage}, {"file", d.file}, {"line", d.line}, {"column", d.column}, {"severity", d.severity},
-          {"message", d.message}};
-}
-
-Diagnostic diagnostic_from_json(const json& j) {
-  return {j.value("stage", ""), j.value("file", ""), j.value("line", 0), j.value("column", 0), j.value("severity", "error"),
-          j.value("message", "")};
-}
-
 Report report(const GradeResult& r, const std::string& checkpoint, const std::vector<std::string>& lights,
               size_t frames_per_light) {
   Report out{checkpoint, r.pass, r.score, r.max_score, r.diagnosis, r.messages, {}, {}, {}};
@@ -116,10 +106,8 @@ void from_json(const json& j, Report::GraderWork& w) { w = {j.at("rendered"), j.
 void to_json(json& j, const Report& r) {
   json frames = r.frames;
   for (size_t k = 0; k < frames.size(); ++k) frames[k]["frame"] = k;  // each frame's index, first
-  json diagnostics = json::array();
-  for (const auto& d : r.diagnostics) diagnostics.push_back(to_json(d));
   j = {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},   {"maxScore", r.max_score},
-       {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},   {"diagnostics", diagnostics},
+       {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},   {"diagnostics", r.diagnostics},
        {"warnings", r.warnings},     {"flags", r.flags},       {"attempts", r.attempts}, {"graderWork", r.grader_work}};
 }
 
@@ -131,8 +119,7 @@ void from_json(const json& j, Report& r) {
   r.diagnosis = j.at("diagnosis");
   r.messages = j.at("messages").get<std::vector<std::string>>();
   r.frames = j.at("frames").get<std::vector<FrameReport>>();
-  r.diagnostics.clear();
-  for (const auto& d : j.at("diagnostics")) r.diagnostics.push_back(diagnostic_from_json(d));
+  j.at("diagnostics").get_to(r.diagnostics);
   r.warnings = j.at("warnings").get<std::vector<std::string>>();
   r.attempts = j.value("attempts", 1);
   r.flags = j.value("flags", json::array()).get<std::vector<Flag>>();
@@ -168,3 +155,19 @@ json to_gradescope(const Report& r, double seconds) {
 }
 
 }  // namespace shadelab::grade
+
+namespace shadelab {
+
+using nlohmann::json;
+
+void to_json(json& j, const Diagnostic& d) {
+  j = {{"stage", d.stage}, {"file", d.file}, {"line", d.line}, {"column", d.column}, {"severity", d.severity},
+       {"message", d.message}};
+}
+
+void from_json(const json& j, Diagnostic& d) {
+  d = {j.value("stage", ""), j.value("file", ""), j.value("line", 0), j.value("column", 0), j.value("severity", "error"),
+       j.value("message", "")};
+}
+
+}  // namespace shadelab

@@ -89,7 +89,11 @@ std::string output_text(const Report& report);
 // status, output, visibility).
 nlohmann::json to_gradescope(const Report& report, double execution_seconds);
 
-nlohmann::json to_json(const Diagnostic& d);
-Diagnostic diagnostic_from_json(const nlohmann::json& j);
-
 }  // namespace shadelab::grade
+
+namespace shadelab {
+// A diagnostic as a report and the worker carry it. Reading is lenient (a missing field is its
+// default): the worker that sends one runs student code.
+void to_json(nlohmann::json& j, const Diagnostic& d);
+void from_json(const nlohmann::json& j, Diagnostic& d);
+}  // namespace shadelab

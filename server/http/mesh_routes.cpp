@@ -37,7 +37,7 @@ void upload(RouteContext& c, const httplib::Request& req, httplib::Response& res
   job.mesh_format = scene::mesh_format_of(file->filename);
   auto answered = c.run<worker::MeshCheckResult>(worker::to_message(job, file->content));
   if (!answered) return send_problem(res, answered.error(), req.path);
-  const json info = worker::to_json(answered->result);
+  const json info = answered->result;
   c.meshes.put({job.mesh, file->filename, job.mesh_format, std::move(file->content), info});
   send_json(res, 201, {{"id", job.mesh}, {"filename", file->filename}, {"format", job.mesh_format}, {"info", info}});
 }

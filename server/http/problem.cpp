@@ -11,7 +11,7 @@ nlohmann::json problem(const Error& e, const std::string& instance) {
                       {"code", to_string(e.code)},
                       {"detail", e.message},
                       {"instance", instance},
-                      {"diagnostics", worker::diagnostics_json(e.diagnostics)}};
+                      {"diagnostics", e.diagnostics}};
   if (!e.driver_log.empty()) p["driverLog"] = e.driver_log;
   return p;
 }

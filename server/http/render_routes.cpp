@@ -33,18 +33,17 @@ std::vector<std::string> warnings_of(const ParsedJob& parsed, const worker::Rend
 
 // output=json: the images base64-encoded beside the report.
 std::string json_body(const worker::RenderResult& r, const std::vector<std::string>& warnings, const std::string& renderer, double queue_ms) {
-  json constant = json::array(), frames = json::array();
-  for (const auto& c : r.constant_frames) constant.push_back({{"frame", c.frame}, {"rgba", c.rgba}});
+  json frames = json::array();
   for (const auto& f : r.frames) frames.push_back({{"name", f.name}, {"data", base64_encode(f.bytes)}});
-  json timings = worker::to_json(r.timings);
+  json timings = r.timings;
   timings["queue"] = queue_ms;
   return json_text({{"renderer", renderer},
                     {"samples", r.samples},
                     {"warnings", warnings},
-                    {"diagnostics", worker::diagnostics_json(r.diagnostics)},
-                    {"constantFrames", constant},
-                    {"attributes", worker::variables_json(r.attributes)},
-                    {"uniforms", worker::variables_json(r.uniforms)},
+                    {"diagnostics", r.diagnostics},
+                    {"constantFrames", r.constant_frames},
+                    {"attributes", r.attributes},
+                    {"uniforms", r.uniforms},
                     {"timings", timings},
                     {"images", {{"grid", base64_encode(r.body)}, {"frames", frames}}}},
                    -1);
@@ -108,8 +107,8 @@ void compile(RouteContext& c, const httplib::Request& req, httplib::Response& re
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
   res.set_header("X-ShadeLab-Renderer", c.pool.renderer());
   send_json(res, 200, {{"ok", true}, {"renderer", c.pool.renderer()}, {"warnings", warnings},
-                       {"diagnostics", worker::diagnostics_json(r.diagnostics)}, {"attributes", worker::variables_json(r.attributes)},
-                       {"uniforms", worker::variables_json(r.uniforms)}, {"timings", {{"compile", r.compile_ms}}}});
+                       {"diagnostics", r.diagnostics}, {"attributes", r.attributes}, {"uniforms", r.uniforms},
+                       {"timings", {{"compile", r.compile_ms}}}});
 }
 
 }  // namespace

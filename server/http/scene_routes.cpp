@@ -110,7 +110,7 @@ void render_scene(RouteContext& c, const httplib::Request& req, httplib::Respons
   response.headers["Server-Timing"] = "queue;dur=" + std::to_string(answered->queue_ms) + ", " + scene_passes_header(r.report);
   if (!r.report.framing.empty()) response.headers["X-ShadeLab-Framing"] = scene_framing_header(r.report);
   if (as_json) {
-    json report = worker::to_json(r.report);
+    json report = r.report;
     report["renderer"] = c.pool.renderer();
     report["queueMs"] = answered->queue_ms;
     report["encodeMs"] = r.encode_ms;

@@ -82,8 +82,15 @@ std::string_view to_string(JobKind k);
 std::string_view to_string(Output o);
 std::string_view to_string(Format f);
 
-// The scene description on the wire: every field of the struct, nothing re-validated.
-nlohmann::json to_json(const scene::SceneDescription& scene);
-scene::SceneDescription scene_from_json(const nlohmann::json& j);  // throws nlohmann::json::exception
+// A job's header on the wire; from_json throws nlohmann::json::exception when malformed.
+void to_json(nlohmann::json& j, const Job& job);
+void from_json(const nlohmann::json& j, Job& job);
 
 }  // namespace shadelab::worker
+
+namespace shadelab::scene {
+// The scene description on the wire: every field of the struct (worker/scene_json.h), nothing
+// re-validated; from_json throws nlohmann::json::exception.
+void to_json(nlohmann::json& j, const SceneDescription& scene);
+void from_json(const nlohmann::json& j, SceneDescription& scene);
+}  // namespace shadelab::scene

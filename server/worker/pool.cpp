@@ -220,7 +220,7 @@ struct WorkerPool::Slot {
     const auto status = read_message(fd, ready, Clock::now() + c.start_deadline);
     if (status != ReadStatus::ok || text_field(ready.header, "event") != "ready" || !flag_field(ready.header, "ok")) {
       std::string why = status == ReadStatus::timeout ? "it did not start in time" : "it exited while starting";
-      if (status == ReadStatus::ok && ready.header.is_object() && ready.header.contains("error")) why = error_from_json(ready.header["error"]).message;
+      if (status == ReadStatus::ok && ready.header.is_object() && ready.header.contains("error")) why = ready.header["error"].get<Error>().message;
       reap(true);
       return worker_error(ErrorCode::not_ready, "a render worker could not start: " + why);
     }

@@ -98,16 +98,47 @@ Message answer(const Error& e);
 template <class Result>
 Expected<Result> result_from(const Message& answer);
 
-// The JSON forms, shared by the wire and the HTTP responses that show them.
-nlohmann::json to_json(const Error& e);
-Error error_from_json(const nlohmann::json& j);  // an unknown code is worker_protocol
-nlohmann::json to_json(const render::VariableInfo& v);
-nlohmann::json variables_json(const std::vector<render::VariableInfo>& variables);
-nlohmann::json diagnostics_json(const std::vector<Diagnostic>& diagnostics);
-nlohmann::json to_json(const RenderTimings& t);
-nlohmann::json to_json(const MeshCheckResult& r);
-nlohmann::json to_json(const scene_render::SceneReport& r);
-nlohmann::json to_json(const scene_render::ObjectFraming& f);
-nlohmann::json to_json(const scene_render::PassDetail& d);
+// The JSON forms, one to_json / from_json pair per struct, shared by the wire and the HTTP
+// responses that show them. A result's files travel beside its JSON (see the table above), so
+// its pair reads and writes the rest. from_json throws nlohmann::json::exception when malformed.
+void to_json(nlohmann::json& j, const ConstantFrame& c);
+void from_json(const nlohmann::json& j, ConstantFrame& c);
+void to_json(nlohmann::json& j, const RenderTimings& t);
+void from_json(const nlohmann::json& j, RenderTimings& t);
+void to_json(nlohmann::json& j, const CompileResult& r);
+void from_json(const nlohmann::json& j, CompileResult& r);
+void to_json(nlohmann::json& j, const RenderResult& r);
+void from_json(const nlohmann::json& j, RenderResult& r);
+void to_json(nlohmann::json& j, const MeshCheckResult& r);
+void from_json(const nlohmann::json& j, MeshCheckResult& r);
+void to_json(nlohmann::json& j, const SceneResult& r);
+void from_json(const nlohmann::json& j, SceneResult& r);
+void to_json(nlohmann::json& j, const GradeResult& r);
+void from_json(const nlohmann::json& j, GradeResult& r);
+void to_json(nlohmann::json& j, const FramesGradeResult& r);
+void from_json(const nlohmann::json& j, FramesGradeResult& r);
 
 }  // namespace shadelab::worker
+
+namespace shadelab {
+// An error as the worker sends it. Reading never throws: the worker runs student code, so what
+// it sends is read, not trusted; an unknown or missing code reads as worker_protocol.
+void to_json(nlohmann::json& j, const Error& e);
+void from_json(const nlohmann::json& j, Error& e);
+}  // namespace shadelab
+
+namespace shadelab::render {
+void to_json(nlohmann::json& j, const VariableInfo& v);
+void from_json(const nlohmann::json& j, VariableInfo& v);
+}  // namespace shadelab::render
+
+namespace shadelab::scene_render {
+void to_json(nlohmann::json& j, const PassTiming& p);
+void from_json(const nlohmann::json& j, PassTiming& p);
+void to_json(nlohmann::json& j, const ObjectFraming& f);
+void from_json(const nlohmann::json& j, ObjectFraming& f);
+void to_json(nlohmann::json& j, const CameraSummary& c);
+void from_json(const nlohmann::json& j, CameraSummary& c);
+void to_json(nlohmann::json& j, const SceneReport& r);
+void from_json(const nlohmann::json& j, SceneReport& r);
+}  // namespace shadelab::scene_render

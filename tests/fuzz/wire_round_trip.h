@@ -18,8 +18,8 @@ inline void check_job_crosses_the_wire(const worker::Job& job) {
 }
 
 inline void check_scene_crosses_the_wire(const scene::SceneDescription& scene) {
-  const nlohmann::json wire = worker::to_json(scene);
-  FUZZ_CHECK(worker::to_json(worker::scene_from_json(nlohmann::json::parse(wire.dump()))) == wire);
+  const nlohmann::json wire = scene;
+  FUZZ_CHECK(nlohmann::json(nlohmann::json::parse(wire.dump()).get<scene::SceneDescription>()) == wire);
 }
 
 }  // namespace shadelab::fuzz
