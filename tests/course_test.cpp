@@ -12,11 +12,15 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <regex>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/base64.h"
+#include "course/course_import.h"
 #include "course/course_reader.h"
+#include "course/script_facts.h"
 #include "support/files.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
@@ -177,6 +181,116 @@ TEST(CourseProfileTest, TheSchemaAndTheReaderAgree) {
     EXPECT_TRUE(by_schema.starts_with(where + ":")) << where << ": the schema says '" << by_schema << "'";
     EXPECT_NE(by_reader, "(read)") << where << ": the reader took it";
   }
+}
+
+// The page script's facts as a course writes them: numbers by name, small arithmetic, a helper's
+// arguments in its own order. What it cannot read it does not state.
+TEST(ScriptFactsTest, NumbersByNameAndSmallArithmetic) {
+  const course::ScriptFacts js(R"(const fieldOfView = 45.0; // degrees
+const zNear = 0.1, unused = 3  // no semicolon: the line ends the statement
+let zFar = 100.0;
+zFar = 5.0;  /* a later assignment: the declaration stands */
+const half = fieldOfView / 2;
+const spin = -(2 + 3) * 4;
+const away = [-0.0, -2.0, -7.5];
+const colour = new Float32Array([0.2, zNear, 1.0]);
+const loop = loop + 1;)");
+  EXPECT_EQ(js.number("fieldOfView"), 45.0);
+  EXPECT_EQ(js.number("zFar"), 100.0);
+  EXPECT_EQ(js.number("half * 2"), 45.0);
+  EXPECT_EQ(js.number("spin"), -20.0);
+  EXPECT_NEAR(*js.number("45 * Math.PI / 180"), 0.785398, 1e-6);
+  EXPECT_NEAR(*js.number("glMatrix.toRadian(fieldOfView)"), 0.785398, 1e-6);
+  EXPECT_EQ(js.numbers("away"), std::vector<double>({-0.0, -2.0, -7.5}));
+  EXPECT_EQ(js.numbers("colour"), std::vector<double>({0.2, 0.1, 1.0}));
+  EXPECT_EQ(js.number("zNear"), 0.1) << "one declaration of two names";
+  EXPECT_EQ(js.number("unused"), 3.0);
+  EXPECT_FALSE(js.number("canvas.width / canvas.height")) << "the page's size is not the script's to state";
+  EXPECT_FALSE(js.number("loop")) << "a name bound to itself";
+  EXPECT_FALSE(js.number("Math.sin(1)"));
+  EXPECT_FALSE(js.number("1 / 0"));
+}
+
+TEST(ScriptFactsTest, ACallsArgumentsAreItsOwnNotItsDefinitions) {
+  const course::ScriptFacts js(R"js(function mat4Perspective(out, fovy, aspect, near, far) { return out; }
+const url = "http://example.com/mat4Perspective(1, 2)";
+mat4Perspective(ProjectionMatrix, fieldOfView, gl.canvas.width / gl.canvas.height, zNear, zFar);
+notmat4Perspective(1, 2, 3);)js");
+  const auto calls = js.calls(std::regex("mat4Perspective"));
+  ASSERT_EQ(calls.size(), 1u) << "the definition, the string's text and a longer name are not calls";
+  EXPECT_EQ(calls[0], std::vector<std::string>({"ProjectionMatrix", "fieldOfView", "gl.canvas.width / gl.canvas.height", "zNear", "zFar"}));
+}
+
+TEST(ScriptFactsTest, ThePagesCameraAndSpinInEachFormACourseWrites) {
+  const course::ScriptFacts named(R"(const fieldOfView = 45.0; const zNear = 0.1; const zFar = 100.0;
+mat4Perspective(ProjectionMatrix, fieldOfView, aspect, zNear, zFar);
+mat4Translate(MeshToWorldMatrix, [-0.0,-2.0,-7.5]);
+const t = TIME * 1000;
+rotationMat(MeshToWorldRotMatrix, TIME * 20, 1);)");
+  const auto projection = course::projection_of(named);
+  ASSERT_TRUE(projection);
+  EXPECT_EQ(projection->fov_y_degrees, 45.0);
+  EXPECT_EQ(projection->near, 0.1);
+  EXPECT_EQ(projection->far, 100.0);
+  const auto at = course::mesh_translation_of(named);
+  ASSERT_TRUE(at);
+  EXPECT_EQ(*at, (std::array{0.0, -2.0, -7.5}));
+  EXPECT_FALSE(std::signbit((*at)[0])) << "-0.0 is 0 in a profile";
+  EXPECT_EQ(course::degrees_per_second_of(named), 20.0) << "the rotation's factor, not TIME * 1000 elsewhere";
+
+  const course::ScriptFacts radians(R"(const SPEED = 15;
+mat4.perspective(P, 30 * Math.PI / 180, 1.0, 0.5, 20.0);
+mat4.translate(M, M, [1.5, -0.0, -9]);
+const angle = SPEED * TIME;)");
+  EXPECT_NEAR(course::projection_of(radians)->fov_y_degrees, 30.0, 1e-9) << "an expression in radians, with a literal aspect";
+  EXPECT_EQ(course::projection_of(radians)->near, 0.5);
+  EXPECT_EQ(*course::mesh_translation_of(radians), (std::array{1.5, 0.0, -9.0}));
+  EXPECT_EQ(course::degrees_per_second_of(radians), 15.0) << "a named factor before TIME, outside any call";
+
+  const course::ScriptFacts silent("const proj = perspective(fov, aspect, near, far);\nrotateY(angle);");
+  EXPECT_FALSE(course::projection_of(silent)) << "names bound nowhere: not stated";
+  EXPECT_FALSE(course::mesh_translation_of(silent));
+  EXPECT_FALSE(course::degrees_per_second_of(silent));
+}
+
+// `course import` on a folder written in the course's own style (named constants passed to the
+// matrix helpers, the factor after TIME, a negative zero), for this test: every fact found, none
+// assumed; the same folder with other values: those values.
+TEST(CourseImportStyleTest, NamedConstantsAndTheFactorAfterTimeAreFoundNotAssumed) {
+  const fs::path root = fs::temp_directory_path() / ("shadelab_import_style_" + std::to_string(::getpid()));
+  const auto import = [&](double fov, const std::string& at, double spin) {
+    fs::remove_all(root);
+    write(root / "HW2/index.html", "<canvas id=\"glcanvas\" width=\"512\" height=\"512\"></canvas>\n");
+    std::ostringstream js;
+    js << "const fieldOfView = " << fov << ";\nconst zNear = 0.1;\nconst zFar = 100.0;\n"
+       << "const uniformValues = { uAmbientColor: [0.2, 0.1, 0.1, 1.0] };\n"
+       << "function draw() {\n  mat4Perspective(ProjectionMatrix, fieldOfView, canvas.width / canvas.height, zNear, zFar);\n"
+       << "  mat4Translate(MeshToWorldMatrix, " << at << ");\n  rotationMat(MeshToWorldRotMatrix, TIME * " << spin << ", 1);\n}\n";
+    write(root / "HW2/src/hw2.js", js.str());
+    auto imported = course::import_course({root / "HW2", std::nullopt, root / "course.json", "style", ""});
+    EXPECT_TRUE(imported) << imported.error().message;
+    return imported ? *imported : course::ImportedCourse{};
+  };
+  const auto said = [](const std::vector<std::string>& lines, const std::string& start) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(start, 0) == 0; });
+  };
+
+  auto course = import(45.0, "[-0.0,-2.0,-7.5]", 20);
+  EXPECT_EQ(course.profile["camera"]["fovYDegrees"], 45.0);
+  EXPECT_EQ(course.profile["camera"]["near"], 0.1);
+  EXPECT_EQ(course.profile["camera"]["far"], 100.0);
+  EXPECT_EQ(course.profile["camera"]["meshTranslation"].dump(), "[0.0,-2.0,-7.5]");
+  EXPECT_EQ(course.profile["frames"]["degreesPerFrame"], 20.0);
+  for (const char* fact : {"camera:", "the mesh stands at", "the mesh turns"}) {
+    EXPECT_TRUE(said(course.found, fact)) << fact;
+    EXPECT_FALSE(said(course.assumed, fact)) << fact;
+  }
+
+  course = import(30.0, "[1.0, -0.0, -9.0]", 15);
+  EXPECT_EQ(course.profile["camera"]["fovYDegrees"], 30.0);
+  EXPECT_EQ(course.profile["camera"]["meshTranslation"].dump(), "[1.0,0.0,-9.0]");
+  EXPECT_EQ(course.profile["frames"]["degreesPerFrame"], 15.0);
+  fs::remove_all(root);
 }
 
 // A homework folder laid out as the course's (index.html, src/hw2.js, src/shaders/, assets/), its

@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "course/course_reader.h"
+#include "course/script_facts.h"
 
 namespace shadelab::course {
 
@@ -181,8 +182,9 @@ class Importer {
     }
     const std::string js = folder_.text(*path), where = " (" + path->generic_string() + ")";
     uniforms(js, where);
-    camera(js, where);
-    frames(js, where);
+    const ScriptFacts facts(js);
+    camera(facts, where);
+    frames(facts, where);
     if (js.find("antialias") != std::string::npos && std::regex_search(js, std::regex("antialias\\s*:\\s*false"))) {
       p_["msaa"] = 0;
       found("no multisampling: antialias: false" + where);
@@ -234,39 +236,35 @@ class Importer {
     }
   }
 
-  void camera(const std::string& js, const std::string& where) {
+  void camera(const ScriptFacts& script, const std::string& where) {
     auto& cam = p_["camera"];
-    const size_t persp = js.find("perspective(");
-    std::smatch m;
-    static const std::regex degrees("([0-9]+(?:\\.[0-9]+)?)\\s*\\*\\s*Math\\.PI\\s*/\\s*180|toRadian\\s*\\(\\s*([0-9]+(?:\\.[0-9]+)?)");
-    const std::string call = persp == std::string::npos ? std::string() : js.substr(persp, js.find(';', persp) - persp);
-    if (!call.empty() && std::regex_search(call, m, degrees)) {
-      cam["fovYDegrees"] = std::stod(m[1].matched ? m[1].str() : m[2].str());
-      const auto nums = numbers_after(call, 0);
-      if (nums.size() >= 2) cam["near"] = nums[nums.size() - 2], cam["far"] = nums.back();
+    if (const auto projection = projection_of(script)) {
+      cam["fovYDegrees"] = projection->fov_y_degrees;
+      cam["near"] = projection->near;
+      cam["far"] = projection->far;
       found("camera: fovY " + number_text(cam["fovYDegrees"]) + " degrees, near " + number_text(cam["near"]) + ", far " +
             number_text(cam["far"]) + where);
     } else {
-      assumed("camera: fovY " + number_text(cam["fovYDegrees"]) + " degrees, near 0.1, far 100 (no perspective(... * Math.PI / 180 ...) " +
-              "call" + where + ")");
+      assumed("camera: fovY " + number_text(cam["fovYDegrees"]) + " degrees, near " + number_text(cam["near"]) + ", far " +
+              number_text(cam["far"]) + " (no perspective call with numbers for its field of view, near and far" + where + ")");
     }
-    static const std::regex translate("translat\\w*\\s*\\([^;]*?\\[\\s*(-?[0-9.]+)\\s*,\\s*(-?[0-9.]+)\\s*,\\s*(-?[0-9.]+)\\s*\\]");
-    if (std::regex_search(js, m, translate)) {
-      cam["meshTranslation"] = {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
+    if (const auto at = mesh_translation_of(script)) {
+      cam["meshTranslation"] = *at;
       found("the mesh stands at " + cam["meshTranslation"].dump() + where);
     } else {
-      assumed("the mesh stands at " + cam["meshTranslation"].dump() + " (no translate(..., [x, y, z]) call" + where + ")");
+      assumed("the mesh stands at " + cam["meshTranslation"].dump() + " (no translate call with [x, y, z]" + where + ")");
     }
   }
 
-  void frames(const std::string& js, const std::string& where) {
+  void frames(const ScriptFacts& script, const std::string& where) {
+    const std::string& js = script.text();
     auto& f = p_["frames"];
     std::smatch m;
-    if (std::regex_search(js, m, std::regex("([0-9]+(?:\\.[0-9]+)?)\\s*\\*\\s*TIME\\b"))) {
-      f["degreesPerFrame"] = std::stod(m[1]);
-      found("the mesh turns " + m[1].str() + " degrees per second, a frame a second" + where);
+    if (const auto degrees = degrees_per_second_of(script)) {
+      f["degreesPerFrame"] = *degrees;
+      found("the mesh turns " + number_text(*degrees) + " degrees per second, a frame a second" + where);
     } else {
-      assumed("the mesh turns " + number_text(f["degreesPerFrame"]) + " degrees a frame (no N * TIME" + where + ")");
+      assumed("the mesh turns " + number_text(f["degreesPerFrame"]) + " degrees a frame (no N * TIME or TIME * N" + where + ")");
     }
     if (std::regex_search(js, m, std::regex("MAX_OUT_FRAMES\\s*=\\s*([0-9]+)")) && std::stoi(m[1]) > 0) {
       f["count"] = std::stoi(m[1]);

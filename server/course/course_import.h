@@ -8,8 +8,8 @@
 // | canvas size                   | index.html's <canvas width height>                          |
 // | uniform values                | hw2.js's `uniformValues`, matched to roles by their names   |
 // | uniform names                 | hw2.js's getUniformLocation calls (the rest: u + Role + Color)|
-// | camera                        | hw2.js's perspective(...) and translate(...) calls          |
-// | degrees per frame, frames     | hw2.js's `N * TIME` and MAX_OUT_FRAMES (when above 0)       |
+// | camera                        | hw2.js's perspective and translate calls (script_facts.h)   |
+// | degrees per frame, frames     | hw2.js's `N * TIME` or `TIME * N`; MAX_OUT_FRAMES (above 0) |
 // | frame file names              | hw2.js's download name around IMAGE_PREFIX                  |
 // | samples                       | hw2.js's getContext attributes (antialias: false gives 0)   |
 // | meshes, the default one       | the .obj files in the folder; OBJ_FILE in hw2.js            |
