@@ -49,7 +49,7 @@ class GradescopeTest : public ::testing::Test {
 
   void submit(const std::string& name, const std::string& text) const {
     fs::create_directories((root_ / "submission" / name).parent_path());
-    std::ofstream(root_ / "submission" / name) << text;
+    std::ofstream(root_ / "submission" / name, std::ios::binary) << text;
   }
   void submit_preset(const std::string& name, const std::string& preset, const std::string& stage) const {
     submit(name, shadelab::testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js")));
@@ -76,6 +76,11 @@ class GradescopeTest : public ::testing::Test {
     save_frames("HW2/images", "normals", "normals");
     save_frames("HW2/images", "diffuse", "diffuse");
     if (!specular_frames.empty()) save_frames("HW2/images", specular_frames, "specular");
+    // The Blender half: the dolly zoom as Blender renders the handout's cameras, and two objects on a plane in Eevee.
+    for (const char* lens : {"25", "50", "100"})
+      submit(std::string("HW2/images/camera_") + lens + ".png",
+             shadelab::testkit::read_text(kSource / "tests/blender_half" / (std::string("blender_camera_") + lens + ".png")));
+    submit("HW2/images/eevee0001.png", shadelab::testkit::read_text(kSource / "tests/blender_half/blender_two_objects_eevee.png"));
   }
 
   // Gradescope's run: the environment names the folders; the results file is what it reads.
@@ -143,8 +148,9 @@ TEST_F(GradescopeTest, TheHomeworkFolderIsGradedDeliverableByDeliverable) {
   double points = 0;
   for (const auto& c : shadelab::testkit::course().checkpoints) points += c.points;
   EXPECT_EQ(results["score"], points) << results.dump(2);
-  // normals: frames, code, match; diffuse: frames; specular: frames, code, probe, match.
-  ASSERT_EQ(results["tests"].size(), 8u) << results.dump(2);
+  // normals: frames, code, match; diffuse: frames; specular: frames, code, probe, match; the three
+  // dolly-zoom cameras and the Eevee render (0 points: for the TA).
+  ASSERT_EQ(results["tests"].size(), 12u) << results.dump(2);
   for (const auto& t : results["tests"]) {
     EXPECT_EQ(t["status"], "passed") << t["name"] << ": " << t["output"];
     EXPECT_EQ(t["visibility"], "visible");
@@ -286,15 +292,35 @@ TEST_F(GradescopeTest, ALinkInTheSubmissionIsNotFollowed) {
       << (*normals)["output"];
 }
 
+// The dolly zoom's cameras checked (grade/camera_check.h): one image saved for two cameras fails
+// its test, 0 points of 0 (for the TA), in the same words on Gradescope and on the sheet.
+TEST_F(GradescopeTest, ACameraSavedTwiceReadsTheSameOnGradescopeAndOnTheSheet) {
+  hand_in();
+  submit("HW2/images/camera_100.png", shadelab::testkit::read_text(kSource / "tests/blender_half/blender_camera_50.png"));
+  const json results = autograde();
+  const json* hundred = test_named(results, "Dolly zoom: 100 mm (images/camera_100.png)");
+  ASSERT_NE(hundred, nullptr) << results.dump(2);
+  EXPECT_EQ((*hundred)["status"], "failed");
+  EXPECT_EQ((*hundred)["max_score"], 0.0);
+  const std::string output = output_of(hundred);
+  const std::string verdict = output.substr(output.find('\n') + 1, output.size() - output.find('\n') - 2);
+  EXPECT_TRUE(verdict.starts_with("the same image as images/camera_50.png: shows a 50 mm lens at (0, -8, 0)")) << output;
+  EXPECT_EQ((*test_named(results, "Dolly zoom: 50 mm"))["status"], "passed");
+  const auto sheet = shadelab::testkit::run_shadelab("sheet '" + (root_ / "submission/HW2").string() + "' -o '" + (root_ / "sheet.pdf").string() + "'");
+  ASSERT_EQ(sheet.status, 0) << sheet.output;
+  EXPECT_NE(sheet.output.find("Dolly zoom: 100 mm: 0 / 0 (for the TA): " + verdict + "\n"), std::string::npos) << sheet.output << "\n" << verdict;
+}
+
 TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
   const json results = autograde();
   EXPECT_EQ(results["score"], 0.0);
-  ASSERT_EQ(results["tests"].size(), 8u) << results.dump(2);
+  ASSERT_EQ(results["tests"].size(), 12u) << results.dump(2);
   for (const auto& t : results["tests"]) {
     EXPECT_EQ(t["score"], 0.0);
     const std::string output = t["output"];
     EXPECT_TRUE(output.find("the submission has nothing") != std::string::npos || output.find("these PNGs: nothing") != std::string::npos ||
-                output.find("not compared") != std::string::npos || output.find("no shaders for this deliverable") != std::string::npos)
+                output.find("not compared") != std::string::npos || output.find("no shaders for this deliverable") != std::string::npos ||
+                output.find("\nnot in the submission.\n") != std::string::npos)
         << t["name"] << ": " << output;
   }
 }

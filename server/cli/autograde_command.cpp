@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <future>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "cli/course_option.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
+#include "grade/hand_in_checks.h"
 #include "cli/gradescope_tests.h"
 #include "cli/submission_files.h"
 #include "course/course_reader.h"
@@ -83,6 +85,17 @@ void grade_all(worker::WorkerPool& pool, const course::Course& course, const Aut
   }
 }
 
+// The course's checked images (the dolly zoom's cameras), each found as the sheet finds it: at its
+// path in the folder, or a path ending in it, the shallowest first.
+Expected<std::vector<grade::ImageCheck>> check_images(worker::WorkerPool& pool, const course::Course& course, const fs::path& root,
+                                                      const std::vector<fs::path>& files) {
+  std::map<std::string, std::string> read;
+  return grade::check_hand_in_images(pool, course, [&](const std::string& name) -> const std::string* {
+    const fs::path* found = course::file_at(files, name);
+    return found ? &(read[name] = read_text(root / *found)) : nullptr;
+  });
+}
+
 int run_autograde(const AutogradeFlags& f) {
   auto loaded = load_course(f.grade.course);
   if (!loaded) return fail(loaded.error());
@@ -104,6 +117,11 @@ int run_autograde(const AutogradeFlags& f) {
     }
     if (d.code_grade && *d.code_grade) seconds += (**d.code_grade).seconds;
     if (d.frames_grade && *d.frames_grade) seconds += (**d.frames_grade).seconds;
+  }
+  for (auto& t : image_tests(course, check_images(pool, course, f.submission, files))) {
+    score += t["score"].get<double>();
+    passed += t["status"] == "passed";
+    tests.push_back(std::move(t));
   }
   std::string summary = std::to_string(passed) + " of " + std::to_string(tests.size()) + " tests passed\n";
   // The flags at the top, where the TA opening the submission reads first.

@@ -4,6 +4,7 @@
 
 #include "cli/file_output.h"
 #include "core/base64.h"
+#include "grade/deliverable_score.h"
 #include "grade/report.h"
 #include "image/encode.h"
 #include "image/png_decode.h"
@@ -91,72 +92,105 @@ std::string pngs_in(const std::vector<fs::path>& files) {
   return course::listing(pngs);
 }
 
-json frames_test(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files, const HeatmapOutput& heatmaps) {
+// The test's part of the deliverable's score (grade/deliverable_score.h), when it was graded.
+const grade::TestScore* scored(const grade::DeliverableScore& score, DeliverableTest test) {
+  for (const auto& t : score.tests)
+    if (t.test == test && t.report) return &t;
+  return nullptr;
+}
+
+std::string test_name(const course::Checkpoint& k, DeliverableTest test) { return k.title + ": " + std::string(to_string(test)); }
+
+json frames_test(const course::Course& c, const DeliverableGrades& d, const grade::DeliverableScore& score, const std::vector<fs::path>& files,
+                 const HeatmapOutput& heatmaps) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::frames, d.points);
-  std::string name = k.title + ": saved frames";
+  std::string name = test_name(k, DeliverableTest::frames);
   if (!d.frames.any() || !d.frames_grade)
     return absent(name, max, "no saved frames: expected " + frame_range(c, k) + ", saved from the page (its Save button names them so) into images/; the submission has these PNGs: " +
                                  pngs_in(files));
   if (d.frames.frames[0]) name += " (" + (d.frames.frames[0]->parent_path() / c.frame_file(k.prefix, 0, "png")).string() + ", ...)";
   if (!*d.frames_grade) return ungraded(name, max, d.frames_grade->error());
-  const GradedFrames& g = **d.frames_grade;
-  json test = graded(name, g.result.frames, max);
+  json test = graded(name, *scored(score, DeliverableTest::frames)->report, max);
   for (const auto& extra : d.frames.extra)
     test["output"] = test["output"].get<std::string>() + extra.string() + " is not graded: the deliverable is " + frame_range(c, k) + "\n";
-  attach_heatmap(test, g.result.heatmap_png, k.name + "_frames", heatmaps);
+  attach_heatmap(test, (**d.frames_grade).result.heatmap_png, k.name + "_frames", heatmaps);
   return test;
 }
 
 std::string code_files(const DeliverableGrades& d) { return d.code->first.string() + ", " + d.code->second.filename().string(); }
 
-json code_test(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files, const HeatmapOutput& heatmaps) {
+json code_test(const course::Course& c, const DeliverableGrades& d, const grade::DeliverableScore& score, const std::vector<fs::path>& files,
+               const HeatmapOutput& heatmaps) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::code, d.points);
   if (!d.code)
-    return absent(k.title + ": code", max, "no shaders for this deliverable: expected " + course::wanted_files(c, k) +
-                                               " in one folder; the submission has " + course::listing(files));
-  const std::string name = k.title + ": code (" + code_files(d) + ")";
+    return absent(test_name(k, DeliverableTest::code), max, "no shaders for this deliverable: expected " + course::wanted_files(c, k) +
+                                                                 " in one folder; the submission has " + course::listing(files));
+  const std::string name = test_name(k, DeliverableTest::code) + " (" + code_files(d) + ")";
   if (!*d.code_grade) return ungraded(name, max, d.code_grade->error());
-  const Graded& g = **d.code_grade;
   const std::string note = k.applies(DeliverableTest::code) ? "" : "not part of the grade: this deliverable is graded by its saved frames\n";
-  json test = graded(name, grade::part_of(g.result.report, false, max), max, note);
-  attach_heatmap(test, g.result.heatmap_png, k.name, heatmaps);
+  json test = graded(name, *scored(score, DeliverableTest::code)->report, max, note);
+  attach_heatmap(test, (**d.code_grade).result.heatmap_png, k.name, heatmaps);
   return test;
 }
 
-json probe_test(const DeliverableGrades& d) {
+json probe_test(const DeliverableGrades& d, const grade::DeliverableScore& score) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::probe, d.points);
   std::string rules;
   for (const auto& p : k.probes) rules += "This test moves the light (" + p.name + ") to check that " + (p.checks.empty() ? "the shading is right" : p.checks) + ".\n";
-  const std::string name = k.title + ": code under a hidden light";
+  const std::string name = test_name(k, DeliverableTest::probe);
   if (!d.code) return absent(name, max, rules + "no shaders for this deliverable");
   if (!*d.code_grade) return ungraded(name, max, d.code_grade->error());
-  return graded(name, grade::part_of((*d.code_grade)->result.report, true, max), max, rules);
+  return graded(name, *scored(score, DeliverableTest::probe)->report, max, rules);
 }
 
-json match_test(const DeliverableGrades& d) {
+json match_test(const DeliverableGrades& d, const grade::DeliverableScore& score) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::match, d.points);
-  const std::string name = k.title + ": saved frames made by your code";
+  const std::string name = test_name(k, DeliverableTest::match);
   if (!d.code) return absent(name, max, "not compared: no shaders for this deliverable");
   if (!d.frames.any() || !d.frames_grade) return absent(name, max, "not compared: no saved frames");
   if (!*d.frames_grade) return ungraded(name, max, d.frames_grade->error());
-  const auto& code = (*d.frames_grade)->result.code;
-  if (!code) return absent(name, max, "not compared: the code was not sent with the frames");
-  return graded(name, *code, max);
+  const grade::TestScore* match = scored(score, DeliverableTest::match);
+  if (!match) return absent(name, max, "not compared: the code was not sent with the frames");
+  return graded(name, *match->report, max);
 }
 
+std::string image_test_name(const std::string& title, const std::string& file) { return title + " (" + file + ")"; }
+
 }  // namespace
+
+std::vector<json> image_tests(const course::Course& c, const Expected<std::vector<grade::ImageCheck>>& checks) {
+  std::vector<json> tests;
+  for (const auto& image : c.images) {
+    if (!image.checked()) continue;
+    const std::string name = image_test_name(image.title, image.file);
+    if (!checks) {
+      tests.push_back(ungraded(name, image.points, checks.error()));
+      continue;
+    }
+    for (const auto& check : *checks)
+      if (check.file == image.file) {
+        const std::string preface = check.points == 0 ? "not part of the score (0 points): checked for the TA\n" : "";
+        tests.push_back(test_of(name, check.score(), check.points, check.verdict.pass, preface + check.text() + "\n"));
+      }
+  }
+  return tests;
+}
 
 std::vector<json> deliverable_tests(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files,
                                     const HeatmapOutput& heatmaps) {
   const course::Checkpoint& k = *d.checkpoint;
-  std::vector<json> tests = {frames_test(c, d, files, heatmaps)};
-  if (k.applies(DeliverableTest::code) || d.code) tests.push_back(code_test(c, d, files, heatmaps));
-  if (k.applies(DeliverableTest::probe)) tests.push_back(probe_test(d));
-  if (k.applies(DeliverableTest::match) || (d.code && d.frames.any())) tests.push_back(match_test(d));
+  const auto* code = d.code_grade && *d.code_grade ? &(**d.code_grade).result.report : nullptr;
+  const auto* frames = d.frames_grade && *d.frames_grade ? &(**d.frames_grade).result : nullptr;
+  const grade::DeliverableScore score = grade::score_deliverable(
+      k, d.points, {code, frames ? &frames->frames : nullptr, frames && frames->code ? &*frames->code : nullptr});
+  std::vector<json> tests = {frames_test(c, d, score, files, heatmaps)};
+  if (k.applies(DeliverableTest::code) || d.code) tests.push_back(code_test(c, d, score, files, heatmaps));
+  if (k.applies(DeliverableTest::probe)) tests.push_back(probe_test(d, score));
+  if (k.applies(DeliverableTest::match) || (d.code && d.frames.any())) tests.push_back(match_test(d, score));
   return tests;
 }
 

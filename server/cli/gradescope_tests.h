@@ -9,6 +9,10 @@
 // | <title>: code under a hidden light     | the same under the probe lights, and the rule  |
 // | <title>: saved frames made by your code | the frames against the code's render           |
 //
+// and for each image the course checks (the dolly zoom's cameras), a test worth its points:
+//
+// | <title> (<file>)                       | the image against the handout's camera         |
+//
 // A test with nothing to grade (no frames, no code) is 0 with what was looked for; one the grader
 // could not grade is 0 with words that put it on the grader.
 #include <filesystem>
@@ -22,6 +26,7 @@
 #include "cli/grade_runner.h"
 #include "course/course.h"
 #include "course/submission_files.h"
+#include "grade/image_check.h"
 
 namespace shadelab::cli {
 
@@ -44,5 +49,9 @@ struct DeliverableGrades {
 // it held when something is missing).
 std::vector<nlohmann::json> deliverable_tests(const course::Course& course, const DeliverableGrades& d,
                                               const std::vector<std::filesystem::path>& files, const HeatmapOutput& heatmaps);
+
+// The checked images' tests, in the course's order; each 0 with words on the grader when the
+// check could not run.
+std::vector<nlohmann::json> image_tests(const course::Course& course, const Expected<std::vector<grade::ImageCheck>>& checks);
 
 }  // namespace shadelab::cli

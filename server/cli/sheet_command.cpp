@@ -78,7 +78,9 @@ int run_sheet(const SheetFlags& f) {
   if (auto s = write_file(f.pdf, *pdf); !s) return fail(s.error());
   if (!f.html.empty())
     if (auto s = write_file(f.html, sheet::render_html(sheet)); !s) return fail(s.error());
-  for (const auto& s : sheet.checkpoints) std::cout << s.checkpoint << ": " << sheet::verdict(s.report) << "\n";
+  for (const auto& s : sheet.checkpoints) std::cout << s.checkpoint << ": " << sheet::section_verdict(s) << "\n";
+  for (const auto& s : sheet.images)
+    if (s.check) std::cout << s.title << ": " << sheet::image_verdict(*s.check) << "\n";
   return 0;
 }
 

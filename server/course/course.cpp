@@ -120,6 +120,15 @@ render::RenderRequest Course::render_request(shader::ShaderFile vertex, shader::
   return r;
 }
 
+namespace {
+constexpr EnumName<DeliverableTest> kDeliverableTests[] = {{DeliverableTest::frames, "saved frames"},
+                                                           {DeliverableTest::code, "code"},
+                                                           {DeliverableTest::probe, "code under a hidden light"},
+                                                           {DeliverableTest::match, "saved frames made by your code"}};
+}  // namespace
+
+std::string_view to_string(DeliverableTest test) { return name_in(kDeliverableTests, test); }
+
 bool Checkpoint::applies(DeliverableTest test) const {
   switch (test) {
     case DeliverableTest::frames: return true;

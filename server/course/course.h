@@ -17,6 +17,7 @@
 #include "grade/grade_spec.h"
 #include "render/render_request.h"
 #include "scene/mesh.h"
+#include "scene/scene_description.h"
 #include "shader/shader_source.h"
 
 namespace shadelab::course {
@@ -60,6 +61,9 @@ struct TestWeights {
   double frames = 1, code = 1, probe = 1, match = 1;
 };
 enum class DeliverableTest { frames, code, probe, match };
+// What Gradescope calls each test after the deliverable's title: "saved frames", "code", "code
+// under a hidden light", "saved frames made by your code".
+std::string_view to_string(DeliverableTest test);
 
 // A deliverable: the frames `images/{frame name with prefix}` and, when `code` names a stem, the
 // shaders `{code}_vert.js` / `{code}_frag.js` handed in with it.
@@ -112,11 +116,28 @@ struct Question {
   std::string render_colours;
 };
 
+// The largest side of a hand-in image that is read: a Blender render handed in is 1920 x 1080
+// (Blender's default output), and nothing a homework asks for is larger than this.
+inline constexpr unsigned kMaxHandInSide = 8192;
+
 // An image the student hands in beside the page's frames (the Blender half's renders), by its
 // path in their folder.
 struct HandInImage {
   std::string file;   // images/camera_25.png
   std::string title;  // "Dolly zoom: 25 mm"
+  // The scene the image must show, when it is checked (the dolly zoom's cameras): its camera is
+  // the one the handout asks for, and ShadeLab renders its subject from that camera and from the
+  // other checked images' to compare outlines (grade/camera_check.h). Empty: shown, not checked.
+  std::string scene_file;    // as the profile names it: ../assets/scenes/dolly_25mm.json
+  std::string scene_source;  // where it was read: "builtin:assets/scenes/dolly_25mm.json", or its path
+  std::optional<scene::SceneDescription> scene;
+  // Without a scene: how many objects the handout asks the render to show (the Eevee render's
+  // two). The image is checked for what it shows alone (a PNG, not blank: grade/render_check.h);
+  // the objects are the TA's to judge, and the check says so. 0: not checked.
+  int objects = 0;
+  double points = 0;  // Gradescope's points for the check; 0: reported for the TA
+
+  bool checked() const { return scene.has_value() || objects > 0; }
 };
 
 // A mesh the page offers. Embedded meshes are compiled into the binary and travel to workers by

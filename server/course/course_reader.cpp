@@ -12,6 +12,7 @@
 #include "core/hash.h"
 #include "core/json_reader.h"
 #include "grade/starter_constants.h"
+#include "scene/scene_description.h"
 
 namespace shadelab::course {
 
@@ -348,6 +349,25 @@ class Parser {
     }
   }
 
+  // The scene a hand-in image is checked against: a scene file (docs/scenes.md) beside the profile.
+  std::optional<scene::SceneDescription> checked_scene(const JsonReader& i, const std::string& path, std::string& source) {
+    if (!error_.empty()) return std::nullopt;
+    auto read = files_.read(path);
+    if (!read) {
+      i.fail_at(i.at("scene"), read.error().message);
+      return std::nullopt;
+    }
+    source = source_of(*read);
+    const auto j = nlohmann::json::parse(read->bytes, nullptr, false);
+    auto parsed = j.is_discarded() ? Expected<scene::SceneDescription>(make_error(ErrorCode::invalid_argument, "not JSON"))
+                                   : scene::parse_scene(j);
+    if (!parsed) {
+      i.fail_at(i.at("scene"), path + " is not a scene: " + parsed.error().message);
+      return std::nullopt;
+    }
+    return std::move(*parsed);
+  }
+
   // The notebook's questions and the images handed in with it (both optional).
   void notebook(const JsonReader& r) {
     if (!r.has("notebook")) return;
@@ -361,12 +381,15 @@ class Parser {
       if (!renders.empty() && !course_.preset(renders)) q.fail_at(q.at("renderColours"), "'" + renders + "' is not one of the course's presets");
     }
     for (const JsonReader& i : n.objects("images")) {
-      i.only({"file", "title"});
+      i.only({"file", "title", "scene", "objects", "points"});
       i.require("file") && i.require("title");
-      HandInImage image{i.text("file", ""), i.text("title", "")};
+      HandInImage image{i.text("file", ""), i.text("title", ""), i.text("scene", ""), {}, {},
+                        i.integer("objects", 0, 0, 100), i.number("points", 0, 0, 1000)};
+      if (i.has("objects") && i.has("scene")) i.fail_at(i.at("objects"), "an image is checked against its scene or for its objects, not both");
       if (i.has("file") && (!std::regex_match(image.file, std::regex("[A-Za-z0-9_./-]{1,200}")) || !image.file.ends_with(".png") ||
                             image.file.find("..") != std::string::npos || image.file.starts_with("/")))
         i.fail_at(i.at("file"), "expected a relative path of a .png file in the student's folder");
+      if (!image.scene_file.empty()) image.scene = checked_scene(i, image.scene_file, image.scene_source);
       course_.images.push_back(std::move(image));
     }
   }

@@ -102,7 +102,13 @@ json to_json(const Course& c, bool portable) {
       if (!q.render_colours.empty()) one["renderColours"] = q.render_colours;
       questions.push_back(one);
     }
-    for (const auto& i : c.images) images.push_back({{"file", i.file}, {"title", i.title}});
+    for (const auto& i : c.images) {
+      json image = {{"file", i.file}, {"title", i.title}};
+      if (!i.scene_file.empty()) image["scene"] = portable ? i.scene_source : i.scene_file;
+      if (i.objects != 0) image["objects"] = i.objects;
+      if (i.points != 0) image["points"] = i.points;
+      images.push_back(std::move(image));
+    }
     out["notebook"] = {{"questions", questions}, {"images", images}};
   }
   for (const auto& k : c.starter_constants)

@@ -112,4 +112,14 @@ void sort_submission(std::vector<fs::path>& files) {
   });
 }
 
+const fs::path* file_at(const std::vector<fs::path>& files, const std::string& path) {
+  const fs::path* found = nullptr;
+  for (const auto& f : files) {
+    const std::string p = f.generic_string();
+    if ((p == path || p.ends_with("/" + path)) && (!found || std::distance(f.begin(), f.end()) < std::distance(found->begin(), found->end())))
+      found = &f;
+  }
+  return found;
+}
+
 }  // namespace shadelab::course

@@ -56,6 +56,10 @@ SavedFrameFiles saved_frame_files(const Course& course, const Checkpoint& checkp
 // "starter_vert.js and starter_frag.js (or normals_vert.js and normals_frag.js)": what was looked for.
 std::string wanted_files(const Course& course, const Checkpoint& checkpoint);
 
+// The file at `path` (images/camera_25.png), or at a path ending in it, the shallowest first: a
+// student's folder may sit inside another.
+const std::filesystem::path* file_at(const std::vector<std::filesystem::path>& files, const std::string& path);
+
 // "a.js, b.js and 3 more", or "nothing": what a student is told their submission held.
 std::string listing(const std::vector<std::filesystem::path>& files);
 

@@ -6,6 +6,8 @@
 #include <optional>
 
 #include "course/submission_files.h"
+#include "grade/deliverable_score.h"
+#include "grade/hand_in_checks.h"
 #include "image/png_info.h"
 #include "render/render_request.h"
 #include "sheet/notebook.h"
@@ -21,9 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A Blender render handed in is 1920 x 1080 (Blender's default output); a sheet takes up to this.
-constexpr unsigned kMaxHandInSide = 8192;
-
 const std::string& text_of(const SheetInput& input, const fs::path& path) {
   static const std::string none;
   for (const auto& f : input.files)
@@ -36,8 +35,9 @@ struct CourseJob {
   worker::Job job;
   std::string payload;
 };
-CourseJob job_for(const course::Course& course, worker::JobKind kind, const SheetInput& input, const fs::path& vert, const fs::path& frag) {
-  CourseJob out{worker::course_job(course, kind), {}};
+// The course's render job with the student's pair: the grid their code draws.
+CourseJob render_job_for(const course::Course& course, const SheetInput& input, const fs::path& vert, const fs::path& frag) {
+  CourseJob out{worker::course_job(course, worker::JobKind::render), {}};
   (void)worker::attach_course_mesh(course, course.default_mesh, out.job, out.payload);  // the default mesh is the course's own
   out.job.request.vertex = {vert.filename().string(), text_of(input, vert)};
   out.job.request.fragment = {frag.filename().string(), text_of(input, frag)};
@@ -68,13 +68,10 @@ Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& c
 
 // The file `input` holds at `name` (a file name, or a path ending in it), the shallowest first.
 const SubmittedFile* image_named(const SheetInput& input, const std::string& name) {
-  const SubmittedFile* found = nullptr;
-  for (const auto& f : input.images) {
-    const std::string path = f.path.generic_string();
-    const bool match = path == name || path.ends_with("/" + name);
-    if (match && (!found || std::distance(f.path.begin(), f.path.end()) < std::distance(found->path.begin(), found->path.end()))) found = &f;
-  }
-  return found;
+  std::vector<fs::path> paths;
+  for (const auto& f : input.images) paths.push_back(f.path);
+  const fs::path* found = course::file_at(paths, name);
+  return found ? &input.images[static_cast<size_t>(found - paths.data())] : nullptr;
 }
 
 // A checkpoint without code: the frames the student saved under its prefix, when they did.
@@ -141,7 +138,7 @@ Expected<CheckpointSection> code_section(worker::WorkerPool& pool, const course:
   auto report = graded(pool, course, checkpoint, input, pair, reference_store);
   if (!report) return report.take_error();
   s.report = std::move(*report);
-  auto png = grid(pool, job_for(course, worker::JobKind::render, input, pair.first, pair.second));
+  auto png = grid(pool, render_job_for(course, input, pair.first, pair.second));
   if (!png) return png.take_error();
   s.grid_png = std::move(*png);
   s.grid_caption = "rendered from the student's code";
@@ -158,6 +155,9 @@ Expected<CheckpointSection> section(worker::WorkerPool& pool, const course::Cour
                                        : Expected<CheckpointSection>(from_saved_frames(course, checkpoint, input));
   if (!s) return s;
   if (auto added = add_saved_frames(pool, course, input, checkpoint, pair, reference_store, *s); !added) return added.take_error();
+  s->score = grade::score_deliverable(checkpoint, checkpoint.points,
+                                      {s->graded ? &s->report : nullptr, s->frames_report ? &*s->frames_report : nullptr,
+                                       s->match_report ? &*s->match_report : nullptr});
   return s;
 }
 
@@ -170,7 +170,7 @@ std::vector<ImageSection> images(const course::Course& course, const SheetInput&
     const auto info = f ? image::png_info(f->text) : std::nullopt;
     if (!f) s.problem = "not in the submission";
     else if (!info) s.problem = f->path.string() + " is not a PNG file";
-    else if (info->width > kMaxHandInSide || info->height > kMaxHandInSide) s.problem = f->path.string() + " is larger than 8192 pixels a side";
+    else if (info->width > course::kMaxHandInSide || info->height > course::kMaxHandInSide) s.problem = f->path.string() + " is larger than 8192 pixels a side";
     else s.png = f->text;
     out.push_back(std::move(s));
   }
@@ -285,6 +285,12 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course,
   sheet.answers = input.answers;
   for (const auto& q : course.questions) sheet.questions.push_back(q.text);
   sheet.images = images(course, input);
+  auto checks = std::async(std::launch::async, [&pool, &course, &input] {
+    return grade::check_hand_in_images(pool, course, [&input](const std::string& file) -> const std::string* {
+      const SubmittedFile* f = image_named(input, file);
+      return f ? &f->text : nullptr;
+    });
+  });
   std::vector<fs::path> paths;
   for (const auto& f : input.files) paths.push_back(f.path);
   course::sort_submission(paths);
@@ -312,7 +318,12 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course,
     if (s) sheet.scenes.push_back(std::move(*s));
     else if (!failed) failed = s.error();
   }
+  auto checked = checks.get();
+  if (!checked && !failed) failed = checked.error();
   if (failed) return *failed;
+  for (auto& check : *checked)
+    for (auto& image : sheet.images)
+      if (image.file == check.file) image.check = std::move(check);
   if (auto s = add_answers(pool, course, input, sheet); !s) return s.take_error();
   return sheet;
 }

@@ -14,9 +14,19 @@ std::string verdict(const grade::Report& report) {
   return std::string(score) + ": " + why;
 }
 
-std::string section_verdict(const CheckpointSection& s) {
-  if (s.graded || s.report.messages.empty()) return verdict(s.report);
-  return s.report.messages.front();
+std::string image_verdict(const grade::ImageCheck& check) {
+  char score[64];
+  std::snprintf(score, sizeof score, "%g / %g", check.score(), check.points);
+  return std::string(score) + (check.points == 0 ? " (for the TA)" : "") + ": " + check.text();
+}
+
+std::string section_verdict(const CheckpointSection& s) { return s.score.verdict(); }
+
+std::string_view section_class(const CheckpointSection& s) {
+  if (s.score.max_score > 0 && s.score.score >= s.score.max_score - 1e-9) return "pass";
+  for (const auto& t : s.score.tests)
+    if (t.report) return "fail";
+  return "note";
 }
 
 std::vector<std::string> frames_lines(const CheckpointSection& s) {

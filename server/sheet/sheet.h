@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "grade/image_check.h"
+#include "grade/deliverable_score.h"
 #include "grade/report.h"
 #include "scene/scene_description.h"
 #include "scene_render/framing.h"
@@ -44,6 +46,7 @@ struct CheckpointSection {
   std::string saved_grid_png;                  // set when there is code to show them beside
   std::optional<grade::Report> frames_report;  // against the reference, at their lags
   std::optional<grade::Report> match_report;   // against what the code renders
+  grade::DeliverableScore score;               // the three above as Gradescope scores them
 };
 
 // An image the course asks for beside the frames, as the student handed it in.
@@ -52,6 +55,7 @@ struct ImageSection {
   std::string file;     // where it was looked for: images/camera_25.png
   std::string png;      // empty when missing or unreadable
   std::string problem;  // why, then
+  std::optional<grade::ImageCheck> check;  // the course checks it (the dolly zoom's cameras)
 };
 
 struct SceneSection {
@@ -86,8 +90,10 @@ struct Sheet {
 
 // The grader's verdict in one line: "1 / 1: matches the reference exactly".
 std::string verdict(const grade::Report& report);
-// A section's line: the verdict when its code was graded, else what was handed in.
+// A section's line: its score as Gradescope gives it, and why (grade/deliverable_score.h).
 std::string section_verdict(const CheckpointSection& section);
+// The line's colour: "pass" (every point), "fail" (something graded fell short) or "note".
+std::string_view section_class(const CheckpointSection& section);
 // The saved frames' verdicts in words: "saved frames: 1 / 1: matches the reference ... (drawn 0.05
 // to 0.30 degrees behind their nominal angles)", then "saved frames against the code: ...".
 std::vector<std::string> frames_lines(const CheckpointSection& section);
@@ -95,6 +101,8 @@ std::vector<std::string> frames_lines(const CheckpointSection& section);
 std::set<int> lines_pointed_at(const grade::Report& report, const std::string& file_name);
 // "both objects fully in the image", or which are not: the checklist's framing requirement.
 std::string framing_verdict(const SceneSection& scene);
+// A checked image's line: "0 / 0 (for the TA): matches the handout's camera (...)".
+std::string image_verdict(const grade::ImageCheck& check);
 // One object's framing in words: "fully in the image, covers 12.3% of it".
 std::string framing_line(const scene_render::ObjectFraming& f);
 // A Principled material in the words Blender's panel uses.

@@ -46,8 +46,10 @@ void code(std::ostringstream& out, const CodeListing& listing) {
 
 void checkpoint(std::ostringstream& out, const CheckpointSection& s, size_t index) {
   out << "<section id=\"" << escape(s.checkpoint) << "\">\n<h2>" << index << ". " << escape(s.title)
-      << "</h2>\n<p class=\"" << (s.report.pass ? "pass" : s.graded ? "fail" : "note") << "\">" << escape(section_verdict(s)) << "</p>\n";
-  for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) out << "<p class=\"note\">" << escape(s.report.messages[k]) << "</p>\n";
+      << "</h2>\n<p class=\"" << section_class(s) << "\">" << escape(section_verdict(s)) << "</p>\n";
+  // Below the score: the code's report when it was graded, else what was handed in.
+  for (size_t k = 0; k < s.report.messages.size() && k < 4; ++k)
+    out << "<p class=\"note\">" << escape(s.report.messages[k]) << "</p>\n";
   for (const auto& line : frames_lines(s))
     out << "<p class=\"" << (s.frames_report && s.frames_report->pass ? "pass" : "fail") << "\">" << escape(line) << "</p>\n";
   if (!s.saved_grid_png.empty())
@@ -64,6 +66,7 @@ void checkpoint(std::ostringstream& out, const CheckpointSection& s, size_t inde
 
 void handed_in(std::ostringstream& out, const ImageSection& s) {
   out << "<section class=\"image\">\n<h2>" << escape(s.title) << " <span class=\"note\">(" << escape(s.file) << ")</span></h2>\n";
+  if (s.check && s.problem.empty()) out << "<p class=\"" << (s.check->verdict.pass ? "pass" : "fail") << "\">" << escape(image_verdict(*s.check)) << "</p>\n";
   if (!s.problem.empty()) out << "<p class=\"fail\">" << escape(s.problem) << "</p>\n";
   else out << "<img alt=\"" << escape(s.title) << "\" src=\"data:image/png;base64," << base64_encode(s.png) << "\">\n";
   out << "</section>\n";

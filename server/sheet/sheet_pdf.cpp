@@ -228,8 +228,10 @@ class PageWriter {
 void checkpoint(PageWriter& w, const CheckpointSection& s, size_t index) {
   w.text(std::to_string(index) + ". " + s.title, kSans, 13, kInk, true);
   // Wrapped: a verdict with the lags found runs past the page's width, and a TA reads all of it.
-  w.paragraph(section_verdict(s), 9.5, s.report.pass ? kPass : s.graded ? kFail : kGrey);
-  for (size_t k = 1; k < s.report.messages.size() && k < 4; ++k) w.paragraph(s.report.messages[k], 8.5, kGrey);
+  const std::string_view how = section_class(s);
+  w.paragraph(section_verdict(s), 9.5, how == "pass" ? kPass : how == "fail" ? kFail : kGrey);
+  // Below the score: the code's report when it was graded, else what was handed in.
+  for (size_t k = 0; k < s.report.messages.size() && k < 4; ++k) w.paragraph(s.report.messages[k], 8.5, kGrey);
   for (const auto& line : frames_lines(s)) w.paragraph(line, 9, s.frames_report && s.frames_report->pass ? kPass : kFail);
   w.gap(4);
   if (!s.saved_grid_png.empty() && !s.grid_png.empty()) {
@@ -291,6 +293,7 @@ void questions(PageWriter& w, const Sheet& sheet) {
 
 void handed_in(PageWriter& w, const ImageSection& s) {
   w.text(printable(s.title) + " (" + printable(s.file) + ")", kSans, 13, kInk, true);
+  if (s.check && s.problem.empty()) w.paragraph(printable(image_verdict(*s.check)), 9.5, s.check->verdict.pass ? kPass : kFail);
   if (!s.problem.empty()) {
     w.text(printable(s.problem), kSans, 9.5, kFail);
     return;

@@ -159,7 +159,7 @@ namespace shadelab::worker {
 namespace {
 
 constexpr std::initializer_list<JobKind> kKinds = {JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade,
-                                                   JobKind::grade_frames, JobKind::scene};
+                                                   JobKind::grade_frames, JobKind::scene, JobKind::check_images};
 
 bool is_grade(JobKind k) { return k == JobKind::grade || k == JobKind::grade_frames; }
 
@@ -196,6 +196,7 @@ std::string_view to_string(JobKind k) {
     case JobKind::grade: return "grade";
     case JobKind::grade_frames: return "grade_frames";
     case JobKind::scene: return "scene";
+    case JobKind::check_images: return "check_images";
   }
   return "render";
 }
@@ -222,6 +223,19 @@ Message to_message(const SceneJob& job) {
   }
   m.header = {{"kind", to_string(JobKind::scene)}, {"scene", job.scene}, {"meshFormats", formats},
               {"meshes", pack_parts(parts, m.payload)}};
+  return m;
+}
+
+Message to_message(const ImagesJob& job) {
+  Message m;
+  std::vector<PayloadPartView> parts;
+  json images = json::array();
+  for (const auto& image : job.images) {
+    images.push_back({{"file", image.file}, {"scene", image.scene ? json(*image.scene) : json(nullptr)}, {"objects", image.objects},
+                      {"problem", image.problem}});
+    parts.push_back({image.file, image.png});
+  }
+  m.header = {{"kind", to_string(JobKind::check_images)}, {"images", images}, {"pngs", pack_parts(parts, m.payload)}};
   return m;
 }
 
@@ -254,6 +268,26 @@ Expected<SceneJob> scene_job_from_message(const Message& m) {
     return job;
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("malformed scene job: ") + e.what());
+  }
+}
+
+Expected<ImagesJob> images_job_from_message(const Message& m) {
+  try {
+    auto pngs = unpack_parts(m.header.at("pngs"), m.payload);
+    if (!pngs) return pngs.take_error();
+    const json& images = m.header.at("images");
+    if (images.size() != pngs->size()) return make_error(ErrorCode::worker_protocol, "a checked image without its bytes");
+    ImagesJob job;
+    for (size_t i = 0; i < pngs->size(); ++i) {
+      const json& image = images[i];
+      CheckedImage c{image.at("file").get<std::string>(), std::nullopt, image.at("objects").get<int>(), std::move((*pngs)[i].bytes),
+                     image.at("problem").get<std::string>()};
+      if (!image.at("scene").is_null()) c.scene = image.at("scene").get<scene::SceneDescription>();
+      job.images.push_back(std::move(c));
+    }
+    return job;
+  } catch (const json::exception& e) {
+    return make_error(ErrorCode::worker_protocol, std::string("malformed image check: ") + e.what());
   }
 }
 

@@ -11,6 +11,7 @@
 // | grade      | Job      | the uploaded mesh, if any      | GradeResult                     |
 // | grade_frames | Job    | the uploaded mesh, saved frames | FramesGradeResult              |
 // | scene      | SceneJob | each non-built-in mesh's bytes | SceneResult                     |
+// | check_images | ImagesJob | the handed-in PNGs         | ImagesResult                    |
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,7 +27,7 @@
 
 namespace shadelab::worker {
 
-enum class JobKind { render, compile, mesh_check, grade, grade_frames, scene };
+enum class JobKind { render, compile, mesh_check, grade, grade_frames, scene, check_images };
 enum class Output { grid, frames, json };
 enum class Format { png, exr };
 
@@ -68,14 +69,31 @@ struct SceneJob {
   std::vector<SceneMeshBytes> meshes;
 };
 
+// The Blender half's images a student handed in, each checked as the course asks: against a scene
+// (the dolly zoom's cameras, grade/camera_check.h: the first such image's subject is the set's),
+// or for the objects in it (grade/render_check.h). A stranger's PNG is decoded in the worker.
+struct CheckedImage {
+  std::string file;                             // images/camera_25.png
+  std::optional<scene::SceneDescription> scene;  // the course's, validated when the profile was read
+  int objects = 0;                              // without a scene: how many objects it must show
+  std::string png;                              // empty: `problem` says why
+  std::string problem;                          // "not in the submission"
+};
+
+struct ImagesJob {
+  std::vector<CheckedImage> images;
+};
+
 Message to_message(const Job& job, std::string mesh_bytes = {});
 Message to_message(const Job& job, const FramesPayload& payload);  // a grade_frames job
 Message to_message(const SceneJob& job);
+Message to_message(const ImagesJob& job);
 
 // The kind a message carries, for the worker's dispatch; worker_protocol when there is none.
 Expected<JobKind> job_kind_of(const Message& message);
 Expected<Job> job_from_message(const Message& message);
 Expected<SceneJob> scene_job_from_message(const Message& message);
+Expected<ImagesJob> images_job_from_message(const Message& message);
 Expected<FramesPayload> frames_payload_from(const Message& message);
 
 std::string_view to_string(JobKind k);

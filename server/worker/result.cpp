@@ -30,6 +30,17 @@ void from_json(const json& j, Error& e) {
 
 }  // namespace shadelab
 
+namespace shadelab::grade {
+
+void to_json(json& j, const ImageVerdict& v) { j = {{"pass", v.pass}, {"message", v.message}, {"leavesOut", v.leaves_out}}; }
+void from_json(const json& j, ImageVerdict& v) {
+  j.at("pass").get_to(v.pass);
+  j.at("message").get_to(v.message);
+  j.at("leavesOut").get_to(v.leaves_out);
+}
+
+}  // namespace shadelab::grade
+
 namespace shadelab::render {
 
 void to_json(json& j, const VariableInfo& v) { j = {{"name", v.name}, {"type", v.type}, {"arraySize", v.array_size}}; }
@@ -210,6 +221,9 @@ void from_json(const json& j, FramesGradeResult& r) {
   r.code = j.at("code").is_null() ? std::nullopt : std::optional<grade::Report>(j.at("code").get<grade::Report>());
 }
 
+void to_json(json& j, const ImagesResult& r) { j = {{"verdicts", r.verdicts}}; }
+void from_json(const json& j, ImagesResult& r) { j.at("verdicts").get_to(r.verdicts); }
+
 namespace {
 
 // The files each result carries beside its JSON, by name.
@@ -227,6 +241,7 @@ std::vector<PayloadPartView> files_of(const GradeResult& r) { return heatmap_fil
 std::vector<PayloadPartView> files_of(const FramesGradeResult& r) { return heatmap_file(r.heatmap_png); }
 std::vector<PayloadPartView> files_of(const CompileResult&) { return {}; }
 std::vector<PayloadPartView> files_of(const MeshCheckResult&) { return {}; }
+std::vector<PayloadPartView> files_of(const ImagesResult&) { return {}; }
 
 // The file of an answer of that name, moved out; empty when there is none.
 std::string take_file(std::vector<PayloadPart>& files, std::string_view name) {
@@ -246,6 +261,7 @@ void take_files(GradeResult& r, std::vector<PayloadPart>& files) { r.heatmap_png
 void take_files(FramesGradeResult& r, std::vector<PayloadPart>& files) { r.heatmap_png = take_file(files, "heatmap.png"); }
 void take_files(CompileResult&, std::vector<PayloadPart>&) {}
 void take_files(MeshCheckResult&, std::vector<PayloadPart>&) {}
+void take_files(ImagesResult&, std::vector<PayloadPart>&) {}
 
 template <class Result>
 Message ok(const Result& r) {
@@ -263,6 +279,7 @@ Message answer(const MeshCheckResult& r) { return ok(r); }
 Message answer(const SceneResult& r) { return ok(r); }
 Message answer(const GradeResult& r) { return ok(r); }
 Message answer(const FramesGradeResult& r) { return ok(r); }
+Message answer(const ImagesResult& r) { return ok(r); }
 Message answer(const Error& e) { return {{{"ok", false}, {"error", e}}, {}}; }
 
 template <class Result>
@@ -286,5 +303,6 @@ template Expected<MeshCheckResult> result_from(const Message&);
 template Expected<SceneResult> result_from(const Message&);
 template Expected<GradeResult> result_from(const Message&);
 template Expected<FramesGradeResult> result_from(const Message&);
+template Expected<ImagesResult> result_from(const Message&);
 
 }  // namespace shadelab::worker

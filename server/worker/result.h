@@ -11,6 +11,7 @@
 // | scene      | SceneResult     | the PNG                                                |
 // | grade      | GradeResult     | the heat map PNG, when the submission rendered         |
 // | grade_frames | FramesGradeResult | the heat map PNG of the saved frames                 |
+// | check_images | ImagesResult | none                                                  |
 #include <array>
 #include <optional>
 #include <string>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "grade/image_check.h"
 #include "grade/report.h"
 #include "render/render_request.h"
 #include "scene_render/scene_report.h"
@@ -85,6 +87,11 @@ struct FramesGradeResult {
   std::string heatmap_png;  // the saved frames against the reference; empty when they did not decode
 };
 
+// The handed-in images judged, in the job's order.
+struct ImagesResult {
+  std::vector<grade::ImageVerdict> verdicts;
+};
+
 // Worker side: the answer to send.
 Message answer(const CompileResult& r);
 Message answer(const RenderResult& r);
@@ -92,6 +99,7 @@ Message answer(const MeshCheckResult& r);
 Message answer(const SceneResult& r);
 Message answer(const GradeResult& r);
 Message answer(const FramesGradeResult& r);
+Message answer(const ImagesResult& r);
 Message answer(const Error& e);
 
 // Reader side: the result an answer holds, its Error, or worker_protocol when it is malformed.
@@ -117,6 +125,8 @@ void to_json(nlohmann::json& j, const GradeResult& r);
 void from_json(const nlohmann::json& j, GradeResult& r);
 void to_json(nlohmann::json& j, const FramesGradeResult& r);
 void from_json(const nlohmann::json& j, FramesGradeResult& r);
+void to_json(nlohmann::json& j, const ImagesResult& r);
+void from_json(const nlohmann::json& j, ImagesResult& r);
 
 }  // namespace shadelab::worker
 
@@ -126,6 +136,11 @@ namespace shadelab {
 void to_json(nlohmann::json& j, const Error& e);
 void from_json(const nlohmann::json& j, Error& e);
 }  // namespace shadelab
+
+namespace shadelab::grade {
+void to_json(nlohmann::json& j, const ImageVerdict& v);
+void from_json(const nlohmann::json& j, ImageVerdict& v);
+}  // namespace shadelab::grade
 
 namespace shadelab::render {
 void to_json(nlohmann::json& j, const VariableInfo& v);
