@@ -49,14 +49,16 @@ CameraVerdict judge_camera(const Outline& outline, const CameraView& handout, co
   const ViewOutline* own = nullptr;
   const ViewOutline* best = nullptr;
   double best_overlap = -1, runner_up = -1;
+  Outline mine;  // the student's on the views' grid, resampled once (judge_cameras renders a set's views at one size)
   for (const auto& view : views) {
-    const double o = overlap(resampled(outline, view.outline.width, view.outline.height), view.outline);
+    if (mine.width != view.outline.width || mine.height != view.outline.height) mine = resampled(outline, view.outline.width, view.outline.height);
+    const double o = overlap(mine, view.outline);
     if (view.view == handout) own = &view, v.overlap = o;
     if (o > best_overlap) runner_up = best_overlap, best_overlap = o, best = &view;
     else runner_up = std::max(runner_up, o);
   }
   if (!own) return {false, "not checked: no render of the handout's camera to compare with", {}, 0, 0};
-  const Outline mine = resampled(outline, own->outline.width, own->outline.height);
+  if (mine.width != own->outline.width || mine.height != own->outline.height) mine = resampled(outline, own->outline.width, own->outline.height);
   const double coverage = mine.coverage(), expected = own->outline.coverage();
   v.size_ratio = expected > 0 ? std::sqrt(coverage / expected) : 0;
   if (coverage == 0 || coverage > 0.95) {
