@@ -21,7 +21,7 @@ struct RenderFact {
 struct RenderCheck {
   bool pass = false;  // every fact holds
   std::vector<RenderFact> facts;
-  std::string facts_line() const;  // "a PNG: yes (640 x 480); not blank: yes (61.5% of ...)"
+  std::string facts_line() const;  // "a PNG: yes (W x H); not blank: yes (61.5% of ...)"
 };
 
 struct RenderCheckOptions {
