@@ -180,6 +180,31 @@ TEST_F(FaultTest, AMeshThatCrashesTheLoaderIsContainedInAWorker) {
   EXPECT_EQ(after->status, 200) << after->body;
 }
 
+// The grader's own work crashing is never the submission's: the grade is tried once more on a
+// fresh worker, and where it crashes again the answer says it was not graded, and how the worker died.
+TEST_F(FaultTest, AGraderThatCrashesIsTriedAgainAndNeverBlamesTheStudent) {
+  const std::string tag = " " + std::to_string(++serial_);
+  const auto crashes = [] {
+    std::istringstream log(testkit::read_text(log_.string()));
+    int n = 0;
+    for (std::string line; std::getline(log, line);) n += line.rfind("grader crash ", 0) == 0;
+    return n;
+  };
+  const int before = crashes();
+  const json job = {{"vertex", shader("specular_vert.js")}, {"fragment", shader("specular_frag.js") + "\n// shadelab-fault: grader crash" + tag + "\n"},
+                    {"reference", "specular"}};
+  auto r = server_->client().Post("/api/grade", job.dump(), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 500) << r->body;
+  const json problem = json::parse(r->body, nullptr, false);
+  EXPECT_EQ(problem.value("code", ""), "grader_failed") << r->body;
+  EXPECT_NE(problem.value("detail", "").find("the worker crashed (signal Segmentation fault) rendering the grader's references; not the submission's doing"),
+            std::string::npos)
+      << r->body;
+  EXPECT_EQ(crashes() - before, 2) << "the first crash is tried again, once";
+  EXPECT_TRUE(whole_within(std::chrono::seconds(10)));
+}
+
 // When a worker draws its warm-up (the built-in course's default job, its mesh parsed): after it
 // says it is ready, in a server; never in a command's pool (the CLI's), whose jobs are there at
 // once. What the worker's first answer says it holds tells which.

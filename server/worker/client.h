@@ -31,8 +31,8 @@ Expected<Answered<Result>> run(WorkerPool& pool, Message job, WorkerPool::Lane l
 }
 
 // A job run once more, ahead of the queue on a fresh worker, when its first attempt was stopped
-// (a timeout) or its worker was lost: either may be the machine's doing, so neither counts until
-// it happens twice.
+// (a timeout), its worker was lost, or the grader's own renders failed: each may be the machine's
+// or the grader's doing, so none counts against the submission until it happens twice.
 template <class Result>
 struct Attempted {
   Expected<Answered<Result>> answered;

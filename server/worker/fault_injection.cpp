@@ -27,6 +27,7 @@ std::string_view name_of(FaultPhase phase) {
     case FaultPhase::readback: return "readback";
     case FaultPhase::encode: return "encode";
     case FaultPhase::mesh: return "mesh";
+    case FaultPhase::grader: return "grader";
   }
   return "?";
 }
@@ -66,7 +67,7 @@ FaultPlan fault_plan(std::string_view text) {
   // Whatever follows the action (a request's serial number, say) is ignored.
   const std::string action = words.substr(space + 1, words.find_first_of(" \r", space + 1) - space - 1);
   FaultPlan plan{true, FaultPhase::compile, action};
-  for (auto p : {FaultPhase::compile, FaultPhase::render, FaultPhase::readback, FaultPhase::encode, FaultPhase::mesh})
+  for (auto p : {FaultPhase::compile, FaultPhase::render, FaultPhase::readback, FaultPhase::encode, FaultPhase::mesh, FaultPhase::grader})
     if (name_of(p) == phase) return plan.phase = p, plan;
   return {};
 }

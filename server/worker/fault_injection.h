@@ -15,6 +15,7 @@
 // | readback | frame 0's pixels read back (in the frame sink)                         |
 // | encode   | every frame rendered, the output not yet encoded                       |
 // | mesh     | an uploaded mesh's bytes received, not yet parsed (its check job)      |
+// | grader   | a grade's own work begun: its references not yet rendered              |
 //
 // | action   | what the worker does                                                   |
 // |----------|------------------------------------------------------------------------|
@@ -34,7 +35,7 @@
 
 namespace shadelab::worker {
 
-enum class FaultPhase { compile, render, readback, encode, mesh };
+enum class FaultPhase { compile, render, readback, encode, mesh, grader };
 
 struct FaultPlan {
   bool active = false;

@@ -238,9 +238,12 @@ struct WorkerPool::Slot {
     // Under a cgroup cap the kernel's OOM killer ends the worker with SIGKILL (we only send
     // SIGKILL after reaping, so a SIGKILL we did not send is the cap's).
     const bool cgroup_oom = cgroup_capped && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
+    std::string how = WIFSIGNALED(status) ? std::string("signal ") + ::strsignal(WTERMSIG(status))
+                                          : "exit status " + std::to_string(WEXITSTATUS(status));
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) how = "its CPU time limit";
     if (phase == JobPhase::grader) {
       (over_memory || cgroup_oom ? pool.out_of_memory_ : pool.crashes_)++;
-      return worker_error(ErrorCode::grader_failed, std::string("the worker ") + (over_memory || cgroup_oom ? "ran out of memory" : "crashed") +
+      return worker_error(ErrorCode::grader_failed, std::string("the worker ") + (over_memory || cgroup_oom ? "ran out of memory" : "crashed (" + how + ")") +
                                                         " rendering the grader's references; not the submission's doing: "
                                                         "it was not graded, so grade it again");
     }
@@ -250,9 +253,6 @@ struct WorkerPool::Slot {
                                                          std::to_string(pool.config_.memory_limit_bytes >> 20) + " MiB");
     }
     pool.crashes_++;
-    std::string how = WIFSIGNALED(status) ? std::string("signal ") + ::strsignal(WTERMSIG(status))
-                                          : "exit status " + std::to_string(WEXITSTATUS(status));
-    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) how = "its CPU time limit";
     if (kind == "mesh_check")  // the mesh library (assimp) crashed on the uploaded file
       return worker_error(ErrorCode::mesh_parse_failed, "the mesh file crashed the mesh reader (" + how +
                                                             "); it cannot be read; other requests are not affected");

@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "scene/scene_mesh.h"
 #include "scene_render/scene_renderer.h"
+#include "worker/fatal_signal.h"
 #include "worker/fault_injection.h"
 #include "worker/job.h"
 #include "worker/protocol.h"
@@ -107,7 +108,10 @@ class Worker {
       const auto status = read_message(fd_, in, Clock::now() + std::chrono::hours(24 * 365));
       if (status == ReadStatus::closed) return;
       if (status != ReadStatus::ok) continue;
+      job_kind_ = in.header.is_object() ? in.header.value("kind", std::string("?")) : "?";
+      note_doing("a " + job_kind_ + " job");
       Message out = handle(in);
+      note_doing("idle");
       out.header["event"] = "result";
       out.header["caches"] = caches();
       if (!write_message(fd_, out)) return;
@@ -148,6 +152,7 @@ class Worker {
   // Tells the server which phase the job is in (worker/pool.h): "render" once the compile is
   // over, "grader" once a grade's own work begins.
   Status enter_phase(JobPhase phase) {
+    note_doing("a " + job_kind_ + " job, " + std::string(doing(phase)));
     if (write_message(fd_, {{{"event", "phase"}, {"phase", to_string(phase)}}, {}})) return Ok{};
     return make_error(ErrorCode::io_error, "lost the server");
   }
@@ -240,8 +245,12 @@ class Worker {
   }
 
   Expected<GradeResult> grade(const Job& job, const std::string& payload) {
-    auto graded = grading_.grade(job.grade, job.request, [&] { return job_mesh(job, payload); },
-                                 fitted_key(job), [&](JobPhase phase) { return enter_phase(phase); });
+    const FaultPlan fault = fault_plan(job.request.fragment.text);  // inactive outside fault-injection runs
+    auto graded = grading_.grade(job.grade, job.request, [&] { return job_mesh(job, payload); }, fitted_key(job), [&](JobPhase phase) {
+      auto entered = enter_phase(phase);
+      if (phase == JobPhase::grader) inject_fault(fault, FaultPhase::grader, fd_);
+      return entered;
+    });
     if (!graded) return graded.take_error();
     return GradeResult{std::move(graded->report), std::move(graded->heatmap_png)};
   }
@@ -350,12 +359,15 @@ class Worker {
   LruCache<scene::Mesh> meshes_{16, 384u << 20};
   scene::Mesh fitted_;
   std::string fitted_of_;  // fitted_key() of the job fitted_ was made for; empty: none
+  std::string job_kind_;  // the job being served, for the fatal-signal report
   std::optional<scene_render::SceneRenderer> scene_renderer_;  // made on the first scene job
 };
 
 }  // namespace
 
 int run_worker(int fd, const egl::ContextOptions& options, WarmUp warm_up) {
+  report_fatal_signals();
+  note_doing("starting");
   auto renderer = render::Renderer::create(options);
   if (!renderer) {
     Message failed = answer(renderer.error());
