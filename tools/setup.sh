@@ -27,6 +27,8 @@ build_packages=(
   libzstd-dev
   # Blender's OCIO config and Filmic tables: the scenes' Filmic view transform is baked from them
   blender-data
+  # the submission sheet: a student's notebook diffed with the handed-out one (dtl, header-only)
+  libdtl-dev
   # the submission sheet: cairo writes the PDF, in DejaVu's fonts
   libcairo2-dev fonts-dejavu-core
 )

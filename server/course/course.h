@@ -116,6 +116,16 @@ struct Question {
   std::string render_colours;
 };
 
+// The notebook as the course hands it out: a student's answers are what they changed in it
+// (sheet/notebook_reading.h). Each answer's place is marked by `placeholder` (a fenced block in
+// the course's notebook); the question is the text before it.
+struct HandedOutNotebook {
+  std::string file;    // as the profile names it: ../assets/notebooks/hw2_handed_out.ipynb
+  std::string source;  // where it was read: "builtin:assets/notebooks/...", or its path
+  std::string text;    // the .ipynb's bytes
+  std::string placeholder = "YOUR ANSWER HERE";
+};
+
 // The largest side of a hand-in image that is read: a Blender render handed in is 1920 x 1080
 // (Blender's default output), and nothing a homework asks for is larger than this.
 inline constexpr unsigned kMaxHandInSide = 8192;
@@ -179,6 +189,7 @@ struct Course {
   std::string default_checkpoint;
   std::vector<Alias> aliases;
   std::vector<Question> questions;    // the notebook's, in its order
+  std::optional<HandedOutNotebook> handed_out;  // the notebook the answers are read against; none: read by the cells under each question
   std::vector<HandInImage> images;    // handed in after the questions, in the notebook's order
   std::string origin;  // where it was read from: a path, or "built-in" (not part of the format)
 

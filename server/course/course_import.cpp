@@ -9,7 +9,9 @@
 #include <map>
 #include <regex>
 
+#include "core/text.h"
 #include "course/course_reader.h"
+#include "course/notebook_import.h"
 #include "course/script_facts.h"
 
 namespace shadelab::course {
@@ -22,11 +24,6 @@ using nlohmann::json;
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), {}};
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
 }
 
 std::string number_text(double v) {
@@ -82,7 +79,7 @@ std::string block_after(const std::string& s, size_t at) {
 
 // Which homework quantity a uniform's (or a value's) name is, by the words in it.
 std::optional<UniformRole> role_of(const std::string& name) {
-  const std::string n = lower(name);
+  const std::string n = lower_case(name);
   const auto has = [&](const char* word) { return n.find(word) != std::string::npos; };
   if (has("ambient")) return UniformRole::ambient;
   if (has("diffuse")) return UniformRole::diffuse;
@@ -105,7 +102,7 @@ std::string name_like_ambient(const std::map<UniformRole, std::string>& names, U
   const auto ambient = names.find(UniformRole::ambient);
   if ((role != UniformRole::diffuse && role != UniformRole::specular) || ambient == names.end()) return {};
   const std::string& n = ambient->second;
-  const size_t at = lower(n).find("ambient");
+  const size_t at = lower_case(n).find("ambient");
   std::string word(to_string(role));
   if (std::isupper(static_cast<unsigned char>(n[at]))) word[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(word[0])));
   return n.substr(0, at) + word + n.substr(at + 7);
@@ -127,6 +124,7 @@ class Importer {
     exponent();
     if (auto s = meshes(); !s) return s.take_error();
     presets();
+    notebook();
     out_.profile = std::move(p_);
     return std::move(out_);
   }
@@ -135,10 +133,24 @@ class Importer {
   void found(std::string what) { out_.found.push_back(std::move(what)); }
   void assumed(std::string what) { out_.assumed.push_back(std::move(what)); }
 
+  // The folder's notebook (HW2.ipynb, else the shallowest .ipynb) kept as the handed-out one.
+  void notebook() {
+    std::optional<FolderNotebook> nb;
+    auto path = folder_.named("HW2.ipynb");
+    for (const auto& f : folder_.files)
+      if (!path && f.extension() == ".ipynb" && f.string().find(".ipynb_checkpoints") == std::string::npos) path = f;
+    if (path) nb = FolderNotebook{path->generic_string(), folder_.text(*path)};
+    auto imported = import_notebook(nb, p_["notebook"], fs::path(o_.output).stem().string() + ".handed_out.ipynb");
+    p_["notebook"] = std::move(imported.section);
+    if (imported.kept) out_.derived_files.push_back(std::move(*imported.kept));
+    for (auto& f : imported.found) found(std::move(f));
+    for (auto& a : imported.assumed) assumed(std::move(a));
+  }
+
   void identity() {
     std::string id = o_.id;
     if (id.empty()) {
-      for (const char c : lower(fs::absolute(o_.folder).lexically_normal().filename().string()))
+      for (const char c : lower_case(fs::absolute(o_.folder).lexically_normal().filename().string()))
         if (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') id += c;
       if (id.empty() || !std::isalnum(static_cast<unsigned char>(id[0]))) id = "course-" + id;
       id = id.substr(0, 32);
@@ -299,14 +311,14 @@ class Importer {
 
   static std::string mesh_name(const std::string& stem) {
     std::string out;
-    for (const char c : lower(stem)) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
+    for (const char c : lower_case(stem)) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
     return out.substr(0, 32);
   }
 
   Status meshes() {
     json list = json::array();
     for (const auto& f : folder_.files) {
-      if (lower(f.extension().string()) != ".obj") continue;
+      if (lower_case(f.extension().string()) != ".obj") continue;
       const std::string name = mesh_name(f.stem().string());
       if (std::any_of(list.begin(), list.end(), [&](const json& m) { return m["name"] == name; })) continue;
       list.push_back({{"name", name}, {"file", path_from(o_.folder / f, o_.output)}});

@@ -16,8 +16,10 @@
 // | the starter's exponent        | the starter phong_frag.js's `float ...Alpha = N;`           |
 // | presets and references        | the folder's starter_*.js; the solution's starter_* (normals), |
 // |                               | phong_* (specular), diffuse_* when present; else built-in   |
-// | checkpoints, mistakes, probes,| the built-in profile's, each mistake kept only where its    |
-// | notebook                      | edits apply to the reference the import chose               |
+// | the notebook, its questions   | the folder's HW2.ipynb, kept beside the profile; each       |
+// |                               | placeholder's question (notebook_import.h)                  |
+// | checkpoints, mistakes, probes | the built-in profile's, each mistake kept only where its    |
+// |                               | edits apply to the reference the import chose               |
 //
 // The import writes nothing itself: the caller writes the profile and any shader the import
 // derived (a built-in reference with the folder's exponent), then loads the profile to check it.

@@ -12,6 +12,7 @@
 #include "core/hash.h"
 #include "core/json_reader.h"
 #include "grade/starter_constants.h"
+#include "course/notebook_lines.h"
 #include "scene/scene_description.h"
 
 namespace shadelab::course {
@@ -368,11 +369,41 @@ class Parser {
     return std::move(*parsed);
   }
 
+  // The notebook as handed out, beside the profile; its placeholder must mark at least one answer's place.
+  std::optional<HandedOutNotebook> handed_out(const JsonReader& n) {
+    HandedOutNotebook out{n.text("handedOut", ""), "", "", n.text("placeholder", "YOUR ANSWER HERE")};
+    if (!error_.empty()) return std::nullopt;
+    auto read = files_.read(out.file);
+    if (!read) {
+      n.fail_at(n.at("handedOut"), read.error().message);
+      return std::nullopt;
+    }
+    out.source = source_of(*read);
+    out.text = std::move(read->bytes);
+    if (out.placeholder.empty() || out.text.find(out.placeholder) == std::string::npos)
+      n.fail_at(n.at("handedOut"), out.file + " has no '" + out.placeholder + "' marking an answer's place (notebook.placeholder)");
+    return out;
+  }
+
+  // Each question looked for in the notebook is one the handed-out notebook asks.
+  void questions_placed(const JsonReader& n, const HandedOutNotebook& handed_out) {
+    if (!error_.empty()) return;
+    auto cells = notebook_cells(handed_out.text);
+    auto placed = cells ? placed_questions(notebook_lines(*cells), handed_out.placeholder) : Expected<std::vector<PlacedQuestion>>(cells.take_error());
+    if (!placed) return n.fail_at(n.at("handedOut"), handed_out.file + ": " + placed.error().message);
+    const std::vector<int> at = match_questions(course_.questions, *placed);
+    for (size_t q = 0; q < course_.questions.size(); ++q)
+      if (!course_.questions[q].cell.empty() && at[q] < 0)
+        return n.fail_at(n.at("questions"), "question '" + course_.questions[q].id + "': no question of " + handed_out.file + " holds '" +
+                                                course_.questions[q].cell + "' (its `cell` words)");
+  }
+
   // The notebook's questions and the images handed in with it (both optional).
   void notebook(const JsonReader& r) {
     if (!r.has("notebook")) return;
     const JsonReader n = r.object("notebook");
-    n.only({"questions", "images"});
+    n.only({"questions", "images", "handedOut", "placeholder"});
+    if (n.has("handedOut")) course_.handed_out = handed_out(n);
     for (const JsonReader& q : n.objects("questions")) {
       q.only({"id", "text", "cell", "renderColours"});
       q.require("id") && q.require("text");
@@ -380,6 +411,7 @@ class Parser {
       const std::string& renders = course_.questions.back().render_colours;
       if (!renders.empty() && !course_.preset(renders)) q.fail_at(q.at("renderColours"), "'" + renders + "' is not one of the course's presets");
     }
+    if (course_.handed_out) questions_placed(n, *course_.handed_out);
     for (const JsonReader& i : n.objects("images")) {
       i.only({"file", "title", "scene", "objects", "points"});
       i.require("file") && i.require("title");

@@ -110,6 +110,10 @@ json to_json(const Course& c, bool portable) {
       images.push_back(std::move(image));
     }
     out["notebook"] = {{"questions", questions}, {"images", images}};
+    if (c.handed_out) {
+      out["notebook"]["handedOut"] = portable ? c.handed_out->source : c.handed_out->file;
+      if (c.handed_out->placeholder != HandedOutNotebook{}.placeholder) out["notebook"]["placeholder"] = c.handed_out->placeholder;
+    }
   }
   for (const auto& k : c.starter_constants)
     if (k.meaning == "exponent") out["specularExponent"] = {{"value", k.value}, {"variable", k.variable}};

@@ -11,6 +11,7 @@
 #include "image/png_info.h"
 #include "render/render_request.h"
 #include "sheet/notebook.h"
+#include "sheet/notebook_reading.h"
 #include "sheet/saved_grid.h"
 #include "scene/scene_description.h"
 #include "grade/submission.h"
@@ -248,14 +249,16 @@ Expected<std::string> colours_render(worker::WorkerPool& pool, const course::Cou
 // for rendered beside the answer.
 Status add_answers(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input, Sheet& sheet) {
   if (input.notebook.empty()) return Ok{};
-  auto answers = notebook_answers(input.notebook, course.questions);
-  if (!answers) {
-    sheet.notebook_problem = answers.error().message;
+  auto reading = read_notebook(input.notebook, course);
+  if (!reading) {
+    sheet.notebook_problem = reading.error().message;
     return Ok{};
   }
+  sheet.notebook_note = reading->note;
   for (size_t i = 0; i < course.questions.size(); ++i) {
     const course::Question& q = course.questions[i];
-    AnswerSection a{q.text, (*answers)[i], {}, {}};
+    const NotebookAnswer& read = reading->answers[i];
+    AnswerSection a{read.question, read.text, std::string(words_for(read.found)), {}, {}};
     if (!q.render_colours.empty() && !a.answer.empty()) {
       const auto shaders = colour_shaders(course, input, q.render_colours);
       if (const auto colours = colours_in(a.answer); colours && shaders) {
@@ -283,7 +286,7 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course,
   Sheet sheet;
   sheet.title = input.title;
   sheet.answers = input.answers;
-  for (const auto& q : course.questions) sheet.questions.push_back(q.text);
+  sheet.questions = quoted_questions(course);
   sheet.images = images(course, input);
   auto checks = std::async(std::launch::async, [&pool, &course, &input] {
     return grade::check_hand_in_images(pool, course, [&input](const std::string& file) -> const std::string* {

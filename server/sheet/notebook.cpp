@@ -5,50 +5,16 @@
 #include <regex>
 #include <set>
 
-#include <nlohmann/json.hpp>
+#include "core/text.h"
+#include "course/notebook_lines.h"
 
 namespace shadelab::sheet {
 
 namespace {
 
-using nlohmann::json;
-
-struct Cell {
-  std::string type;  // markdown, raw, code
-  std::string text;
-};
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
-// nbformat keeps a cell's source as one string or as its lines.
-std::string source_of(const json& cell) {
-  const json& s = cell.value("source", json());
-  if (s.is_string()) return s.get<std::string>();
-  std::string out;
-  if (s.is_array())
-    for (const auto& line : s)
-      if (line.is_string()) out += line.get<std::string>();
-  return out;
-}
-
-std::string trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
-}
+using Cell = course::NotebookCell;
 
 bool is_heading(const Cell& c) { return c.type == "markdown" && trimmed(c.text).starts_with("#"); }
-
-std::set<std::string> words_of(const std::string& text) {
-  std::set<std::string> out;
-  const std::string t = lower(text);
-  static const std::regex word("[a-z0-9]{4,}");
-  for (auto it = std::sregex_iterator(t.begin(), t.end(), word); it != std::sregex_iterator(); ++it) out.insert(it->str());
-  return out;
-}
 
 // Which cell asks each question: a markdown cell holding the question's `cell` words, each cell
 // for one question. Where words fit more than one cell or question ("blue" is also in "blue-ish
@@ -62,13 +28,10 @@ std::vector<std::optional<size_t>> question_cells(const std::vector<Cell>& cells
   std::vector<Pair> pairs;
   for (size_t q = 0; q < questions.size(); ++q) {
     if (questions[q].cell.empty()) continue;
-    const auto asked = words_of(questions[q].text);
     for (size_t i = 0; i < cells.size(); ++i) {
-      if (cells[i].type != "markdown" || lower(cells[i].text).find(lower(questions[q].cell)) == std::string::npos) continue;
-      const auto held = words_of(cells[i].text);
-      size_t shared = cells[i].text.find('?') != std::string::npos ? kAsks : 0;
-      for (const auto& w : held) shared += asked.count(w);
-      pairs.push_back({shared, q, i});
+      if (cells[i].type != "markdown" || lower_case(cells[i].text).find(lower_case(questions[q].cell)) == std::string::npos) continue;
+      const size_t asks = cells[i].text.find('?') != std::string::npos ? kAsks : 0;
+      pairs.push_back({asks + course::words_shared(cells[i].text, questions[q].text), q, i});
     }
   }
   std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.shared > b.shared; });
@@ -82,12 +45,9 @@ std::vector<std::optional<size_t>> question_cells(const std::vector<Cell>& cells
 }  // namespace
 
 Expected<std::vector<std::string>> notebook_answers(const std::string& ipynb, const std::vector<course::Question>& questions) {
-  const json nb = json::parse(ipynb, nullptr, false);
-  if (nb.is_discarded() || !nb.is_object() || !nb.contains("cells") || !nb["cells"].is_array())
-    return make_error(ErrorCode::invalid_argument, "the notebook is not a Jupyter notebook (JSON with \"cells\")");
-  std::vector<Cell> cells;
-  for (const auto& c : nb["cells"])
-    if (c.is_object()) cells.push_back({c.value("cell_type", std::string()), source_of(c)});
+  auto read = course::notebook_cells(ipynb);
+  if (!read) return read.take_error();
+  const std::vector<Cell>& cells = *read;
   const std::vector<std::optional<size_t>> at = question_cells(cells, questions);
   std::vector<std::string> out;
   for (size_t qi = 0; qi < questions.size(); ++qi) {
@@ -101,7 +61,7 @@ Expected<std::vector<std::string>> notebook_answers(const std::string& ipynb, co
       }
       if (answer.empty()) {  // written into the question's own cell, after the question
         const std::string& own = cells[*at[qi]].text;
-        const size_t line_end = own.find('\n', lower(own).find(lower(questions[qi].cell)));
+        const size_t line_end = own.find('\n', lower_case(own).find(lower_case(questions[qi].cell)));
         if (line_end != std::string::npos) answer = trimmed(own.substr(line_end));
       }
     }
@@ -111,7 +71,7 @@ Expected<std::vector<std::string>> notebook_answers(const std::string& ipynb, co
 }
 
 std::optional<AnswerColours> colours_in(const std::string& answer) {
-  const std::string text = lower(answer);
+  const std::string text = lower_case(answer);
   const std::regex role_name("ambient|diffuse|specular");
   const std::regex number(R"([-+]?(\d+\.?\d*|\.\d+))");
   struct Found {

@@ -72,7 +72,8 @@ struct SceneSection {
 // question that asks for colours, the bunny rendered in the colours they gave.
 struct AnswerSection {
   std::string question;
-  std::string answer;          // the cells under the question; empty: not found in the notebook
+  std::string answer;          // what the student wrote (notebook_reading.h); empty: `missing` says why
+  std::string missing;         // "(unanswered: the placeholder is as handed out)"; empty when answered
   std::string render_png;      // empty: no colours to render (render_caption says why, when it matters)
   std::string render_caption;  // "ambient (0.30, 0.10, 0.40), ..., as the page renders them"
 };
@@ -83,6 +84,7 @@ struct Sheet {
   std::vector<std::string> questions;          // the notebook's
   std::vector<AnswerSection> answered;         // from the student's notebook; empty when none was handed in
   std::string notebook_problem;                // why the notebook gave no answers ("not a Jupyter notebook")
+  std::string notebook_note;                   // how the answers were read, when not against the handed-out notebook
   std::string answers;                         // an answers file as the student wrote it; may be empty
   std::vector<ImageSection> images;            // the course's hand-in images, in its order
   std::vector<SceneSection> scenes;

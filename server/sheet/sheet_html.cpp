@@ -98,10 +98,12 @@ void scene(std::ostringstream& out, const SceneSection& s) {
 
 // Each question with the answer under it in the student's notebook, the colours it gives rendered.
 void answered(std::ostringstream& out, const Sheet& sheet) {
-  out << "<section id=\"questions\">\n<h2>Questions</h2>\n<ol>\n";
+  out << "<section id=\"questions\">\n<h2>Questions</h2>\n";
+  if (!sheet.notebook_note.empty()) out << "<p class=\"note\">" << escape(sheet.notebook_note) << "</p>\n";
+  out << "<ol>\n";
   for (const auto& a : sheet.answered) {
     out << "<li><p class=\"note\">" << escape(a.question) << "</p>\n";
-    if (a.answer.empty()) out << "<p class=\"note\">(no answer under this question in HW2.ipynb)</p>\n";
+    if (!a.missing.empty()) out << "<p class=\"note\">" << escape(a.missing) << "</p>\n";
     std::istringstream paragraphs(a.answer);
     for (std::string p; std::getline(paragraphs, p);)
       if (!p.empty()) out << "<p>" << escape(p) << "</p>\n";

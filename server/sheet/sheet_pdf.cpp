@@ -267,11 +267,12 @@ void scene(PageWriter& w, const SceneSection& s) {
 
 // Each question with the answer under it in the student's notebook, the colours it gives rendered.
 void answered(PageWriter& w, const Sheet& sheet) {
+  if (!sheet.notebook_note.empty()) w.paragraph(printable(sheet.notebook_note), 8.5, kGrey);
   for (size_t i = 0; i < sheet.answered.size(); ++i) {
     const AnswerSection& a = sheet.answered[i];
     w.paragraph(std::to_string(i + 1) + ". " + printable(a.question), 9.5, kGrey);
     w.gap(2);
-    w.paragraph(a.answer.empty() ? "(no answer under this question in HW2.ipynb)" : printable(a.answer), 10, a.answer.empty() ? kGrey : kInk);
+    w.paragraph(a.answer.empty() ? printable(a.missing) : printable(a.answer), 10, a.answer.empty() ? kGrey : kInk);
     if (!a.render_caption.empty()) w.paragraph(printable(a.render_caption), 8.5, kGrey);
     if (!a.render_png.empty()) w.image(a.render_png, {}, "(no image: it did not render)", kWidth / 2);
     w.gap(8);

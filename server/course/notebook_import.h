@@ -1,0 +1,29 @@
+#pragma once
+// `course import`'s notebook: the folder's HW2.ipynb kept beside the profile as the handed-out
+// notebook, and the questions read from it (each placeholder's question). A question the built-in
+// profile also asks keeps its id and what it renders; the others are q1, q2, ... in the
+// notebook's order.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace shadelab::course {
+
+struct FolderNotebook {
+  std::string path;  // in the folder: HW2.ipynb
+  std::string text;
+};
+
+struct ImportedNotebook {
+  nlohmann::json section;                                  // the profile's "notebook"
+  std::optional<std::pair<std::string, std::string>> kept;  // the file to write beside the profile (name, text)
+  std::vector<std::string> found, assumed;
+};
+
+// `builtin` is the built-in profile's notebook section (portable form); `kept_name` the file name
+// the notebook is kept under, beside the profile.
+ImportedNotebook import_notebook(const std::optional<FolderNotebook>& notebook, const nlohmann::json& builtin, const std::string& kept_name);
+
+}  // namespace shadelab::course
