@@ -11,11 +11,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
+#include "core/base64.h"
 #include "support/files.h"
+#include "support/http_fixture.h"
 #include "support/run_command.h"
 #include "support/test_support.h"
 
@@ -309,6 +312,94 @@ TEST_F(GradescopeTest, ACameraSavedTwiceReadsTheSameOnGradescopeAndOnTheSheet) {
   const auto sheet = shadelab::testkit::run_shadelab("sheet '" + (root_ / "submission/HW2").string() + "' -o '" + (root_ / "sheet.pdf").string() + "'");
   ASSERT_EQ(sheet.status, 0) << sheet.output;
   EXPECT_NE(sheet.output.find("Dolly zoom: 100 mm: 0 / 0 (for the TA): " + verdict + "\n"), std::string::npos) << sheet.output << "\n" << verdict;
+}
+
+// The HTML's text as written (the sheet escapes <, >, & and ").
+std::string unescaped(std::string html) {
+  for (const auto& [from, to] : {std::pair{"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}})
+    for (size_t at; (at = html.find(from)) != std::string::npos;) html.replace(at, std::string(from).size(), to);
+  return html;
+}
+
+// What `shadelab sheet` prints after the PDF for `key` (a checkpoint's name or an image's title):
+// the line "<key>: <verdict>"'s verdict; empty when there is none.
+std::string printed_verdict(const std::string& output, const std::string& key) {
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);)
+    if (line.starts_with(key + ": ")) return line.substr(key.size() + 2);
+  return {};
+}
+
+// One hand-in, four roads: Gradescope's run_autograder, `shadelab autograde`, `shadelab sheet` and
+// POST /api/sheet give each deliverable and each checked image the same score and the same words.
+// The hand-in fails somewhere (stale specular frames; one camera saved twice) so that the words
+// compared are a failure's, not only "matches".
+TEST_F(GradescopeTest, TheSameHandInReadsTheSameOnEveryRoad) {
+  hand_in("diffuse", "specular");
+  submit("HW2/images/camera_100.png", shadelab::testkit::read_text(kSource / "tests/blender_half/blender_camera_50.png"));
+  const json gradescope = autograde();
+  const fs::path folder = root_ / "submission/HW2";
+
+  const auto direct = shadelab::testkit::run_shadelab("autograde '" + (root_ / "submission").string() + "' --results '" +
+                                                      (root_ / "direct.json").string() + "' --heatmaps '" + (root_ / "direct_heatmaps").string() +
+                                                      "' --cache-dir '" + (root_ / "source/reference-store").string() + "'");
+  ASSERT_EQ(direct.status, 0) << direct.output;
+  json cli = json::parse(shadelab::testkit::read_text(root_ / "direct.json"));
+  ASSERT_EQ(cli["tests"].size(), gradescope["tests"].size());
+  EXPECT_EQ(cli["score"], gradescope["score"]);
+  for (size_t i = 0; i < cli["tests"].size(); ++i)
+    for (const char* field : {"name", "score", "max_score", "status", "output"})
+      EXPECT_EQ(cli["tests"][i][field], gradescope["tests"][i][field]) << field << " of " << cli["tests"][i]["name"];
+
+  const auto printed = shadelab::testkit::run_shadelab("sheet '" + folder.string() + "' -o '" + (root_ / "sheet.pdf").string() + "' --cache-dir '" +
+                                                       (root_ / "source/reference-store").string() + "'");
+  ASSERT_EQ(printed.status, 0) << printed.output;
+
+  json files = json::object(), images = json::object();
+  for (const auto& e : fs::recursive_directory_iterator(folder)) {
+    if (!e.is_regular_file()) continue;
+    const std::string path = "HW2/" + fs::relative(e.path(), folder).generic_string();
+    if (e.path().extension() == ".png") images[path] = shadelab::base64_encode(shadelab::testkit::read_text(e.path()));
+    else files[path] = shadelab::testkit::read_text(e.path());
+  }
+  shadelab::testkit::RunningService server(shadelab::testkit::test_config());
+  ASSERT_TRUE(server.ok()) << server.failure;
+  auto page = server.client().Post("/api/sheet", json{{"files", files}, {"images", images}, {"format", "html"}}.dump(), "application/json");
+  ASSERT_TRUE(page);
+  ASSERT_EQ(page->status, 200) << page->body.substr(0, 400);
+  const std::string html = unescaped(page->body);
+
+  for (const auto& c : shadelab::testkit::course().checkpoints) {
+    SCOPED_TRACE(c.name);
+    const std::string verdict = printed_verdict(printed.output, c.name);  // "0.4 / 1: <words>"
+    ASSERT_FALSE(verdict.empty()) << printed.output;
+    double score = -1, points = -1;
+    ASSERT_EQ(std::sscanf(verdict.c_str(), "%lf / %lf", &score, &points), 2) << verdict;
+    double on_gradescope = 0, of = 0;
+    bool words_there = false;
+    const std::string words = verdict.substr(verdict.find(": ") + 2);
+    for (const auto& t : gradescope["tests"])
+      if (t["name"].get<std::string>().starts_with(c.title + ":")) {
+        on_gradescope += t["score"].get<double>(), of += t["max_score"].get<double>();
+        words_there |= t["output"].get<std::string>().find(words) != std::string::npos;
+      }
+    EXPECT_NEAR(on_gradescope, score, 1e-9) << verdict;
+    EXPECT_NEAR(of, points, 1e-9) << verdict;
+    EXPECT_TRUE(words_there) << "Gradescope's tests of " << c.title << " do not say: " << words;
+    EXPECT_NE(html.find("\">" + verdict + "</p>"), std::string::npos) << verdict;
+  }
+  for (const auto& wanted : shadelab::testkit::course().images) {
+    if (!wanted.checked()) continue;
+    SCOPED_TRACE(wanted.file);
+    const std::string verdict = printed_verdict(printed.output, wanted.title);  // "0 / 0 (for the TA): <words>"
+    ASSERT_FALSE(verdict.empty()) << printed.output;
+    const json* test = test_named(gradescope, wanted.title);
+    ASSERT_TRUE(test);
+    EXPECT_NE(output_of(test).find(verdict.substr(verdict.find(": ") + 2)), std::string::npos) << output_of(test) << "\n" << verdict;
+    EXPECT_NE(html.find("\">" + verdict + "</p>"), std::string::npos) << verdict;
+  }
+  EXPECT_NE(printed_verdict(printed.output, "specular").find("specular highlight missing"), std::string::npos) << "a failure's words were compared";
+  EXPECT_NE(printed_verdict(printed.output, shadelab::testkit::course().images[2].title).find("the same image as"), std::string::npos);
 }
 
 TEST_F(GradescopeTest, AnEmptySubmissionScoresZeroAndSaysSo) {
