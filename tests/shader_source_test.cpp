@@ -214,7 +214,9 @@ TEST(UniformVariantsTest, WhatOnePassCannotGiveIsDeclinedWithTheReason) {
   declined(variants(head + "vec3 lit;\nvoid main() { lit += uLight; c = vec4(lit, 1); }"), "the global lit");
   declined(variants(head + "out vec4 d;\nvoid main() { c = vec4(uLight, 1); d = c; }"), "more than one vec4 output");
   declined(variants("#version 300 es\nprecision highp float;\nuniform vec3 a, uLight;\nout vec4 c;\nvoid main() { c = vec4(uLight + a, 1); }"),
-           "not declared as a plain vec3 uniform");
+           "not declared as a plain vec3 or vec4 uniform");
+  declined(variants("#version 300 es\nprecision highp float;\nuniform mat3 uLight;\nout vec4 c;\nvoid main() { c = vec4(uLight[0], 1); }"),
+           "not declared as a plain vec3 or vec4 uniform");
   declined(variants(head + "void main() { c = vec4(uLight, 1); }", 9), "9 runs need 9 outputs, 8 are drawn at once");
   declined(shader::with_uniform_variants(es300(kVertex, Stage::vertex), es300("#version 100\nprecision highp float;\nuniform vec3 uLight;\n"
                                                                                  "void main() { gl_FragColor = vec4(uLight, 1); }", Stage::fragment),

@@ -45,11 +45,12 @@ std::vector<VariableInfo> describe(const std::vector<gl::ActiveVariable>& vars) 
 struct Variants {
   enum class Kind {
     identical,  // nothing: one render stands for all
-    uniforms,   // the values of some vec3 uniforms: one pass can render all (shader/uniform_variants.h)
+    uniforms,   // the values of some vec3 or vec4 uniforms: one pass can render all (shader/uniform_variants.h)
     apart,      // anything else: a render each
   } kind = Kind::apart;
-  std::vector<std::string> names;          // the vec3 uniforms
-  std::vector<std::vector<float>> values;  // per request: each name's three floats, in order
+  std::vector<std::string> names;          // the vec3 and vec4 uniforms
+  std::vector<size_t> components;          // each name's: 3 or 4
+  std::vector<std::vector<float>> values;  // per request: each name's floats, in order
 };
 
 using IndexedSink = Renderer::IndexedSink;
@@ -298,9 +299,10 @@ struct Renderer::State {
         if (u.name == name || u.name == name + "[0]") return &u;
       return nullptr;
     };
-    for (size_t n = 0; v && n < v->names.size(); ++n) {
+    for (size_t n = 0, at = 0; v && n < v->names.size(); at += v->components[n++]) {
       std::vector<float> all;
-      for (const auto& values : v->values) all.insert(all.end(), values.begin() + static_cast<long>(3 * n), values.begin() + static_cast<long>(3 * n + 3));
+      for (const auto& values : v->values)
+        all.insert(all.end(), values.begin() + static_cast<long>(at), values.begin() + static_cast<long>(at + v->components[n]));
       if (const auto* u = active(shader::variant_uniform(v->names[n]))) program.set_uniform(*u, all);
     }
     if (const auto* count = active(shader::kVariantCount)) program.set_uniform(*count, std::vector<float>{static_cast<float>(runs)});
@@ -334,19 +336,21 @@ struct Renderer::State {
       std::vector<std::vector<float>> each;  // an unset uniform reads 0, as in a render of its own
       for (const auto& plan : plans) each.push_back(value_in(plan, u));
       if (std::all_of(each.begin(), each.end(), [&](const auto& e) { return e == each.front(); })) continue;
-      if (u.type.name != std::string_view("vec3") || u.array_size != 1) return v;
+      const std::string_view type = u.type.name;
+      if ((type != "vec3" && type != "vec4") || u.array_size != 1) return v;
       v.names.push_back(u.name);
+      v.components.push_back(type == "vec3" ? 3 : 4);
       for (size_t i = 0; i < each.size(); ++i) v.values[i].insert(v.values[i].end(), each[i].begin(), each[i].end());
     }
     v.kind = v.names.empty() ? Variants::Kind::identical : Variants::Kind::uniforms;
     return v;
   }
 
-  // What `plan` uploads to `u`, or a vec3's zeros when it leaves it unset.
+  // What `plan` uploads to `u`, or zeros, as many as its type has, when it leaves it unset.
   static std::vector<float> value_in(const UniformPlan& plan, const gl::ActiveVariable& u) {
     for (const auto& c : plan.constant)
       if (c.uniform == &u) return c.values;
-    return std::vector<float>(3, 0.f);
+    return std::vector<float>(std::string_view(u.type.name) == "vec4" ? 4 : 3, 0.f);
   }
 };
 

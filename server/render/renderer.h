@@ -55,7 +55,7 @@ class Renderer {
   Expected<RenderReport> render(const RenderRequest& request, const scene::Mesh& mesh, const FrameSink& sink,
                                 const CensusSink& census = {});
 
-  // Requests that differ only in the values of vec3 uniforms (the grader's lights), their frames
+  // Requests that differ only in the values of vec3 or vec4 uniforms (the grader's lights), their frames
   // handed to `sink` with the request's index: in one pass over the geometry, the fragment shader
   // run once per request into outputs of its own (shader/uniform_variants.h), where the shaders
   // allow it; else one request after another. The same bytes either way (tests/render_test.cpp).

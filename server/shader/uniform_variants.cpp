@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "shader/global_scan.h"
 
@@ -24,12 +25,14 @@ bool shared_between_runs(const GlobalStatement& s) {
   return true;
 }
 
-// `uniform [precision] vec3 NAME;` and nothing else.
-bool plain_vec3_uniform(const GlobalStatement& s, const std::string& name) {
-  if (s.names.size() != 1 || s.has_brackets || s.layout_begin != s.layout_end) return false;
+// `uniform [precision] vec3 NAME;` or `... vec4 NAME;` and nothing else: its type, else nothing.
+std::optional<std::string> plain_vector_uniform(const GlobalStatement& s, const std::string& name) {
+  if (s.names.size() != 1 || s.has_brackets || s.layout_begin != s.layout_end || !s.has("uniform")) return std::nullopt;
+  const std::string type = s.has("vec3") ? "vec3" : s.has("vec4") ? "vec4" : "";
+  if (type.empty()) return std::nullopt;
   for (const auto& w : s.words)
-    if (w.text != "uniform" && w.text != "vec3" && w.text != name && !is_precision(w.text)) return false;
-  return s.has("uniform") && s.has("vec3");
+    if (w.text != "uniform" && w.text != type && w.text != name && !is_precision(w.text)) return std::nullopt;
+  return type;
 }
 
 // Spans blanked and words replaced, applied back to front so offsets hold.
@@ -65,11 +68,12 @@ constexpr std::string_view kNonFinite =
 
 std::string colour(int k) { return "shadelab_colour[" + std::to_string(k) + "]"; }
 
-std::string epilogue(const std::vector<std::string>& names, const std::string& output, int runs, bool census) {
+std::string epilogue(const std::vector<std::string>& names, const std::map<std::string, std::string>& types, const std::string& output,
+                     int runs, bool census) {
   const std::string n = std::to_string(runs);
   const VariantOutputs outputs = variant_outputs(runs, census);
   std::string s = "\n// One pass for every light (ShadeLab's grader): the code above runs once per light.\n";
-  for (const auto& name : names) s += "uniform highp vec3 " + variant_uniform(name) + "[" + n + "];\n";
+  for (const auto& name : names) s += "uniform highp " + types.at(name) + " " + variant_uniform(name) + "[" + n + "];\n";
   s += "uniform highp int " + std::string(kVariantCount) + ";\n";
   for (int k = 0; k < outputs.total(); ++k)
     s += "layout(location = " + std::to_string(k) + ") out highp vec4 " +
@@ -122,6 +126,7 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
 
   std::string output;
   std::map<std::string, int> declared;  // each name's plain declarations
+  std::map<std::string, std::string> types;
   for (const auto& s : scan.statements) {
     if (several && shared_between_runs(s)) return declined("the global " + s.names.front() + " could carry one run's value into the next");
     if (s.has("out") && !s.has_parameters) {
@@ -133,7 +138,9 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
     }
     for (const auto& name : names) {
       if (std::find(s.names.begin(), s.names.end(), name) == s.names.end()) continue;
-      if (!plain_vec3_uniform(s, name)) return declined(name + " is not declared as a plain vec3 uniform");
+      const auto type = plain_vector_uniform(s, name);
+      if (!type) return declined(name + " is not declared as a plain vec3 or vec4 uniform");
+      types[name] = *type;
       ++declared[name];
       for (const auto& w : s.words)
         if (w.text == "uniform") edits.push_back(blank(fragment.glsl, w.offset, w.text.size()));
@@ -142,7 +149,7 @@ Expected<std::string> with_uniform_variants(const UnwrappedSource& vertex, const
   if (output.empty()) return declined("no output");
   for (const auto& name : names)
     if (declared[name] != 1) return declined(name + " is declared " + std::to_string(declared[name]) + " times");
-  return applied(fragment.glsl, std::move(edits)) + epilogue(names, output, runs, census);
+  return applied(fragment.glsl, std::move(edits)) + epilogue(names, types, output, runs, census);
 }
 
 }  // namespace shadelab::shader

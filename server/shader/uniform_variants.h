@@ -1,6 +1,6 @@
 #pragma once
-// A fragment shader rewritten so that one draw renders it for several values of some vec3
-// uniforms (the grader's lights): the student's `main` runs once per value set, each run's colour
+// A fragment shader rewritten so that one draw renders it for several values of some vec3 or vec4
+// uniforms (the grader's lights: a position, a colour): the student's `main` runs once per value set, each run's colour
 // to an output of its own (location k for set k), so the geometry is rasterised once for every
 // light (docs/grading.md, "One pass for every light").
 //
@@ -43,7 +43,7 @@ VariantOutputs variant_outputs(int runs, bool census);
 // invalid_argument, saying why, when one pass cannot give what separate passes give: with more
 // than one run, a `discard` or gl_FragDepth (one decision for every run) or a global the runs could
 // share (a variable outside main, written by one run and read by the next); more than one output or
-// an array of them, a name declared otherwise than `uniform [precision] vec3 NAME;` in the fragment
+// an array of them, a name declared otherwise than `uniform [precision] vec3|vec4 NAME;` in the fragment
 // shader or used by the vertex shader, GLSL ES 1.00 (one output, no integer bits), or more outputs
 // than `max_outputs`, or a `#define` (it would apply to the code appended). One run with no names
 // is the census alone.
