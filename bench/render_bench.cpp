@@ -95,8 +95,7 @@ std::vector<render::RenderRequest> under_grader_lights(const render::RenderReque
   std::vector<render::RenderRequest> lit = {base};
   for (const auto& probe : spec.probes) {
     lit.push_back(base);
-    for (const auto& name : spec.light_position_uniforms)
-      lit.back().uniforms.push_back({name, {probe.light_position[0], probe.light_position[1], probe.light_position[2]}});
+    for (const auto& s : grade::probe_settings(spec, probe)) lit.back().uniforms.push_back({s.name, s.value});
   }
   return lit;
 }

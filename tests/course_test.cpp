@@ -21,6 +21,7 @@
 #include "course/course_import.h"
 #include "course/course_reader.h"
 #include "course/script_facts.h"
+#include "course/unseen_roles.h"
 #include "support/files.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
@@ -185,6 +186,26 @@ TEST(CourseProfileTest, TheSchemaAndTheReaderAgree) {
 
 // The page script's facts as a course writes them: numbers by name, small arithmetic, a helper's
 // arguments in its own order. What it cannot read it does not state.
+// `course check`'s warning: a colour no light of a checkpoint shows (course/unseen_roles.h).
+TEST(CourseProfileTest, AColourNoLightShowsIsNamed) {
+  EXPECT_TRUE(course::unseen_roles(testkit::course()).empty()) << "the built-in course's orange probes show uLightColor";
+  course::Course c = testkit::course();
+  for (auto& k : c.checkpoints) std::erase_if(k.probes, [](const grade::Probe& p) { return p.light_color.has_value(); });
+  auto unseen = course::unseen_roles(c);
+  ASSERT_EQ(unseen.size(), 2u);
+  EXPECT_EQ(unseen[0].checkpoint, "diffuse");
+  EXPECT_EQ(unseen[1].checkpoint, "specular");
+  EXPECT_EQ(unseen[1].role, course::UniformRole::light_color);
+  EXPECT_EQ(unseen[1].why, "uLightColor is (1, 1, 1) under the page's light and every probe of specular: a shader that leaves it out draws the same, "
+                           "and passes; give a probe a lightColor");
+  for (auto& u : c.uniforms)
+    if (u.role == course::UniformRole::specular) u.value = {1, 1, 1, 1};
+  unseen = course::unseen_roles(c);
+  EXPECT_TRUE(std::any_of(unseen.begin(), unseen.end(), [](const course::UnseenRole& r) {
+    return r.checkpoint == "specular" && r.role == course::UniformRole::specular;
+  })) << "a white specular colour: no light shows a term that leaves it out";
+}
+
 TEST(ScriptFactsTest, NumbersByNameAndSmallArithmetic) {
   const course::ScriptFacts js(R"(const fieldOfView = 45.0; // degrees
 const zNear = 0.1, unused = 3  // no semicolon: the line ends the statement

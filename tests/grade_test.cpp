@@ -63,7 +63,7 @@ TEST_F(GradeTest, EachCheckpointGradedAgainstItselfScoresFullMarks) {
     const json r = grade(submission(checkpoint.reference), c);
     EXPECT_TRUE(r["pass"]) << c << ": " << r.dump();
     EXPECT_EQ(r["score"], 1.0) << c;
-    EXPECT_EQ(r["frames"].size(), c == "specular" ? 18u : 9u);  // specular adds the back-light probe
+    EXPECT_EQ(r["frames"].size(), 9u * (1 + checkpoint.probes.size())) << c;  // the page's light, then each probe light
     EXPECT_TRUE(r["frames"][0]["identical"]) << c;
     EXPECT_TRUE(r["frames"][0]["psnr"].is_null()) << c;  // identical: no infinite PSNR in the JSON
     EXPECT_FALSE(r["heatmap"].get<std::string>().empty());
@@ -90,6 +90,29 @@ TEST_F(GradeTest, SpecularWithoutTheNdotLGuardIsRecognised) {
   const json r = grade(submission("specular", "    if (NdotL > 0.0) {", "    {"), "specular");
   EXPECT_FALSE(r["pass"]);
   EXPECT_EQ(r["diagnosis"], "unguarded_specular") << r.dump();
+}
+
+// The page's light is white, so a term that leaves uLightColor out is right under it; under the
+// coloured probe light it is not, for the specular term and for the diffuse one.
+TEST_F(GradeTest, ATermWithoutTheLightsColourFailsUnderTheColouredLight) {
+  for (const auto& [reference, with, without] : {std::tuple{"specular", "uSpecularColor * uLightColor * pow(", "uSpecularColor * pow("},
+                                                 std::tuple{"diffuse", "uDiffuseColor * uLightColor * max(", "uDiffuseColor * max("}}) {
+    SCOPED_TRACE(reference);
+    const json r = grade(submission(reference, with, without), reference);
+    EXPECT_FALSE(r["pass"]) << r.dump().substr(0, 600);
+    EXPECT_TRUE(r["messages"][0].get<std::string>().starts_with(
+        "right under the page's light, not under the probe light coloured_light (9 of 9 frames differ), which checks that the light's colour (uLightColor) multiplies"))
+        << r["messages"];
+    ASSERT_FALSE(r["frames"].empty());
+    for (const auto& f : r["frames"]) {
+      const std::string light = f["light"];
+      if (light == "coloured_light") {
+        EXPECT_FALSE(f["pass"]) << f.dump();
+      } else {
+        EXPECT_TRUE(f["pass"]) << light << " " << f.dump();
+      }
+    }
+  }
 }
 
 TEST_F(GradeTest, SwappedChannelsAreRecognised) {

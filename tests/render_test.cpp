@@ -452,8 +452,7 @@ std::vector<render::RenderRequest> under_grader_lights(const render::RenderReque
   std::vector<render::RenderRequest> lit = {request};
   for (const auto& probe : spec.probes) {
     lit.push_back(request);
-    for (const auto& name : spec.light_position_uniforms)
-      lit.back().uniforms.push_back({name, {probe.light_position[0], probe.light_position[1], probe.light_position[2]}});
+    for (const auto& s : grade::probe_settings(spec, probe)) lit.back().uniforms.push_back({s.name, s.value});
   }
   return lit;
 }
@@ -616,13 +615,18 @@ TEST(RenderTogetherTest, TheCensusCountsEveryPixelAnySampleOfWhichHeldANan) {
   EXPECT_EQ(pixel(frames[0], 0, 7), (std::array<int, 4>{0, 255, 0, 255})) << "NaN stored as 0, infinity clamped";
 }
 
-// The lights must change what is drawn: the probe light's frames are not the homework light's.
+// The lights must change what is drawn: each probe light's frames (one moved, one coloured: a vec3
+// and a vec4 uniform varied in the one pass) are not the homework light's, nor each other's.
 TEST(RenderTogetherTest, EachLightGetsItsOwnValue) {
   auto request = testkit::preset_request("specular");
   request.frames = 1;
-  const Together together = render_together(under_grader_lights(request));
-  ASSERT_EQ(together.frames.size(), 2u);
-  EXPECT_FALSE(same_bytes(together.frames[0][0], together.frames[1][0]));
+  const auto lit = under_grader_lights(request);
+  ASSERT_EQ(lit.size(), 3u);
+  const Together together = render_together(lit);
+  EXPECT_EQ(together.passes, 1);
+  ASSERT_EQ(together.frames.size(), lit.size());
+  for (size_t i = 0; i < lit.size(); ++i)
+    for (size_t j = i + 1; j < lit.size(); ++j) EXPECT_FALSE(same_bytes(together.frames[i][0], together.frames[j][0])) << i << " " << j;
 }
 
 // What one pass cannot give the bytes of (a discard decides for every light at once) is drawn a
@@ -634,15 +638,15 @@ TEST(RenderTogetherTest, ADiscardIsDrawnALightAtATimeAndTheSameRequestOnce) {
   request.fragment.text.replace(text.find("fragColor = color;"), 18, "if (color.r > 0.9) discard; fragColor = color;");
   const auto lit = under_grader_lights(request);
   const Together apart = render_together(lit);
-  EXPECT_EQ(apart.passes, 2);
+  EXPECT_EQ(apart.passes, static_cast<int>(lit.size()));
   for (size_t i = 0; i < lit.size(); ++i) EXPECT_TRUE(same_bytes(apart.frames[i][0], render_alone(lit[i])[0]));
 
   auto normals = testkit::preset_request("normals");  // reads no light
   normals.frames = 1;
   const Together once = render_together(under_grader_lights(normals));
   EXPECT_EQ(once.passes, 1);
-  ASSERT_EQ(once.frames.size(), 2u);
-  EXPECT_TRUE(same_bytes(once.frames[0][0], once.frames[1][0]));
+  ASSERT_EQ(once.frames.size(), lit.size());
+  for (size_t i = 1; i < lit.size(); ++i) EXPECT_TRUE(same_bytes(once.frames[0][0], once.frames[i][0]));
 }
 
 // Every way of drawing hands over a census: a discard is drawn a light at a time, each pass with
@@ -656,7 +660,7 @@ TEST(RenderTogetherTest, EveryWayOfDrawingHandsOverACensus) {
   request.fragment.text.replace(text.find("fragColor = color;"), 18, "if (color.r > 0.9) discard; fragColor = (color - color) / (color.g - color.g);");
   const auto lit = under_grader_lights(request);
   const Together apart = render_together(lit, true);
-  EXPECT_EQ(apart.passes, 2);
+  EXPECT_EQ(apart.passes, static_cast<int>(lit.size()));
   for (size_t i = 0; i < lit.size(); ++i) {
     std::vector<image::NonFinite> counts;
     EXPECT_TRUE(same_bytes(apart.frames[i][0], render_alone(lit[i], &counts)[0]));

@@ -14,6 +14,7 @@
 #include "course/access.h"
 #include "course/course_import.h"
 #include "course/course_reader.h"
+#include "course/unseen_roles.h"
 #include "image/encode.h"
 
 namespace shadelab::cli {
@@ -44,6 +45,7 @@ void summarise(const course::Course& c) {
   for (const auto& p : c.presets)
     if (!p.is_public) std::cout << " " << p.name;
   std::cout << "\n  saved frames: " << (c.frames_from_page ? "from the page only (ShadeLab's own score 0)" : "ShadeLab's own accepted, flagged") << "\n";
+  for (const auto& unseen : course::unseen_roles(c)) std::cout << "  warning: " << unseen.why << "\n";
 }
 
 int run_import(CourseFlags& f) {

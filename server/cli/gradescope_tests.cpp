@@ -139,7 +139,7 @@ json probe_test(const DeliverableGrades& d, const grade::DeliverableScore& score
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::probe, d.points);
   std::string rules;
-  for (const auto& p : k.probes) rules += "This test moves the light (" + p.name + ") to check that " + (p.checks.empty() ? "the shading is right" : p.checks) + ".\n";
+  for (const auto& p : k.probes) rules += "This test draws under another light (" + p.name + ") to check that " + (p.checks.empty() ? "the shading is right" : p.checks) + ".\n";
   const std::string name = test_name(k, DeliverableTest::probe);
   if (!d.code) return absent(name, max, rules + "no shaders for this deliverable");
   if (!*d.code_grade) return ungraded(name, max, d.code_grade->error());

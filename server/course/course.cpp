@@ -170,6 +170,7 @@ grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptio
   for (const auto& m : c.mistakes) spec.mistakes.push_back(m.shaders);
   spec.probes = c.probes;
   spec.light_position_uniforms = light_position_names();
+  spec.light_color_uniform = light_color_uniform();
   spec.starter_constants = starter_constants;
   spec.options = options;
   return spec;
@@ -205,6 +206,11 @@ std::string Course::frame_file(std::string_view prefix, int k, std::string_view 
 std::vector<std::string> Course::light_position_names() const {
   const PageUniform* light = uniform_with_role(UniformRole::light_position);
   return light ? light->names : std::vector<std::string>{};
+}
+
+grade::ProbeUniform Course::light_color_uniform() const {
+  const PageUniform* colour = uniform_with_role(UniformRole::light_color);
+  return colour ? grade::ProbeUniform{colour->names, colour->type} : grade::ProbeUniform{};
 }
 
 double Course::specular_exponent() const {

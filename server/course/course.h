@@ -230,6 +230,7 @@ struct Course {
   std::string frame_file(std::string_view prefix, int k, std::string_view extension) const;
   // The names the page feeds the light's position by (what a probe light moves).
   std::vector<std::string> light_position_names() const;
+  grade::ProbeUniform light_color_uniform() const;  // empty names: no uniform has the role
   // What a download of ShadeLab's own frames says where the course wants frames saved from the
   // page: they are for checking, not for handing in. Empty where ShadeLab's frames may be handed in.
   std::string frames_download_notice() const;

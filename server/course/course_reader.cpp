@@ -320,12 +320,19 @@ class Parser {
           ids.insert(out.mistakes.back().id);
         }
       for (const JsonReader& p : c.objects("probes")) {
-        p.only({"name", "lightPosition", "checks"});
-        p.require("name") && p.require("lightPosition");
-        const glm::dvec3 at = p.vec3("lightPosition", glm::dvec3(0.0), -1e7, 1e7);
-        out.probes.push_back({p.text("name", ""), {float(at.x), float(at.y), float(at.z)}, p.text("checks", "")});
-        if (!course_.uniform_with_role(UniformRole::light_position))
+        p.only({"name", "lightPosition", "lightColor", "checks"});
+        p.require("name");
+        if (!p.has("lightPosition") && !p.has("lightColor")) p.fail(p.path() + ": a probe changes the light: its lightPosition, its lightColor or both");
+        const auto vec = [&](const char* field, double low, double high) -> std::optional<std::array<float, 3>> {
+          if (!p.has(field)) return std::nullopt;
+          const glm::dvec3 v = p.vec3(field, glm::dvec3(0.0), low, high);
+          return std::array<float, 3>{float(v.x), float(v.y), float(v.z)};
+        };
+        out.probes.push_back({p.text("name", ""), vec("lightPosition", -1e7, 1e7), vec("lightColor", 0, 1), p.text("checks", "")});
+        if (p.has("lightPosition") && !course_.uniform_with_role(UniformRole::light_position))
           p.fail(p.path() + ": a probe moves the light, but no uniform has the role lightPosition");
+        if (p.has("lightColor") && !course_.uniform_with_role(UniformRole::light_color))
+          p.fail(p.path() + ": a probe colours the light, but no uniform has the role lightColor");
       }
       course_.checkpoints.push_back(std::move(out));
     }

@@ -1,5 +1,10 @@
 #include "course/course_reader.h"
 
+#include <array>
+#include <charconv>
+#include <cstdlib>
+#include <string>
+
 // The profile as its format writes it (course_reader.h's to_json): the reader's inverse.
 namespace shadelab::course {
 
@@ -8,6 +13,17 @@ using nlohmann::json;
 namespace {
 
 // The thresholds that differ from GradeOptions' defaults (a course that keeps them writes none).
+// A probe's numbers as the profile wrote them: a float's shortest decimal (0.6, not 0.6000000238).
+std::array<double, 3> as_written(const std::array<float, 3>& v) {
+  std::array<double, 3> out{};
+  for (size_t i = 0; i < 3; ++i) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v[i]).ptr;
+    out[i] = std::strtod(std::string(text, end).c_str(), nullptr);
+  }
+  return out;
+}
+
 json tolerance_json(const grade::GradeOptions& o) {
   const grade::GradeOptions d;
   json out = json::object();
@@ -53,7 +69,9 @@ json to_json(const Course& c, bool portable) {
     }
     json probes = json::array();
     for (const auto& p : k.probes) {
-      probes.push_back({{"name", p.name}, {"lightPosition", p.light_position}});
+      probes.push_back({{"name", p.name}});
+      if (p.light_position) probes.back()["lightPosition"] = as_written(*p.light_position);
+      if (p.light_color) probes.back()["lightColor"] = as_written(*p.light_color);
       if (!p.checks.empty()) probes.back()["checks"] = p.checks;
     }
     json entry = {{"name", k.name}, {"title", k.title}, {"prefix", k.prefix}, {"reference", k.reference}, {"points", k.points}};

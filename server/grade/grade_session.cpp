@@ -84,27 +84,44 @@ std::vector<RenderedMistake> GradeSession::rendered_mistakes(const GradeSpec& sp
   return mistakes;
 }
 
-// `base` with the light moved, for the names the program declares as the page does (vec3); a name
+// `base` under the probe's light, for the names the program declares as the page does; a name
 // declared otherwise stays as the homework sets it, as in the browser.
-Expected<render::RenderRequest> GradeSession::with_light(const GradeSpec& spec, const render::RenderRequest& base,
-                                                         const std::array<float, 3>& position) {
+Expected<render::RenderRequest> GradeSession::with_light(const GradeSpec& spec, const render::RenderRequest& base, const Probe& probe) {
   auto program = renderer_.compile(base.vertex, base.fragment);
   if (!program) return program.take_error();
   render::RenderRequest lit = base;
-  for (const std::string& name : spec.light_position_uniforms) {
+  for (auto& s : probe_settings(spec, probe)) {
     const bool declared = std::any_of(program->uniforms.begin(), program->uniforms.end(),
-                                      [&](const auto& u) { return u.name == name && u.type == "vec3" && u.array_size == 1; });
-    const bool set = std::any_of(lit.uniforms.begin(), lit.uniforms.end(), [&](const auto& u) { return u.name == name; });
-    if (declared && !set) lit.uniforms.push_back({name, {position[0], position[1], position[2]}});
+                                      [&](const auto& u) { return u.name == s.name && u.type == s.type && u.array_size == 1; });
+    const bool set = std::any_of(lit.uniforms.begin(), lit.uniforms.end(), [&](const auto& u) { return u.name == s.name; });
+    if (declared && !set) lit.uniforms.push_back({s.name, std::move(s.value)});
   }
   return lit;
+}
+
+// A submission right under the page's light and wrong only under probe lights is told which, and
+// what each checks, in the course's words: the probe is the explanation ("the light's colour
+// multiplies both terms").
+static void name_probes_that_fail(Report& report, const std::vector<Probe>& probes) {
+  const auto failing = [&](const std::string& light) {
+    return std::count_if(report.frames.begin(), report.frames.end(), [&](const FrameReport& f) { return f.light == light && !f.grade.pass; });
+  };
+  if (failing("homework") > 0) return;
+  std::vector<std::string> said;
+  for (const auto& p : probes)
+    if (const auto n = failing(p.name); n > 0) {
+      const auto of = std::count_if(report.frames.begin(), report.frames.end(), [&](const FrameReport& f) { return f.light == p.name; });
+      said.push_back("right under the page's light, not under the probe light " + p.name + " (" + std::to_string(n) + " of " +
+                     std::to_string(of) + " frames differ)" + (p.checks.empty() ? "" : ", which checks that " + p.checks));
+    }
+  report.messages.insert(report.messages.begin(), said.begin(), said.end());
 }
 
 // `base` under the homework's light, then under each probe light.
 Expected<std::vector<render::RenderRequest>> GradeSession::under_lights(const GradeSpec& spec, const render::RenderRequest& base) {
   std::vector<render::RenderRequest> lit = {base};
   for (const auto& probe : spec.probes) {
-    auto moved = with_light(spec, base, probe.light_position);
+    auto moved = with_light(spec, base, probe);
     if (!moved) return moved.take_error();
     lit.push_back(std::move(*moved));
   }
@@ -188,6 +205,7 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   GradeOutput out{report(result, spec.reference_name, lights, static_cast<size_t>(r.frames)), {}};
   out.report.grader_work = work_;
   out.report.warnings = compiled->warnings;
+  if (!out.report.pass && out.report.diagnosis.empty()) name_probes_that_fail(out.report, spec.probes);
   // A catalogued mistake says what went wrong already; otherwise a changed starter constant may.
   if (!out.report.pass && out.report.diagnosis.empty())
     for (const auto& found : changed_starter_constants(spec.starter_constants, submission.fragment.text)) {

@@ -96,8 +96,7 @@ class GradeSession {
     std::vector<image::NonFinite> non_finite;  // each frame's, in the same order
   };
   Expected<SubmissionFrames> submission_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh);
-  Expected<render::RenderRequest> with_light(const GradeSpec& spec, const render::RenderRequest& base,
-                                             const std::array<float, 3>& position);
+  Expected<render::RenderRequest> with_light(const GradeSpec& spec, const render::RenderRequest& base, const Probe& probe);
 
   render::Renderer& renderer_;
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch

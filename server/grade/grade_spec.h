@@ -4,6 +4,7 @@
 // tolerance. A course profile (course/course.h) builds it from its checkpoints; a request can
 // also bring its own reference ("custom").
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,19 @@ struct Mistake {
 // Extra frames rendered under another light, for mistakes the homework's light cannot show: with
 // the light at the page's position the unlit side barely faces the camera, so a specular term
 // added where N.L <= 0 changes under 0.1% of the pixels. Behind the mesh, that side is in view.
+// And the page's light is white, so a term that leaves the light's colour out draws the same
+// under it: under a coloured light, it does not.
 struct Probe {
   std::string name;
-  std::array<float, 3> light_position;
+  std::optional<std::array<float, 3>> light_position;  // none: the page's
+  std::optional<std::array<float, 3>> light_color;     // none: the page's
   std::string checks;  // the rule it checks, in a student's words ("the specular term only where N.L > 0")
+};
+
+// The uniform a probe sets, under each name the page feeds it by, as the page declares it.
+struct ProbeUniform {
+  std::vector<std::string> names;
+  std::string type;  // vec3, vec4
 };
 
 // A number the starter shader sets that a student should keep ("float specularAlpha = 6.0;"): a
@@ -52,13 +62,24 @@ struct ReferenceStorePlaces {
 // Gradescope only beside a failed test; a class batch nowhere.
 enum class HeatMap { always, when_failing, never };
 
+struct GradeSpec;
+
+// A uniform a probe sets, as the page declares it ("uLightColor", vec4, {1, 0.6, 0.3, 1}).
+struct ProbeSetting {
+  std::string name, type;
+  std::vector<double> value;
+};
+// What `probe` sets, under every name of each uniform it changes.
+std::vector<ProbeSetting> probe_settings(const GradeSpec& spec, const Probe& probe);
+
 struct GradeSpec {
   std::string reference_name;  // a checkpoint, or "custom"
   shader::ShaderFile reference_vertex, reference_fragment;
   std::vector<Mistake> mistakes;
   std::vector<Probe> probes;
-  // The uniforms a probe moves (the light position under each name the page feeds it by).
+  // The uniforms a probe sets: the light's position and its colour.
   std::vector<std::string> light_position_uniforms;
+  ProbeUniform light_color_uniform;
   std::vector<StarterConstant> starter_constants;
   GradeOptions options;
   ReferenceStorePlaces reference_store;

@@ -258,6 +258,7 @@ Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, cons
     spec.reference_vertex = std::move(*v);
     spec.reference_fragment = std::move(*fr);
     spec.light_position_uniforms = course.light_position_names();
+    spec.light_color_uniform = course.light_color_uniform();
     spec.options = course.tolerance;
     spec.options.max_score = 1;
   } else {

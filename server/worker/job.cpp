@@ -38,8 +38,17 @@ namespace shadelab::grade {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Mistake, id, message, vertex, fragment)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StarterConstant, variable, meaning, value)
 
-void to_json(json& j, const Probe& p) { j = {{"name", p.name}, {"lightPosition", p.light_position}, {"checks", p.checks}}; }
-void from_json(const json& j, Probe& p) { p = {j.at("name"), j.at("lightPosition"), j.value("checks", "")}; }
+void to_json(json& j, const Probe& p) {
+  j = {{"name", p.name}, {"checks", p.checks}};
+  if (p.light_position) j["lightPosition"] = *p.light_position;
+  if (p.light_color) j["lightColor"] = *p.light_color;
+}
+void from_json(const json& j, Probe& p) {
+  p = {j.at("name"), std::nullopt, std::nullopt, j.value("checks", "")};
+  if (j.contains("lightPosition")) p.light_position = j.at("lightPosition").get<std::array<float, 3>>();
+  if (j.contains("lightColor")) p.light_color = j.at("lightColor").get<std::array<float, 3>>();
+}
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ProbeUniform, names, type)
 
 constexpr EnumName<HeatMap> kHeatMaps[] = {{HeatMap::always, "always"}, {HeatMap::when_failing, "whenFailing"}, {HeatMap::never, "never"}};
 
@@ -47,7 +56,7 @@ constexpr EnumName<HeatMap> kHeatMaps[] = {{HeatMap::always, "always"}, {HeatMap
 void to_json(json& j, const GradeSpec& g) {
   const auto& o = g.options;
   j = {{"referenceName", g.reference_name}, {"referenceVertex", g.reference_vertex}, {"referenceFragment", g.reference_fragment},
-       {"mistakes", g.mistakes}, {"probes", g.probes}, {"lightPositionUniforms", g.light_position_uniforms},
+       {"mistakes", g.mistakes}, {"probes", g.probes}, {"lightPositionUniforms", g.light_position_uniforms}, {"lightColorUniform", g.light_color_uniform},
        {"starterConstants", g.starter_constants}, {"referenceStore", g.reference_store.folder},
        {"sharedStore", g.reference_store.shared}, {"threshold", o.compare.threshold},
        {"spatialTolerance", o.compare.spatial_tolerance}, {"maxFailingFraction", o.max_failing_fraction},
@@ -63,6 +72,7 @@ void from_json(const json& j, GradeSpec& g) {
   j.at("mistakes").get_to(g.mistakes);
   j.at("probes").get_to(g.probes);
   j.at("lightPositionUniforms").get_to(g.light_position_uniforms);
+  j.at("lightColorUniform").get_to(g.light_color_uniform);
   j.at("starterConstants").get_to(g.starter_constants);
   j.at("referenceStore").get_to(g.reference_store.folder);
   j.at("sharedStore").get_to(g.reference_store.shared);
