@@ -135,12 +135,8 @@ class Importer {
 
   // The folder's notebook (HW2.ipynb, else the shallowest .ipynb) kept as the handed-out one.
   void notebook() {
-    std::optional<FolderNotebook> nb;
-    auto path = folder_.named("HW2.ipynb");
-    for (const auto& f : folder_.files)
-      if (!path && f.extension() == ".ipynb" && f.string().find(".ipynb_checkpoints") == std::string::npos) path = f;
-    if (path) nb = FolderNotebook{path->generic_string(), folder_.text(*path)};
-    auto imported = import_notebook(nb, p_["notebook"], fs::path(o_.output).stem().string() + ".handed_out.ipynb");
+    const std::string kept = fs::path(o_.output).stem().string() + ".handed_out.ipynb";
+    auto imported = import_notebook(folder_notebook(folder_.root, folder_.files), p_["notebook"], kept);
     p_["notebook"] = std::move(imported.section);
     if (imported.kept) out_.derived_files.push_back(std::move(*imported.kept));
     for (auto& f : imported.found) found(std::move(f));

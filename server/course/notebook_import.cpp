@@ -1,5 +1,8 @@
 #include "course/notebook_import.h"
 
+#include <fstream>
+#include <iterator>
+
 #include "course/notebook_lines.h"
 
 namespace shadelab::course {
@@ -34,6 +37,17 @@ json questions_from(const std::vector<NotebookLine>& lines, const std::vector<Pl
 }
 
 }  // namespace
+
+std::optional<FolderNotebook> folder_notebook(const std::filesystem::path& root, const std::vector<std::filesystem::path>& files) {
+  const std::filesystem::path* found = nullptr;
+  for (const auto& f : files)
+    if (f.filename() == "HW2.ipynb" && !found) found = &f;
+  for (const auto& f : files)
+    if (!found && f.extension() == ".ipynb" && f.generic_string().find(".ipynb_checkpoints") == std::string::npos) found = &f;
+  if (!found) return std::nullopt;
+  std::ifstream in(root / *found, std::ios::binary);
+  return FolderNotebook{found->generic_string(), {std::istreambuf_iterator<char>(in), {}}};
+}
 
 ImportedNotebook import_notebook(const std::optional<FolderNotebook>& notebook, const json& builtin, const std::string& kept_name) {
   ImportedNotebook out{builtin, std::nullopt, {}, {}};

@@ -3,6 +3,7 @@
 // notebook, and the questions read from it (each placeholder's question). A question the built-in
 // profile also asks keeps its id and what it renders; the others are q1, q2, ... in the
 // notebook's order.
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,10 @@ struct FolderNotebook {
   std::string path;  // in the folder: HW2.ipynb
   std::string text;
 };
+
+// The folder's notebook: HW2.ipynb, else the first .ipynb of `files` (relative to `root`, the
+// shallowest first), Jupyter's checkpoint copies aside; none when it has no notebook.
+std::optional<FolderNotebook> folder_notebook(const std::filesystem::path& root, const std::vector<std::filesystem::path>& files);
 
 struct ImportedNotebook {
   nlohmann::json section;                                  // the profile's "notebook"

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <map>
 
+#include "core/words.h"
+
 namespace shadelab::grade {
 
 namespace {
@@ -15,11 +17,6 @@ std::string number(double v) {
   return buf;
 }
 
-std::string percent(double share) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.0f%%", 100 * share);
-  return buf;
-}
 
 std::string times(double ratio) {
   char buf[32];

@@ -29,11 +29,6 @@ std::string degrees(double v) {
   return buf;
 }
 
-std::string percent(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.0f%%", 100 * v);
-  return buf;
-}
 
 std::string frame_list(const std::vector<int>& frames) {
   std::vector<std::string> numbers;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "core/words.h"
 #include "core/check.h"
 #include "grade/diagnosis.h"
 
@@ -12,11 +13,8 @@ namespace shadelab::grade {
 
 namespace {
 
-std::string percent(double f) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, f < 0.001 ? "%.3f%%" : "%.1f%%", f * 100);
-  return buf;
-}
+// Small shares keep their digits: 0.004%, not 0.0%.
+std::string fine_percent(double f) { return shadelab::percent(f, f < 0.001 ? 3 : 1); }
 
 bool is_clear(const std::uint8_t* p) { return p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 255; }
 
@@ -114,14 +112,14 @@ GradeResult assess(const SharedFrames& student, const std::vector<image::NonFini
   const double worst_object = r.frames[worst].failing_fraction_of_object;
   if (nan > 0) {
     r.diagnosis = to_string(Diagnosis::nan);
-    r.messages.push_back("NaN in " + percent(static_cast<double>(nan) / pixels) +
+    r.messages.push_back("NaN in " + fine_percent(static_cast<double>(nan) / pixels) +
                          " of pixels: the browser shows them black or transparent (a division by zero, or normalize() "
                          "of a zero vector?)");
   }
-  if (inf > 0) r.messages.push_back("infinity in " + percent(static_cast<double>(inf) / pixels) + " of pixels");
+  if (inf > 0) r.messages.push_back("infinity in " + fine_percent(static_cast<double>(inf) / pixels) + " of pixels");
   if (r.pass) {
     r.messages.push_back(w.identical ? "matches the reference exactly"
-                                     : "matches the reference: at worst " + percent(worst_object) +
+                                     : "matches the reference: at worst " + fine_percent(worst_object) +
                                            " of the object's pixels differ by more than the tolerance (frame " +
                                            std::to_string(worst) + ")");
   }
@@ -154,7 +152,7 @@ void explain(GradeResult& r, const SharedFrames& student, const SharedFrames& re
   }
   r.messages.push_back(std::to_string(student.size() - static_cast<size_t>(passing)) + " of " + std::to_string(student.size()) +
                        " frames differ from the reference; worst frame " + std::to_string(worst) + ": " +
-                       percent(worst_object) + " of the object's pixels off by more than " +
+                       fine_percent(worst_object) + " of the object's pixels off by more than " +
                        std::to_string(static_cast<int>(options.compare.threshold * 255 + 1e-9)) + "/255");
 }
 

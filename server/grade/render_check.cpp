@@ -6,15 +6,12 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "core/words.h"
+
 namespace shadelab::grade {
 
 namespace {
 
-std::string percent(double share) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f%%", 100 * share);
-  return buf;
-}
 
 // The share of pixels more than 8/255 off the image's commonest colour (any channel, alpha too).
 double off_commonest(const image::Image& im) {
@@ -51,7 +48,7 @@ RenderCheck check_render(const image::Image& im, const RenderCheckOptions& optio
   RenderCheck r;
   r.facts.push_back({"a PNG", true, std::to_string(im.width) + " x " + std::to_string(im.height)});
   const double off = off_commonest(im);
-  r.facts.push_back({"not blank", off >= options.blank, percent(off) + " of the pixels differ from the commonest colour"});
+  r.facts.push_back({"not blank", off >= options.blank, percent(off, 1) + " of the pixels differ from the commonest colour"});
   r.pass = std::all_of(r.facts.begin(), r.facts.end(), [](const RenderFact& f) { return f.holds; });
   return r;
 }

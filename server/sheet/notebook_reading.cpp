@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/words.h"
 #include "course/notebook_lines.h"
 #include "sheet/notebook.h"
 
@@ -104,8 +105,6 @@ Expected<NotebookReading> under_questions(const std::string& ipynb, const course
     out.answers.push_back({course.questions[q].text, (*answers)[q], (*answers)[q].empty() ? AnswerFound::not_found : AnswerFound::under_question});
   return out;
 }
-
-std::string percent(double share) { return std::to_string(static_cast<int>(std::lround(share * 100))) + "%"; }
 
 }  // namespace
 
