@@ -172,8 +172,31 @@ grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptio
   spec.light_position_uniforms = light_position_names();
   spec.light_color_uniform = light_color_uniform();
   spec.starter_constants = starter_constants;
+  spec.formula = formula_spec(c);
   spec.options = options;
   return spec;
+}
+
+std::optional<grade::FormulaSpec> Course::formula_spec(const Checkpoint& c) const {
+  if (!c.formula) return std::nullopt;
+  grade::FormulaSpec f{c.formula->terms, c.formula->position, c.formula->normal};
+  const auto input = [&](UniformRole role) {
+    grade::FormulaInput in;
+    if (const PageUniform* u = uniform_with_role(role)) {
+      in.names = u->names;
+      for (std::size_t i = 0; i < 3 && i < u->value.size(); ++i) in.value[i] = static_cast<float>(u->value[i]);
+      if (u->value.size() == 4) in.alpha = static_cast<float>(u->value[3]);
+    }
+    return in;
+  };
+  f.ambient = input(UniformRole::ambient);
+  f.diffuse = input(UniformRole::diffuse);
+  f.specular = input(UniformRole::specular);
+  f.light_position = input(UniformRole::light_position);
+  f.light_colour = input(UniformRole::light_color);
+  for (const auto& k : starter_constants)
+    if (k.meaning == "exponent") f.exponent = k;
+  return f;
 }
 
 grade::GradeSpec Course::frames_grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {

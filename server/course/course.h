@@ -65,6 +65,14 @@ enum class DeliverableTest { frames, code, probe, match };
 // under a hidden light", "saved frames made by your code".
 std::string_view to_string(DeliverableTest test);
 
+// The checkpoint's formula (model/lighting.h): its terms, and the varyings its reference's vertex
+// shader writes the eye-space position and the normal to, from which the grader renders the
+// geometry the formula is evaluated on.
+struct CheckpointFormula {
+  model::Terms terms = model::Terms::phong;
+  std::string position, normal;  // vPosition, vNormal
+};
+
 // A deliverable: the frames `images/{frame name with prefix}` and, when `code` names a stem, the
 // shaders `{code}_vert.js` / `{code}_frag.js` handed in with it.
 struct Checkpoint {
@@ -77,6 +85,7 @@ struct Checkpoint {
   TestWeights weights;
   std::vector<Mistake> mistakes;
   std::vector<grade::Probe> probes;
+  std::optional<CheckpointFormula> formula;  // none: a failure is explained by the catalogue alone
 
   bool applies(DeliverableTest test) const;
   // A test's share of `points` (0 for one that does not apply).
@@ -231,6 +240,8 @@ struct Course {
   // The names the page feeds the light's position by (what a probe light moves).
   std::vector<std::string> light_position_names() const;
   grade::ProbeUniform light_color_uniform() const;  // empty names: no uniform has the role
+  // The checkpoint's formula with the course's values, for the grader (none when it has none).
+  std::optional<grade::FormulaSpec> formula_spec(const Checkpoint& c) const;
   // What a download of ShadeLab's own frames says where the course wants frames saved from the
   // page: they are for checking, not for handing in. Empty where ShadeLab's frames may be handed in.
   std::string frames_download_notice() const;

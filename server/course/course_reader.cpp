@@ -11,6 +11,7 @@
 #include "core/embedded_files.h"
 #include "core/hash.h"
 #include "core/json_reader.h"
+#include "grade/formula_geometry.h"
 #include "grade/starter_constants.h"
 #include "course/notebook_lines.h"
 #include "scene/scene_description.h"
@@ -286,12 +287,36 @@ class Parser {
     return out;
   }
 
+  // A checkpoint's formula: its terms, and varyings its reference's vertex shader writes.
+  CheckpointFormula formula(const JsonReader& f, const Preset* reference) {
+    f.only({"terms", "position", "normal"});
+    f.require("terms") && f.require("position") && f.require("normal");
+    CheckpointFormula out;
+    const std::string terms = f.text("terms", "phong");
+    if (auto t = model::terms_named(terms)) out.terms = *t;
+    else f.fail_at(f.at("terms"), "expected lambert or phong");
+    out.position = f.text("position", "");
+    out.normal = f.text("normal", "");
+    for (const char* field : {"position", "normal"}) {
+      const std::string name = f.text(field, "");
+      if (reference && !name.empty() && !grade::writes_vec3_varying(reference->vertex.text, name))
+        f.fail_at(f.at(field), "the reference's vertex shader declares no `out vec3 " + name + ";`");
+    }
+    for (const UniformRole role : {UniformRole::ambient, UniformRole::diffuse, UniformRole::light_position, UniformRole::light_color})
+      if (!course_.uniform_with_role(role)) f.fail(f.path() + ": the formula reads the " + std::string(to_string(role)) + ", but no uniform has that role");
+    if (out.terms == model::Terms::phong && !course_.uniform_with_role(UniformRole::specular))
+      f.fail(f.path() + ": the formula reads the specular colour, but no uniform has that role");
+    if (out.terms == model::Terms::phong && course_.specular_exponent() <= 0)
+      f.fail(f.path() + ": the formula's exponent is the course's specularExponent, and it has none");
+    return out;
+  }
+
   void checkpoints(const JsonReader& r) {
     if (r.require("checkpoints") && r.get("checkpoints").is_array() && r.get("checkpoints").empty())
       r.fail_at("checkpoints", "expected at least one checkpoint");
     std::set<std::string> prefixes;
     for (const JsonReader& c : r.objects("checkpoints")) {
-      c.only({"name", "title", "prefix", "reference", "code", "points", "weights", "mistakes", "probes"});
+      c.only({"name", "title", "prefix", "reference", "code", "points", "weights", "mistakes", "probes", "formula"});
       c.require("name") && c.require("title") && c.require("prefix") && c.require("reference");
       Checkpoint out;
       out.name = c.text("name", "");
@@ -334,6 +359,7 @@ class Parser {
         if (p.has("lightColor") && !course_.uniform_with_role(UniformRole::light_color))
           p.fail(p.path() + ": a probe colours the light, but no uniform has the role lightColor");
       }
+      if (c.has("formula")) out.formula = formula(c.object("formula"), reference);
       course_.checkpoints.push_back(std::move(out));
     }
     course_.default_checkpoint = r.text("defaultCheckpoint", course_.checkpoints.empty() ? "" : course_.checkpoints.back().name);

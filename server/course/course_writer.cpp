@@ -88,6 +88,7 @@ json to_json(const Course& c, bool portable) {
     if (!k.code.empty()) entry["code"] = k.code;
     if (!mistakes.empty()) entry["mistakes"] = std::move(mistakes);
     if (!probes.empty()) entry["probes"] = std::move(probes);
+    if (k.formula) entry["formula"] = {{"terms", model::to_string(k.formula->terms)}, {"position", k.formula->position}, {"normal", k.formula->normal}};
     checkpoints.push_back(std::move(entry));
   }
   json aliases = json::array();

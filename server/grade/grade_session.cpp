@@ -4,6 +4,8 @@
 #include <memory>
 
 #include "grade/diagnosis.h"
+#include "grade/formula_explanation.h"
+#include "grade/formula_geometry.h"
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/metrics.h"
@@ -51,24 +53,28 @@ const std::string& GradeSession::mesh_address(const std::string& mesh_key, const
   return address_;
 }
 
-Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
-  std::string key = render::pixel_identity(r) + '\0' + mesh_key;
-  if (const SharedFrames* hit = references_.find(key)) {
-    ++work_.from_memory;
-    return *hit;
-  }
+Expected<SharedFrames> GradeSession::stored_or_rendered(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
   const std::string stored = store_ ? store_->key(r, mesh_address(mesh_key, m)) : std::string();
   if (store_)
     if (auto loaded = store_->load(stored, r)) {
       ++work_.from_store;
-      references_.insert(std::move(key), *loaded);
       return std::move(*loaded);
     }
   auto frames = frames_of(r, m);
   if (!frames) return frames;
   ++work_.rendered;
   if (store_) store_->save(stored, *frames);
-  references_.insert(std::move(key), *frames);
+  return frames;
+}
+
+Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
+  std::string key = render::pixel_identity(r) + '\0' + mesh_key;
+  if (const SharedFrames* hit = references_.find(key)) {
+    ++work_.from_memory;
+    return *hit;
+  }
+  auto frames = stored_or_rendered(r, m, mesh_key);
+  if (frames) references_.insert(std::move(key), *frames);
   return frames;
 }
 
@@ -115,6 +121,40 @@ static void name_probes_that_fail(Report& report, const std::vector<Probe>& prob
                      std::to_string(of) + " frames differ)" + (p.checks.empty() ? "" : ", which checks that " + p.checks));
     }
   report.messages.insert(report.messages.begin(), said.begin(), said.end());
+}
+
+const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
+                                                              const scene::Mesh& mesh, const std::string& mesh_key) {
+  auto requests = geometry_requests(formula, reference);
+  if (!requests) return nullptr;
+  std::string key = render::pixel_identity((*requests)[0]) + '\0' + formula.normal_varying + '\0' + mesh_key;
+  if (auto* hit = surfaces_.find(key)) {
+    ++work_.from_memory;
+    return hit;
+  }
+  // A render at a time, each turned into the object's pixels before the next: the float frames
+  // are ten times the surfaces' size.
+  std::vector<model::FrameSurface> out;
+  for (std::size_t i = 0; i < requests->size(); ++i) {
+    auto frames = stored_or_rendered((*requests)[i], mesh, mesh_key);
+    if (!frames) return nullptr;
+    for (std::size_t k = 0; k < frames->size(); ++k) {
+      if (i == 0) out.push_back(model::surface_from(*(*frames)[k]));
+      else if (k < out.size()) model::add_normals(out[k], *(*frames)[k], i == 1 ? model::NormalKind::interpolated : model::NormalKind::flat);
+    }
+  }
+  std::size_t bytes = 0;
+  for (const auto& s : out) bytes += s.bytes();
+  return &surfaces_.insert(std::move(key), std::move(out), bytes);
+}
+
+std::optional<Explanation> GradeSession::formula_explanation(const GradeSpec& spec, const render::RenderRequest& reference,
+                                                              const scene::Mesh& mesh, const std::string& mesh_key,
+                                                              const SharedFrames& student, const SharedFrames& reference_frames) {
+  if (!spec.formula) return std::nullopt;
+  const auto* geometry = surfaces(*spec.formula, reference, mesh, mesh_key);
+  if (!geometry) return std::nullopt;
+  return explain_with_formula({&*spec.formula, reference.uniforms, spec.probes, geometry, &student, &reference_frames}, spec.options);
 }
 
 // `base` under the homework's light, then under each probe light.
@@ -212,6 +252,15 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
       if (out.report.diagnosis.empty()) out.report.diagnosis = changed_constant_diagnosis(found.variable);
       out.report.messages.insert(out.report.messages.begin(), found.message);
     }
+  if (!out.report.pass) {
+    out.report.explanation = formula_explanation(spec, ref, **mesh, mesh_key, student->frames, *reference);
+    // The catalogue's words (or a changed starter constant's) where they recognised the mistake;
+    // else the formula's: first when they explain, after what the probes say when they cannot.
+    if (out.report.explanation && out.report.diagnosis.empty()) {
+      auto& m = out.report.messages;
+      m.insert(out.report.explanation->explained ? m.begin() : m.end(), out.report.explanation->text);
+    }
+  }
   if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r);  // the homework light's
   return out;
 }

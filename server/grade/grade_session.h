@@ -17,6 +17,8 @@
 #include "grade/reference_cache.h"
 #include "grade/reference_store.h"
 #include "grade/report.h"
+#include "model/surface.h"
+#include "core/lru_cache.h"
 #include "render/renderer.h"
 
 namespace shadelab::grade {
@@ -65,8 +67,10 @@ class GradeSession {
   // The grid of where the first `job.frames` of `frames` differ from `reference`'s, as a PNG (empty
   // if it does not encode).
   static std::string heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job);
-  // A reference set from the worker's memory, else the store on disk (when the spec names one),
-  // else rendered (and kept in both); `work` counts which.
+  // A set of frames from the store on disk (when the spec names one), else rendered (and kept
+  // there); `work` counts which.
+  Expected<SharedFrames> stored_or_rendered(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
+  // A reference set from the worker's memory, else stored_or_rendered (and kept in memory).
   Expected<SharedFrames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
   // The reference's and the known mistakes' frames under every light, for a submission that failed.
   std::vector<RenderedMistake> rendered_mistakes(const GradeSpec& spec, const render::RenderRequest& reference, const scene::Mesh& mesh,
@@ -97,11 +101,22 @@ class GradeSession {
   };
   Expected<SubmissionFrames> submission_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh);
   Expected<render::RenderRequest> with_light(const GradeSpec& spec, const render::RenderRequest& base, const Probe& probe);
+  // The geometry the formula is evaluated on, per angle of `reference`: from the worker's memory,
+  // else from the store or rendered (grade/formula_geometry.h); null when it does not render.
+  const std::vector<model::FrameSurface>* surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
+                                                   const scene::Mesh& mesh, const std::string& mesh_key);
+  // A failing submission's frames read by the checkpoint's formula (grade/formula_explanation.h),
+  // on the geometry of `reference` (rendered once per course, kept as references are); none when
+  // the spec has no formula or the geometry does not render.
+  std::optional<Explanation> formula_explanation(const GradeSpec& spec, const render::RenderRequest& reference, const scene::Mesh& mesh,
+                                                 const std::string& mesh_key, const SharedFrames& student, const SharedFrames& reference_frames);
 
   render::Renderer& renderer_;
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch
   // grading a class renders them once per worker, and with a store, once per course.
   ReferenceCache references_;
+  // The formula's geometry, as the object's pixels: ~7 MB a set of 9 frames at 512 x 512.
+  LruCache<std::vector<model::FrameSurface>> surfaces_{8, 32u << 20};
   std::optional<ReferenceStore> store_;   // the current grade's (its spec names the places)
   std::unique_ptr<store::SharedStore> shared_;
   store::SharedStoreConfig shared_config_;

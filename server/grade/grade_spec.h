@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grade/grader.h"
+#include "model/lighting.h"
 #include "shader/shader_source.h"
 #include "store/shared_store.h"
 
@@ -62,6 +63,25 @@ struct ReferenceStorePlaces {
 // Gradescope only beside a failed test; a class batch nowhere.
 enum class HeatMap { always, when_failing, never };
 
+// A homework quantity the formula reads (a colour, the light's position), under every name the
+// page feeds it by, with the course's value: a submission's own value under one of the names
+// replaces it, as it does for the reference.
+struct FormulaInput {
+  std::vector<std::string> names;
+  std::array<float, 3> value{};
+  float alpha = 1;  // a colour's fourth component
+};
+
+// The checkpoint's formula (model/lighting.h), for saying why a failing submission's frames
+// differ: its terms, the varyings the reference's vertex shader writes the eye-space position and
+// the normal to (the model's geometry is rendered from them), and the values it reads.
+struct FormulaSpec {
+  model::Terms terms = model::Terms::phong;
+  std::string position_varying, normal_varying;  // vPosition, vNormal
+  FormulaInput ambient, diffuse, specular, light_position, light_colour;
+  StarterConstant exponent;  // specularAlpha, 6.0 (a phong checkpoint's)
+};
+
 struct GradeSpec;
 
 // A uniform a probe sets, as the page declares it ("uLightColor", vec4, {1, 0.6, 0.3, 1}).
@@ -81,6 +101,7 @@ struct GradeSpec {
   std::vector<std::string> light_position_uniforms;
   ProbeUniform light_color_uniform;
   std::vector<StarterConstant> starter_constants;
+  std::optional<FormulaSpec> formula;  // none: a failing grade is explained by the catalogue alone
   GradeOptions options;
   ReferenceStorePlaces reference_store;
   HeatMap heatmap = HeatMap::always;

@@ -103,12 +103,30 @@ void to_json(json& j, const Report::GraderWork& w) {
 
 void from_json(const json& j, Report::GraderWork& w) { w = {j.at("rendered"), j.at("fromStore"), j.at("fromMemory")}; }
 
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Explanation::Parameter, name, course, fitted)
+
+void to_json(json& j, const Explanation& e) {
+  j = {{"explained", e.explained}, {"variant", e.variant}, {"alsoFits", e.also_fits}, {"parameters", e.parameters},
+       {"residual", e.residual}, {"text", e.text}, {"label", e.label}};
+}
+
+void from_json(const json& j, Explanation& e) {
+  j.at("explained").get_to(e.explained);
+  j.at("variant").get_to(e.variant);
+  j.at("alsoFits").get_to(e.also_fits);
+  j.at("parameters").get_to(e.parameters);
+  j.at("residual").get_to(e.residual);
+  j.at("text").get_to(e.text);
+  j.at("label").get_to(e.label);
+}
+
 void to_json(json& j, const Report& r) {
   json frames = r.frames;
   for (size_t k = 0; k < frames.size(); ++k) frames[k]["frame"] = k;  // each frame's index, first
   j = {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},   {"maxScore", r.max_score},
        {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},   {"diagnostics", r.diagnostics},
        {"warnings", r.warnings},     {"flags", r.flags},       {"attempts", r.attempts}, {"graderWork", r.grader_work}};
+  if (r.explanation) j["explanation"] = *r.explanation;
 }
 
 void from_json(const json& j, Report& r) {
@@ -124,6 +142,7 @@ void from_json(const json& j, Report& r) {
   r.attempts = j.value("attempts", 1);
   r.flags = j.value("flags", json::array()).get<std::vector<Flag>>();
   if (j.contains("graderWork")) r.grader_work = j.at("graderWork").get<Report::GraderWork>();
+  if (j.contains("explanation")) r.explanation = j.at("explanation").get<Explanation>();
 }
 
 json to_json(const Report& r) { return r; }

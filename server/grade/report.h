@@ -18,6 +18,8 @@
 // | flags[]      | {id, message} for the TA: saved frames ShadeLab made, frames with no lag   |
 // |              | (grade/provenance.h)                                                       |
 // | graderWork   | the grader's own sets of frames: rendered, fromStore (disk/Redis), fromMemory    |
+// | explanation  | a failing grade's reading by the checkpoint's formula (grade/formula_explanation.h): |
+// |              | the change that reproduces the frames, the values it fits, the residual     |
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +39,24 @@ struct FrameReport {
   std::optional<double> lag_degrees;
 };
 
+// Why a failing submission's frames differ, read by the checkpoint's formula: the one change to it
+// (or two) that reproduces them within the rule a correct submission meets, or none.
+struct Explanation {
+  bool explained = false;
+  // The formula's structural change ("light_as_direction"; "formula" when only values changed);
+  // when nothing reproduces the frames, the closest.
+  std::string variant;
+  std::vector<std::string> also_fits;  // other explanations that reproduce the frames as well
+  struct Parameter {
+    std::string name;                   // ambient, diffuse, specular, exponent
+    std::vector<double> course, fitted;  // what the course has and what the frames show
+  };
+  std::vector<Parameter> parameters;  // the values the frames show changed
+  double residual = 0;  // the worst frame's share of interior object pixels the explanation draws off
+  std::string text;     // in the homework's words, with the numbers
+  std::string label;    // a few words, to count a class by: "light used as a direction", "not explained"
+};
+
 struct Report {
   std::string checkpoint;
   bool pass = false;
@@ -53,6 +73,7 @@ struct Report {
   struct GraderWork {
     int rendered = 0, from_store = 0, from_memory = 0;
   } grader_work;
+  std::optional<Explanation> explanation;  // a failing grade's, where the checkpoint has a formula
 };
 
 // A graded result; `lights` names the light of each run of frames_per_light frames, in order.
@@ -74,6 +95,10 @@ void to_json(nlohmann::json& j, const Flag& f);
 void from_json(const nlohmann::json& j, Flag& f);
 void to_json(nlohmann::json& j, const Report::GraderWork& w);
 void from_json(const nlohmann::json& j, Report::GraderWork& w);
+void to_json(nlohmann::json& j, const Explanation::Parameter& p);
+void from_json(const nlohmann::json& j, Explanation::Parameter& p);
+void to_json(nlohmann::json& j, const Explanation& e);
+void from_json(const nlohmann::json& j, Explanation& e);
 void to_json(nlohmann::json& j, const Report& r);
 void from_json(const nlohmann::json& j, Report& r);
 

@@ -49,6 +49,24 @@ void from_json(const json& j, Probe& p) {
   if (j.contains("lightColor")) p.light_color = j.at("lightColor").get<std::array<float, 3>>();
 }
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ProbeUniform, names, type)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FormulaInput, names, value, alpha)
+
+void to_json(json& j, const FormulaSpec& f) {
+  j = {{"terms", model::to_string(f.terms)}, {"positionVarying", f.position_varying}, {"normalVarying", f.normal_varying},
+       {"ambient", f.ambient}, {"diffuse", f.diffuse}, {"specular", f.specular}, {"lightPosition", f.light_position},
+       {"lightColour", f.light_colour}, {"exponent", f.exponent}};
+}
+void from_json(const json& j, FormulaSpec& f) {
+  f.terms = enum_from_json(j.at("terms"), {model::Terms::lambert, model::Terms::phong});
+  j.at("positionVarying").get_to(f.position_varying);
+  j.at("normalVarying").get_to(f.normal_varying);
+  j.at("ambient").get_to(f.ambient);
+  j.at("diffuse").get_to(f.diffuse);
+  j.at("specular").get_to(f.specular);
+  j.at("lightPosition").get_to(f.light_position);
+  j.at("lightColour").get_to(f.light_colour);
+  j.at("exponent").get_to(f.exponent);
+}
 
 constexpr EnumName<HeatMap> kHeatMaps[] = {{HeatMap::always, "always"}, {HeatMap::when_failing, "whenFailing"}, {HeatMap::never, "never"}};
 
@@ -63,6 +81,7 @@ void to_json(json& j, const GradeSpec& g) {
        {"maxScore", o.max_score}, {"sameOutline", o.same_outline},
        {"savedFramesCloserThanReference", o.saved_frames_closer_than_reference},
        {"heatmap", name_in(kHeatMaps, g.heatmap)}, {"framesFromPage", g.frames_from_page}};
+  if (g.formula) j["formula"] = *g.formula;
 }
 
 void from_json(const json& j, GradeSpec& g) {
@@ -87,6 +106,7 @@ void from_json(const json& j, GradeSpec& g) {
   if (!heatmap) throw json::other_error::create(501, "unknown heat map policy", &j);
   g.heatmap = *heatmap;
   j.at("framesFromPage").get_to(g.frames_from_page);
+  if (j.contains("formula")) g.formula = j.at("formula").get<FormulaSpec>();
 }
 
 }  // namespace shadelab::grade

@@ -1,0 +1,291 @@
+#include "grade/formula_explanation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/words.h"
+#include "grade/difference_regions.h"
+#include "model/fit.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+// A colour the frames show as different: some channel off by more than 5/255. An exponent: more
+// than 5% off (the fit finds the course's 6.0 to within 1% on its own reference).
+constexpr float kColourTolerance = 0.02f;
+constexpr double kExponentTolerance = 0.05;
+// Explanations whose residual is within this factor of the best one's fit as well.
+constexpr double kAsWell = 1.25;
+// The most changes an explanation may make: a student's slip is one or two.
+constexpr int kMostChanges = 2;
+
+// The submission's value under one of the input's names, else the course's.
+const render::UniformSetting* setting_of(const FormulaInput& in, const std::vector<render::UniformSetting>& values) {
+  for (const auto& v : values)
+    if (std::find(in.names.begin(), in.names.end(), v.name) != in.names.end() && v.values.size() >= 3) return &v;
+  return nullptr;
+}
+
+std::array<float, 3> value_of(const FormulaInput& in, const std::vector<render::UniformSetting>& values) {
+  const auto* v = setting_of(in, values);
+  return v ? std::array<float, 3>{static_cast<float>(v->values[0]), static_cast<float>(v->values[1]), static_cast<float>(v->values[2])} : in.value;
+}
+
+float alpha_of(const FormulaInput& in, const std::vector<render::UniformSetting>& values) {
+  const auto* v = setting_of(in, values);
+  return v ? (v->values.size() >= 4 ? static_cast<float>(v->values[3]) : 1.0f) : in.alpha;
+}
+
+glm::vec3 vec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+
+std::string number(double v, const char* format = "%.2f") {
+  char out[32];
+  std::snprintf(out, sizeof out, format, std::abs(v) < 0.005 ? 0.0 : v);
+  return out;
+}
+
+std::string triple(const glm::vec3& c) { return "(" + number(c.r) + ", " + number(c.g) + ", " + number(c.b) + ")"; }
+
+bool near(const glm::vec3& a, const glm::vec3& b) {
+  const glm::vec3 d = glm::abs(a - b);
+  return std::max({d.r, d.g, d.b}) <= kColourTolerance;
+}
+
+// What an explanation changes, counted and said.
+struct Reading {
+  const model::Fit* fit = nullptr;
+  std::vector<Explanation::Parameter> parameters;
+  std::vector<std::string> changes;  // a sentence each
+  std::vector<std::string> labels;   // a few words each
+  int count = 0;
+};
+
+std::string first_name(const FormulaInput& in) { return in.names.empty() ? std::string("?") : in.names.front(); }
+
+std::string filled(std::string_view words, const FormulaSpec& f) {
+  std::string out(words);
+  const std::pair<std::string, std::string> names[] = {{"{light}", first_name(f.light_position)},
+                                                       {"{light colour}", first_name(f.light_colour)},
+                                                       {"{position}", f.position_varying},
+                                                       {"{normal}", f.normal_varying}};
+  for (const auto& [from, to] : names)
+    for (std::size_t at = out.find(from); at != std::string::npos; at = out.find(from, at + to.size())) out.replace(at, from.size(), to);
+  return out;
+}
+
+Explanation::Parameter parameter(const std::string& name, const glm::vec3& course, const glm::vec3& fitted) {
+  return {name, {course.r, course.g, course.b}, {fitted.r, fitted.g, fitted.b}};
+}
+
+// "your ambient colour acts as (0.40, 0.20, 0.20) where the course's uAmbientColor is (0.20, 0.10, 0.10), 2.0 times it"
+std::string colour_words(const std::string& term, const FormulaInput& in, const glm::vec3& course, const glm::vec3& fitted) {
+  const std::string as = "acts as " + triple(fitted) + " where the course's " + first_name(in) + " is " + triple(course);
+  if (near(fitted, glm::vec3(0))) return "your " + term + " term is missing: its colour " + as;
+  std::string words = "your " + term + " colour " + as;
+  const glm::vec3 ratio = fitted / glm::max(course, glm::vec3(1e-3f));
+  if (std::abs(ratio.r - ratio.g) < 0.05f * ratio.r && std::abs(ratio.r - ratio.b) < 0.05f * ratio.r && course.r > 0.05f)
+    words += ", " + number(ratio.r, "%.1f") + " times it";
+  return words;
+}
+
+std::string colour_label(const std::string& term, const glm::vec3& fitted) {
+  return near(fitted, glm::vec3(0)) ? term + " term missing" : term + " colour changed";
+}
+
+std::string position(const glm::vec3& p) {
+  return "(" + number(p.x, "%.1f") + ", " + number(p.y, "%.1f") + ", " + number(p.z, "%.1f") + ")";
+}
+
+Reading read(const model::Fit& fit, const model::Parameters& course, const model::Light& page, const FormulaSpec& f) {
+  Reading r{&fit};
+  if (const auto& at = fit.parameters.light_position) {
+    r.parameters.push_back(parameter("lightPosition", page.position, *at));
+    r.changes.push_back("your light acts as if at " + position(*at) + " under every light the grader draws, where the course's " +
+                        first_name(f.light_position) + " is " + position(page.position) +
+                        ": a position written into the shader stays where it is when the page moves the light");
+    r.labels.emplace_back("light moved");
+    ++r.count;
+  }
+  if (fit.variant != model::Variant::formula) {
+    const auto& v = model::info(fit.variant);
+    r.changes.push_back(filled(v.does, f) + ": " + filled(v.should, f));
+    r.labels.emplace_back(v.label);
+    ++r.count;
+  }
+  const auto& c = course.colours;
+  const auto& p = fit.parameters.colours;
+  const bool phong = f.terms == model::Terms::phong;
+  const bool swapped = phong && !near(c.diffuse, c.specular) && near(p.diffuse, c.specular) && near(p.specular, c.diffuse);
+  if (!near(p.ambient, c.ambient)) {
+    r.parameters.push_back(parameter("ambient", c.ambient, p.ambient));
+    r.changes.push_back(colour_words("ambient", f.ambient, c.ambient, p.ambient));
+    r.labels.push_back(colour_label("ambient", p.ambient));
+    ++r.count;
+  }
+  if (swapped) {
+    r.parameters.push_back(parameter("diffuse", c.diffuse, p.diffuse));
+    r.parameters.push_back(parameter("specular", c.specular, p.specular));
+    r.changes.push_back("your diffuse and specular colours are swapped: the diffuse acts as " + triple(p.diffuse) + ", the course's " +
+                        first_name(f.specular) + ", and the specular as " + triple(p.specular) + ", its " + first_name(f.diffuse));
+    r.labels.emplace_back("diffuse and specular colours swapped");
+    ++r.count;
+  } else {
+    if (!near(p.diffuse, c.diffuse)) {
+      r.parameters.push_back(parameter("diffuse", c.diffuse, p.diffuse));
+      r.changes.push_back(colour_words("diffuse", f.diffuse, c.diffuse, p.diffuse));
+      r.labels.push_back(colour_label("diffuse", p.diffuse));
+      ++r.count;
+    }
+    if (phong && !near(p.specular, c.specular)) {
+      r.parameters.push_back(parameter("specular", c.specular, p.specular));
+      r.changes.push_back(colour_words("specular", f.specular, c.specular, p.specular));
+      r.labels.push_back(colour_label("specular", p.specular));
+      ++r.count;
+    }
+  }
+  const bool highlight_shows = phong && fit.specular_peak * std::max({p.specular.r, p.specular.g, p.specular.b}) > kColourTolerance;
+  if (highlight_shows && std::abs(fit.parameters.exponent / course.exponent - 1) > kExponentTolerance) {
+    r.parameters.push_back({"exponent", {course.exponent}, {fit.parameters.exponent}});
+    r.changes.push_back("your exponent acts as " + number(fit.parameters.exponent, "%.1f") + " where the course's " + f.exponent.variable +
+                        " is " + number(course.exponent, "%.1f"));
+    r.labels.emplace_back("exponent changed");
+    ++r.count;
+  }
+  return r;
+}
+
+// The colour of every interior pixel the student drew, where it is one (within the threshold):
+// no term that depends on the light shows, and no fit can say which is missing.
+std::optional<glm::vec3> one_colour(const std::vector<model::DrawnFrame>& frames, double threshold) {
+  std::optional<glm::vec3> first;
+  for (const auto& f : frames)
+    for (const std::uint32_t pixel : f.surface->pixels) {
+      const std::uint8_t* p = f.drawn->bytes.data() + static_cast<std::size_t>(pixel) * 4;
+      const glm::vec3 c = glm::vec3(p[0], p[1], p[2]) / 255.0f;
+      if (!first) first = c;
+      const glm::vec3 d = glm::abs(c - *first);
+      if (std::max({d.r, d.g, d.b}) > threshold) return std::nullopt;
+    }
+  return first;
+}
+
+std::string joined(const std::vector<std::string>& sentences) {
+  std::string out;
+  for (const auto& s : sentences) out += (out.empty() ? "" : "; and ") + s;
+  return out;
+}
+
+std::string where_they_differ(const std::string& text, const std::vector<RegionDifference>& regions) {
+  if (regions.empty()) return text;
+  std::vector<std::string> where;
+  for (const auto& r : regions) where.push_back(to_words(r));
+  return text + " Where your frames differ from the reference: " + comma_list(where) + ".";
+}
+
+}  // namespace
+
+model::Parameters course_parameters(const FormulaSpec& f, const std::vector<render::UniformSetting>& values) {
+  return {{vec(value_of(f.ambient, values)), vec(value_of(f.diffuse, values)), vec(value_of(f.specular, values)),
+           {alpha_of(f.ambient, values), alpha_of(f.diffuse, values), alpha_of(f.specular, values)}},
+          static_cast<float>(f.exponent.value)};
+}
+
+std::vector<model::Light> formula_lights(const FormulaSpec& f, const std::vector<render::UniformSetting>& values,
+                                         const std::vector<Probe>& probes) {
+  const model::Light page{vec(value_of(f.light_position, values)), vec(value_of(f.light_colour, values))};
+  std::vector<model::Light> lights = {page};
+  for (const auto& p : probes)
+    lights.push_back({p.light_position ? vec(*p.light_position) : page.position, p.light_color ? vec(*p.light_color) : page.colour});
+  return lights;
+}
+
+Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& options) {
+  const FormulaSpec& f = *e.formula;
+  model::FitOptions o;
+  o.terms = f.terms;
+  o.course = course_parameters(f, e.values);
+  o.threshold = options.compare.threshold;
+  const auto lights = formula_lights(f, e.values, e.probes);
+  const std::vector<model::FrameSurface>& surfaces = *e.surfaces;
+  const std::size_t n = surfaces.size();
+  std::vector<model::DrawnFrame> frames;
+  double worst_model_error = 0;
+  for (std::size_t l = 0; l < lights.size(); ++l)
+    for (std::size_t k = 0; k < n && l * n + k < e.student->size() && l * n + k < e.reference->size(); ++k) {
+      // What the formula itself leaves off of the reference's frame is the model's, not the student's.
+      const model::DrawnFrame reference{&surfaces[k], (*e.reference)[l * n + k].get(), lights[l]};
+      const double model_error = model::failing_share(model::Variant::formula, o.course, reference, o);
+      worst_model_error = std::max(worst_model_error, model_error);
+      frames.push_back({&surfaces[k], (*e.student)[l * n + k].get(), lights[l], options.max_failing_fraction + model_error});
+    }
+
+  Explanation out;
+  const auto regions = [&] { return difference_regions(surfaces, *e.student, *e.reference, lights.front(), o); };
+  // Where the formula cannot draw the reference itself within the rule (frames so small that a
+  // pixel holds many triangles), what it finds in the student's frames is not to be trusted.
+  if (worst_model_error > options.max_failing_fraction) {
+    out.text = where_they_differ("The grader cannot read frames this small by the homework's formula: its own drawing of the reference is off on " +
+                                     percent(worst_model_error, 1) + " of a frame's pixels, more than the " +
+                                     percent(options.max_failing_fraction) + " a frame may differ.",
+                                 regions());
+    out.label = "frames too small to read";
+    return out;
+  }
+  if (const auto colour = one_colour(frames, o.threshold); colour && !near(*colour, o.course.colours.ambient)) {
+    out.text = "Your object is one colour, " + triple(*colour) +
+               ", everywhere: no term that depends on the light shows, so the grader cannot say which part of the formula is missing.";
+    out.label = "one colour";
+    return out;
+  }
+  const std::vector<model::Fit> fits = model::fit_variants(frames, o);
+  std::vector<Reading> readings;
+  for (const auto& fit : fits)
+    if (fit.reproduces)
+      if (Reading r = read(fit, o.course, lights.front(), f); r.count > 0 && r.count <= kMostChanges) readings.push_back(std::move(r));
+  // A light the student moved (written into the shader) is looked for only when no single change
+  // of the rest explains the frames: its search costs more than every variant's together.
+  model::Fit moved_light;
+  if (std::none_of(readings.begin(), readings.end(), [](const Reading& r) { return r.count == 1; })) {
+    moved_light = model::fit_light_position(frames, o);
+    if (moved_light.reproduces)
+      if (Reading r = read(moved_light, o.course, lights.front(), f); r.count <= kMostChanges) readings.push_back(std::move(r));
+  }
+  // The fewest changes first; of as many, values changed before the formula's structure (frames
+  // with no highlight in view fit "the specular term is missing" and a view vector that points
+  // away alike: the missing term is the likelier slip, and both are said); then the closest.
+  const auto structural = [](const Reading& r) { return r.fit->variant != model::Variant::formula; };
+  std::stable_sort(readings.begin(), readings.end(), [&](const Reading& a, const Reading& b) {
+    if (a.count != b.count) return a.count < b.count;
+    if (structural(a) != structural(b)) return !structural(a);
+    return a.fit->rms < b.fit->rms;
+  });
+
+  if (readings.empty()) {
+    const model::Fit& closest = fits.front();
+    out.variant = std::string(model::info(closest.variant).id);
+    out.residual = closest.worst_failing;
+    out.text = where_they_differ("The grader cannot say why from the homework's formula: no change of one or two of its parts reproduces your "
+                                 "frames (the closest leaves " + percent(closest.worst_failing, 1) + " of a frame's pixels off).",
+                                 regions());
+    out.label = "not explained";
+    return out;
+  }
+  const Reading& best = readings.front();
+  out.explained = true;
+  out.variant = std::string(model::info(best.fit->variant).id);
+  out.parameters = best.parameters;
+  out.residual = best.fit->worst_failing;
+  for (const auto& l : best.labels) out.label += (out.label.empty() ? "" : " + ") + l;
+  out.text = "Your frames are the homework's formula with " + std::string(best.count == 1 ? "one change" : "two changes") + ": " +
+             joined(best.changes) + ". (This reproduces every frame but " + percent(best.fit->worst_failing, 1) + " of its pixels at most.)";
+  for (std::size_t i = 1; i < readings.size(); ++i)
+    if (readings[i].count == best.count && readings[i].fit->rms <= kAsWell * best.fit->rms) {
+      out.also_fits.push_back(std::string(model::info(readings[i].fit->variant).id));
+      out.text += " It fits as well: " + joined(readings[i].changes) + ".";
+    }
+  return out;
+}
+
+}  // namespace shadelab::grade

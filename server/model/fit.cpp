@@ -1,0 +1,349 @@
+#include "model/fit.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <glm/common.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+namespace shadelab::model {
+
+namespace {
+
+// A variant whose sample is off on more than this many times the share the frames allow is off on
+// some frame (4,096 pixels: the share's standard error is a fifth of a percent).
+constexpr double kSampleMargin = 1.5;
+
+// A pixel of the sample: which frame, which point, and what the student drew there.
+struct Sampled {
+  std::size_t frame, point;
+  glm::vec3 drawn;
+};
+
+glm::vec3 drawn_colour(const image::Image& image, std::uint32_t pixel) {
+  const std::uint8_t* p = image.bytes.data() + static_cast<std::size_t>(pixel) * 4;
+  return glm::vec3(p[0], p[1], p[2]) / 255.0f;
+}
+
+// Every frame's interior pixels at an even stride, `count` in all at most: the same pixels on
+// every run.
+std::vector<Sampled> sample_of(const std::vector<DrawnFrame>& frames, std::size_t count) {
+  std::size_t total = 0;
+  for (const auto& f : frames) total += f.surface->points.size();
+  const std::size_t stride = std::max<std::size_t>(1, total / std::max<std::size_t>(count, 1));
+  std::vector<Sampled> out;
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    for (std::size_t i = 0; i < frames[k].surface->points.size(); ++i, ++at)
+      if (at % stride == 0) out.push_back({k, i, drawn_colour(*frames[k].drawn, frames[k].surface->pixels[i])});
+  return out;
+}
+
+// A colour the canvas clamped tells only a bound: left out of the least squares.
+bool clamped(float c) { return c <= 0.5f / 255 || c >= 254.5f / 255; }
+
+// The light's alpha is taken as 1, as the page sets it.
+float alpha_of(const Factors& f, const Parameters& p, Terms terms) {
+  float a = p.colours.alpha[0] + p.colours.alpha[1] * f.d;
+  if (terms == Terms::phong) a += p.colours.alpha[2] * specular_factor(f, p.exponent);
+  return a;
+}
+
+// The sample as the least squares see it, for one variant: what each colour multiplies at each
+// pixel but the exponent, the specular cosine's logarithm (pow(c, α) = exp(α ln c)), and whether
+// each channel takes part (a colour the canvas clamped, or divided by an alpha under 1, tells only
+// a bound).
+struct Design {
+  struct Row {
+    glm::vec3 diffuse;     // diffuse light x d
+    glm::vec3 specular;    // specular light, where the term is added; 0 elsewhere
+    float log_cosine;      // ln c; -inf where c = 0
+    glm::vec3 drawn;
+    glm::bvec3 used;
+  };
+  std::vector<Row> rows;
+};
+
+Design design_of(const std::vector<Sampled>& sample, const std::vector<Factors>& f, const FitOptions& o) {
+  Design d;
+  d.rows.reserve(sample.size());
+  for (std::size_t i = 0; i < sample.size(); ++i) {
+    const Factors& x = f[i];
+    // The alpha before the specular term (which only adds to it): under 1, the canvas divides.
+    const bool divided = o.course.colours.alpha[0] + o.course.colours.alpha[1] * x.d < 1;
+    Design::Row r{x.diffuse_light * x.d, x.on ? x.specular_light : glm::vec3(0),
+                  x.c > 0 ? std::log(x.c) : -std::numeric_limits<float>::infinity(), sample[i].drawn, {}};
+    for (int ch = 0; ch < 3; ++ch) r.used[ch] = !divided && !clamped(sample[i].drawn[ch]);
+    d.rows.push_back(r);
+  }
+  return d;
+}
+
+struct Trial {
+  Parameters parameters;
+  double rms;  // of the least squares, on the pixels they use
+};
+
+// The colours that best reproduce the sample at exponent `alpha`, channel by channel: least
+// squares on (ambient, diffuse, specular), pulled weakly towards the course's values so that a
+// colour the frames do not show (no highlight in view) stays the course's. The residual comes from
+// the normal equations, with no second pass over the sample.
+Trial least_squares(const Design& design, float alpha, const FitOptions& o) {
+  const bool phong = o.terms == Terms::phong;
+  Trial t{o.course, 0};
+  t.parameters.exponent = alpha;
+  std::vector<float> s(design.rows.size(), 0.0f);
+  if (phong)
+    for (std::size_t i = 0; i < s.size(); ++i) s[i] = std::exp(alpha * design.rows[i].log_cosine);
+  const double ridge = 1e-4 * static_cast<double>(design.rows.size());
+  double residual = 0, used = 0;
+  for (int ch = 0; ch < 3; ++ch) {
+    glm::dmat3 ata(0.0);
+    glm::dvec3 atb(0.0);
+    double ctc = 0, n = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const auto& r = design.rows[i];
+      if (!r.used[ch]) continue;
+      const glm::dvec3 row(1.0, r.diffuse[ch], phong ? r.specular[ch] * s[i] : 0.0f);
+      const double c = r.drawn[ch];
+      ata += glm::outerProduct(row, row);
+      atb += row * c;
+      ctc += c * c, n += 1;
+    }
+    const auto& k = o.course.colours;
+    const glm::dvec3 prior(k.ambient[ch], k.diffuse[ch], k.specular[ch]);
+    glm::dmat3 regular = ata;
+    for (int r = 0; r < 3; ++r) regular[r][r] += ridge;
+    const glm::dvec3 x = glm::inverse(regular) * (atb + ridge * prior);
+    residual += std::max(0.0, ctc - 2 * glm::dot(x, atb) + glm::dot(x, ata * x));
+    used += n;
+    t.parameters.colours.ambient[ch] = static_cast<float>(x[0]);
+    t.parameters.colours.diffuse[ch] = static_cast<float>(x[1]);
+    if (phong) t.parameters.colours.specular[ch] = static_cast<float>(x[2]);
+  }
+  t.rms = used > 0 ? std::sqrt(residual / used) : 0;
+  return t;
+}
+
+glm::vec4 shaded(const Factors& f, const Parameters& p, Terms terms) {
+  glm::vec3 c = p.colours.ambient + f.diffuse_light * p.colours.diffuse * f.d;
+  if (terms == Terms::phong) c += f.specular_light * p.colours.specular * specular_factor(f, p.exponent);
+  return {c, alpha_of(f, p, terms)};
+}
+
+// As the canvas stores it: clamped, then 8 bits.
+}  // namespace
+
+glm::vec3 as_canvas_stores(const glm::vec4& c) {
+  const glm::vec4 bytes = glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f);
+  if (bytes.a >= 255) return glm::vec3(bytes) / 255.0f;
+  if (bytes.a <= 0) return glm::vec3(0);
+  return glm::round(glm::min(glm::vec3(1), glm::vec3(bytes) / bytes.a) * 255.0f) / 255.0f;
+}
+
+namespace {
+
+glm::vec3 stored(const glm::vec4& c) { return as_canvas_stores(c); }
+
+double rms_of(const std::vector<Sampled>& sample, const std::vector<Factors>& f, const Parameters& p, Terms terms) {
+  double sum = 0;
+  for (std::size_t i = 0; i < sample.size(); ++i) {
+    const glm::vec3 d = stored(shaded(f[i], p, terms)) - sample[i].drawn;
+    sum += static_cast<double>(glm::dot(d, d)) / 3;
+  }
+  return sample.empty() ? 0 : std::sqrt(sum / static_cast<double>(sample.size()));
+}
+
+// The exponent: the best of a grid from 0.5 to 256 (ratio 2^(1/3)), then a golden-section search
+// between its neighbours. The colours are refitted at every step.
+Trial best_exponent(const Design& design, const FitOptions& o) {
+  Trial best = least_squares(design, o.course.exponent, o);
+  if (o.terms != Terms::phong) return best;
+  std::vector<float> grid;
+  for (float a = 0.5f; a <= 256.0f; a *= std::cbrt(2.0f)) grid.push_back(a);
+  std::size_t at = grid.size();
+  for (std::size_t i = 0; i < grid.size(); ++i)
+    if (Trial t = least_squares(design, grid[i], o); t.rms < best.rms) best = t, at = i;
+  if (at == grid.size()) return best;  // the course's own exponent is best
+  double lo = std::log(grid[at > 0 ? at - 1 : 0]), hi = std::log(grid[std::min(at + 1, grid.size() - 1)]);
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  Trial ta = least_squares(design, static_cast<float>(std::exp(a)), o), tb = least_squares(design, static_cast<float>(std::exp(b)), o);
+  for (int step = 0; step < 20; ++step) {
+    if (ta.rms < tb.rms) {
+      hi = b, b = a, tb = ta, a = hi - g * (hi - lo);
+      ta = least_squares(design, static_cast<float>(std::exp(a)), o);
+    } else {
+      lo = a, a = b, ta = tb, b = lo + g * (hi - lo);
+      tb = least_squares(design, static_cast<float>(std::exp(b)), o);
+    }
+    if (ta.rms < best.rms) best = ta;
+    if (tb.rms < best.rms) best = tb;
+  }
+  return best;
+}
+
+// Whether the model draws a pixel off. Where its alpha is under 1 the canvas divides the colour by
+// it, and so an error of a colour step by as much: the threshold is the colour's before the division.
+bool off(const glm::vec4& model, const glm::vec3& drawn, double threshold) {
+  const glm::vec3 d = glm::abs(stored(model) - drawn);
+  const double alpha = std::clamp(static_cast<double>(model.a), 1.0 / 255, 1.0);
+  return std::max({d.r, d.g, d.b}) > threshold / alpha;
+}
+
+// The share of the sample drawn off: a variant far off here is not checked on every pixel.
+double sample_failing(const std::vector<Sampled>& sample, const std::vector<Factors>& f, const Parameters& p, const FitOptions& o) {
+  std::size_t failing = 0;
+  for (std::size_t i = 0; i < sample.size(); ++i) failing += off(shaded(f[i], p, o.terms), sample[i].drawn, o.threshold);
+  return sample.empty() ? 1 : static_cast<double>(failing) / static_cast<double>(sample.size());
+}
+
+// Whether every frame is within what it allows, and the worst frame's share off.
+struct Check {
+  bool within = true;
+  double worst = 0;
+};
+
+// `until_off`: stop at the first frame off (its share then bounds the worst from below): a check
+// that fails costs a frame, not all of them.
+enum class Extent { whole, until_off };
+
+Check check(Variant v, const Parameters& p, const std::vector<DrawnFrame>& frames, const FitOptions& o, Extent extent) {
+  Check c;
+  for (const auto& frame : frames) {
+    const double share = failing_share(v, p, frame, o);
+    c.worst = std::max(c.worst, share);
+    c.within = c.within && share <= frame.allowed;
+    if (!c.within && extent == Extent::until_off) break;
+  }
+  return c;
+}
+
+}  // namespace
+
+glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, const SurfacePoint& point, const Light& light) {
+  return shaded(factors(variant, point, {parameters.light_position.value_or(light.position), light.colour}), parameters, terms);
+}
+
+double failing_share(Variant v, const Parameters& p, const DrawnFrame& frame, const FitOptions& o) {
+  const auto& s = *frame.surface;
+  if (s.points.empty()) return 0;
+  std::size_t failing = 0;
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    failing += off(shade(v, p, o.terms, s.points[i], frame.light), drawn_colour(*frame.drawn, s.pixels[i]), o.threshold);
+  return static_cast<double>(failing) / static_cast<double>(s.points.size());
+}
+
+std::vector<Fit> fit_variants(const std::vector<DrawnFrame>& frames, const FitOptions& o) {
+  const std::vector<Sampled> sample = sample_of(frames, o.sample);
+  double most_allowed = 0;
+  for (const auto& frame : frames) most_allowed = std::max(most_allowed, frame.allowed);
+  std::vector<Fit> fits;
+  for (const VariantInfo& v : variants()) {
+    if (v.specular_only && o.terms != Terms::phong) continue;
+    std::vector<Factors> f;
+    f.reserve(sample.size());
+    for (const auto& s : sample) f.push_back(factors(v.variant, frames[s.frame].surface->points[s.point], frames[s.frame].light));
+    const Trial t = best_exponent(design_of(sample, f, o), o);
+    Fit fit{v.variant, t.parameters, rms_of(sample, f, t.parameters, o.terms)};
+    for (const auto& factor : f) fit.specular_peak = std::max(fit.specular_peak, specular_factor(factor, t.parameters.exponent));
+    // Every pixel only where the sample is close (kSampleMargin).
+    fit.worst_failing = sample_failing(sample, f, t.parameters, o);
+    if (fit.worst_failing <= kSampleMargin * most_allowed) {
+      Check c = check(v.variant, o.course, frames, o, Extent::until_off);
+      if (c.within) {
+        fit.parameters = o.course;
+        fit.rms = rms_of(sample, f, o.course, o.terms);
+      } else {
+        c = check(v.variant, t.parameters, frames, o, Extent::until_off);
+      }
+      fit.worst_failing = c.worst;
+      fit.reproduces = c.within;
+    }
+    fits.push_back(fit);
+  }
+  std::stable_sort(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) {
+    if (a.reproduces != b.reproduces) return a.reproduces;
+    return a.rms < b.rms;
+  });
+  // The closest, where none reproduces, with how far off its worst frame is (what the student reads).
+  if (Fit& closest = fits.front(); !closest.reproduces) closest.worst_failing = check(closest.variant, closest.parameters, frames, o, Extent::whole).worst;
+  return fits;
+}
+
+}  // namespace shadelab::model
+
+namespace shadelab::model {
+
+namespace {
+
+// Nelder and Mead's simplex search for a minimum of `f` in three dimensions, from `start` with
+// steps of `step` along each axis.
+glm::vec3 nelder_mead(const std::function<double(const glm::vec3&)>& f, const glm::vec3& start, float step, int iterations) {
+  std::array<glm::vec3, 4> x = {start, start + glm::vec3(step, 0, 0), start + glm::vec3(0, step, 0), start + glm::vec3(0, 0, step)};
+  std::array<double, 4> y;
+  for (int i = 0; i < 4; ++i) y[i] = f(x[i]);
+  for (int it = 0; it < iterations; ++it) {
+    std::array<int, 4> order = {0, 1, 2, 3};
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return y[a] < y[b]; });
+    const int best = order[0], worst = order[3], second = order[2];
+    const glm::vec3 centre = (x[order[0]] + x[order[1]] + x[order[2]]) / 3.0f;
+    const glm::vec3 reflected = centre + (centre - x[worst]);
+    const double yr = f(reflected);
+    if (yr < y[best]) {
+      const glm::vec3 expanded = centre + 2.0f * (centre - x[worst]);
+      const double ye = f(expanded);
+      x[worst] = ye < yr ? expanded : reflected;
+      y[worst] = std::min(ye, yr);
+    } else if (yr < y[second]) {
+      x[worst] = reflected, y[worst] = yr;
+    } else {
+      const glm::vec3 contracted = centre + 0.5f * (x[worst] - centre);
+      if (const double yc = f(contracted); yc < y[worst]) {
+        x[worst] = contracted, y[worst] = yc;
+      } else {
+        for (int i : {order[1], order[2], order[3]}) x[i] = x[best] + 0.5f * (x[i] - x[best]), y[i] = f(x[i]);
+      }
+    }
+  }
+  return x[static_cast<std::size_t>(std::min_element(y.begin(), y.end()) - y.begin())];
+}
+
+}  // namespace
+
+Fit fit_light_position(const std::vector<DrawnFrame>& frames, const FitOptions& o) {
+  const std::vector<Sampled> sample = sample_of(frames, o.sample);
+  const auto factors_at = [&](const glm::vec3& light) {
+    std::vector<Factors> f;
+    f.reserve(sample.size());
+    for (const auto& s : sample) f.push_back(factors(Variant::formula, frames[s.frame].surface->points[s.point], {light, frames[s.frame].light.colour}));
+    return f;
+  };
+  const auto rms_at = [&](const glm::vec3& light) { return least_squares(design_of(sample, factors_at(light), o), o.course.exponent, o).rms; };
+  const glm::vec3 page = frames.front().light.position;
+  const float distance = std::max(1.0f, glm::length(page));
+  std::vector<glm::vec3> starts = {page};
+  for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)})
+    for (const float sign : {1.0f, -1.0f}) starts.push_back(sign * distance * axis);
+  glm::vec3 best = page;
+  double best_rms = rms_at(page);
+  for (const auto& start : starts) {
+    const glm::vec3 found = nelder_mead(rms_at, start, 0.25f * distance, 60);
+    if (const double r = rms_at(found); r < best_rms) best = found, best_rms = r;
+  }
+  const auto f = factors_at(best);
+  Trial t = least_squares(design_of(sample, f, o), o.course.exponent, o);
+  t.parameters.light_position = best;
+  Fit fit{Variant::formula, t.parameters, rms_of(sample, f, t.parameters, o.terms)};
+  const Check c = check(Variant::formula, t.parameters, frames, o, Extent::whole);
+  fit.worst_failing = c.worst;
+  fit.reproduces = c.within;
+  for (const auto& factor : f) fit.specular_peak = std::max(fit.specular_peak, specular_factor(factor, o.course.exponent));
+  return fit;
+}
+
+}  // namespace shadelab::model

@@ -1,0 +1,83 @@
+#pragma once
+// Which variant of the formula (model/lighting.h), with which colours and exponent, reproduces the
+// frames a student drew: the colours by least squares (the image is linear in them away from the
+// clamp), the exponent by a search on one number, each variant on a sample of the pixels, then the
+// fit confirmed on every interior pixel with the rule a correct submission meets against the
+// reference (a frame fails past `max_failing` of its pixels off by more than `threshold`).
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "image/image.h"
+#include "model/lighting.h"
+#include "model/surface.h"
+
+namespace shadelab::model {
+
+struct Colours {
+  glm::vec3 ambient{0}, diffuse{0}, specular{0};
+  // Their alphas (ambient, diffuse, specular): the course's, never fitted. The canvas divides a
+  // pixel's colour by its alpha where that is under 1 (a diffuse term left negative).
+  glm::vec3 alpha{1};
+};
+
+struct Parameters {
+  Colours colours;
+  float exponent = 1;  // α; unused by a lambert checkpoint
+  // Where the light acts as if it were under every frame (a position written into the shader does
+  // not follow the page's, nor a probe's); none: each frame's own.
+  std::optional<glm::vec3> light_position;
+};
+
+// One frame the student drew, with the geometry and the light it was drawn under.
+struct DrawnFrame {
+  const FrameSurface* surface = nullptr;
+  const image::Image* drawn = nullptr;  // RGBA8, the surface's size
+  Light light;
+  // The share of its interior pixels a fit may draw off: the rule's, plus what the formula itself
+  // draws off of the reference's frame at this angle and light (the model shades each pixel once,
+  // from geometry averaged over its samples, where the rasteriser shades each triangle in it).
+  double allowed = 0.01;
+};
+
+struct FitOptions {
+  Terms terms = Terms::phong;
+  Parameters course;              // the values the fit starts from and keeps where the frames do not tell
+  double threshold = 0.016;       // as image::CompareOptions
+  std::size_t sample = 4096;      // pixels each variant is tried on before the full check
+};
+
+struct Fit {
+  Variant variant = Variant::formula;
+  Parameters parameters;
+  double rms = 0;            // on the sample, in [0, 1] colour units
+  double worst_failing = 1;  // the worst frame's share of interior pixels off by more than the threshold
+  bool reproduces = false;   // every frame within what it allows
+  float specular_peak = 0;   // the largest specular factor on the sample: 0 where no highlight is in view
+};
+
+// Every variant the checkpoint's terms allow, fitted, best first (reproducing ones first, then by
+// rms). A variant that reproduces the frames with the course's own values keeps them: the fit's
+// values are then what the clamp and the 8 bits blur, not what the student changed.
+std::vector<Fit> fit_variants(const std::vector<DrawnFrame>& frames, const FitOptions& options);
+
+// The formula with the light at one fitted position under every frame (the colours fitted with it,
+// the exponent the course's): a search from the course's light and from six points around the mesh
+// at its distance. For frames no variant reproduces: it costs a few hundred evaluations of the
+// sample.
+Fit fit_light_position(const std::vector<DrawnFrame>& frames, const FitOptions& options);
+
+// The share of `frame`'s interior pixels that `variant` with `parameters` draws off by more than
+// the threshold.
+double failing_share(Variant variant, const Parameters& parameters, const DrawnFrame& frame, const FitOptions& options);
+
+// A colour and alpha as the canvas stores them: clamped to 8 bits, then (as
+// image/canvas_readback.h) the colour divided by an alpha under 1.
+glm::vec3 as_canvas_stores(const glm::vec4& colour);
+
+// What `variant` with `parameters` draws at `point` (the colour and alpha before the canvas clamps them).
+glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, const SurfacePoint& point, const Light& light);
+
+}  // namespace shadelab::model

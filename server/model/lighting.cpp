@@ -1,0 +1,94 @@
+#include "model/lighting.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "core/enum_names.h"
+
+namespace shadelab::model {
+
+namespace {
+
+constexpr EnumName<Terms> kTerms[] = {{Terms::lambert, "lambert"}, {Terms::phong, "phong"}};
+
+constexpr VariantInfo kVariants[] = {
+    {Variant::formula, "formula", "the formula", false, "the homework's formula", "the homework's formula"},
+    {Variant::light_as_direction, "light_as_direction", "light used as a direction", false,
+     "the light comes from the direction {light} at every point, as if far away, not from the position {light}",
+     "L must point from the point to the light: normalize({light} - {position})"},
+    {Variant::view_away, "view_away", "view vector away from the eye", true, "the view vector points away from the eye: V = normalize({position})",
+     "V must point from the point to the eye at the origin: normalize(-{position})"},
+    {Variant::fixed_view, "fixed_view", "fixed view vector", true, "the view vector is the same at every point, (0, 0, 1)",
+     "V must point from each point to the eye at the origin: normalize(-{position})"},
+    {Variant::unnormalized_normal, "unnormalized_normal", "normal not normalized", false,
+     "the normal is used as interpolated, shorter than 1 between the vertices", "N must be normalize({normal}) in the fragment shader"},
+    {Variant::flat_normal, "flat_normal", "flat normals", false, "the normal is one per triangle (flat shading)",
+     "N must be interpolated across each triangle: remove `flat` from {normal}"},
+    {Variant::negated_normal, "negated_normal", "normal negated", false, "the normal points into the surface: the side facing the light is dark",
+     "N must be normalize({normal}), not its negative"},
+    {Variant::unclamped_diffuse, "unclamped_diffuse", "N.L not clamped", false,
+     "the diffuse term is N·L without max(N·L, 0): the side facing away from the light is darker than the ambient colour",
+     "the diffuse term must be max(N·L, 0)"},
+    {Variant::half_vector, "half_vector", "Blinn's half vector", true, "the highlight is Blinn's, max(N·H, 0)^α with H = normalize(L + V)",
+     "the homework's highlight is Phong's: max(R·V, 0)^α with R = reflect(-L, N)"},
+    {Variant::reflect_sign, "reflect_sign", "reflect(L, N)", true, "R = reflect(L, N) reflects the light's direction the wrong way round",
+     "R must be reflect(-L, N): L points to the light, reflect() wants the direction the light travels"},
+    {Variant::unguarded_specular, "unguarded_specular", "specular where N.L <= 0", true, "the specular term is added where N·L <= 0 too",
+     "add the specular term only where N·L > 0"},
+    {Variant::no_light_colour, "no_light_colour", "light's colour left out", false, "neither term is multiplied by the light's colour {light colour}",
+     "multiply the diffuse and the specular term by {light colour}"},
+    {Variant::specular_without_light_colour, "specular_without_light_colour", "light's colour left out of the specular", true,
+     "the specular term is not multiplied by the light's colour {light colour}", "multiply the specular term by {light colour} too"},
+};
+
+static_assert(std::size(kVariants) == static_cast<std::size_t>(Variant::specular_without_light_colour) + 1);
+
+// GLSL's reflect(I, N) = I - 2 dot(N, I) N, for an N of any length as the shader passes it.
+glm::vec3 reflect(const glm::vec3& i, const glm::vec3& n) { return i - 2.0f * glm::dot(n, i) * n; }
+
+glm::vec3 normal_of(Variant v, const SurfacePoint& p) {
+  switch (v) {
+    case Variant::unnormalized_normal: return p.normal;
+    case Variant::flat_normal: return glm::normalize(p.flat_normal);
+    case Variant::negated_normal: return -glm::normalize(p.normal);
+    default: return glm::normalize(p.normal);
+  }
+}
+
+glm::vec3 view_of(Variant v, const SurfacePoint& p) {
+  switch (v) {
+    case Variant::view_away: return glm::normalize(p.position);
+    case Variant::fixed_view: return {0, 0, 1};
+    default: return glm::normalize(-p.position);
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(Terms terms) { return name_in(kTerms, terms); }
+std::optional<Terms> terms_named(std::string_view name) { return value_in(kTerms, name); }
+
+std::span<const VariantInfo> variants() { return kVariants; }
+const VariantInfo& info(Variant variant) { return kVariants[static_cast<std::size_t>(variant)]; }
+
+Factors factors(Variant v, const SurfacePoint& p, const Light& light) {
+  const glm::vec3 n = normal_of(v, p);
+  const glm::vec3 l = glm::normalize(v == Variant::light_as_direction ? light.position : light.position - p.position);
+  const glm::vec3 e = view_of(v, p);
+  const float n_dot_l = glm::dot(n, l);
+  Factors f;
+  f.d = v == Variant::unclamped_diffuse ? n_dot_l : std::max(0.0f, n_dot_l);
+  if (v == Variant::half_vector)
+    f.c = std::max(0.0f, glm::dot(n, glm::normalize(l + e)));
+  else
+    f.c = std::max(0.0f, glm::dot(e, reflect(v == Variant::reflect_sign ? l : -l, n)));
+  f.on = v == Variant::unguarded_specular || n_dot_l > 0;
+  f.diffuse_light = v == Variant::no_light_colour ? glm::vec3(1) : light.colour;
+  f.specular_light = v == Variant::no_light_colour || v == Variant::specular_without_light_colour ? glm::vec3(1) : light.colour;
+  return f;
+}
+
+float specular_factor(const Factors& f, float alpha) { return f.on ? std::pow(f.c, alpha) : 0.0f; }
+
+}  // namespace shadelab::model

@@ -1,0 +1,74 @@
+#pragma once
+// The homework's formula as a model with named parts: ambient + light ⊙ (diffuse · max(N·L, 0) +
+// specular · max(R·V, 0)^α), the specular term only where N·L > 0, with V from the point to the
+// eye at the origin and R = reflect(-L, N); and the structural variants students write instead,
+// each the formula with one thing changed. Evaluated per pixel from the reference's geometry
+// (model/surface.h), so a failing submission's frames can be matched against every variant
+// without a render of its own.
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include <glm/vec3.hpp>
+
+#include "model/surface.h"
+
+namespace shadelab::model {
+
+// Which terms a checkpoint's formula has.
+enum class Terms { lambert, phong };  // ambient + diffuse; ambient + diffuse + specular
+std::string_view to_string(Terms terms);  // "lambert", "phong" (a course profile's words)
+std::optional<Terms> terms_named(std::string_view name);
+
+// One change to the formula. The table in lighting.cpp gives each its id and words.
+enum class Variant {
+  formula,                     // as the homework writes it
+  light_as_direction,          // L = normalize(light position): the position used as a direction
+  view_away,                   // V = normalize(position): pointing away from the eye
+  fixed_view,                  // V = (0, 0, 1) everywhere
+  unnormalized_normal,         // N = the interpolated normal, not normalized
+  flat_normal,                 // N = one normal per triangle
+  negated_normal,              // N = -normalize(normal)
+  unclamped_diffuse,           // N·L without max(…, 0)
+  half_vector,                 // max(N·H, 0)^α with H = normalize(L + V) (Blinn)
+  reflect_sign,                // R = reflect(L, N)
+  unguarded_specular,          // the specular term also where N·L <= 0
+  no_light_colour,             // neither term multiplied by the light's colour
+  specular_without_light_colour,  // the specular term not multiplied by it
+};
+
+struct VariantInfo {
+  Variant variant;
+  std::string_view id;      // in a report: "light_as_direction"
+  std::string_view label;   // for a TA's count of a class: "light used as a direction"
+  bool specular_only;       // changes only the specular term (none for a lambert checkpoint)
+  // What the student's code does and what the homework's does, in the homework's terms. {light},
+  // {position}, {normal} and {light colour} stand for the course's names of the light's position
+  // uniform, the position and normal varyings and the light's colour uniform.
+  std::string_view does, should;
+};
+
+std::span<const VariantInfo> variants();
+const VariantInfo& info(Variant variant);
+
+struct Light {
+  glm::vec3 position;  // eye space
+  glm::vec3 colour;
+};
+
+// What the colours multiply at one point: colour = ambient + diffuse_light ⊙ diffuse · d +
+// specular_light ⊙ specular · (on ? c^α : 0). The colours enter linearly (the fit's least squares),
+// the exponent through the cosine alone.
+struct Factors {
+  float d = 0;          // the diffuse factor, max(N·L, 0) in the formula
+  float c = 0;          // the specular cosine before the exponent, max(R·V, 0) in the formula
+  bool on = false;      // whether the specular term is added here
+  glm::vec3 diffuse_light{1}, specular_light{1};
+};
+
+Factors factors(Variant variant, const SurfacePoint& point, const Light& light);
+
+// The specular factor for exponent `alpha`, as GLSL's pow() computes it for a cosine in [0, 1].
+float specular_factor(const Factors& f, float alpha);
+
+}  // namespace shadelab::model

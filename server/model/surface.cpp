@@ -1,0 +1,48 @@
+#include "model/surface.h"
+
+#include <cstring>
+
+namespace shadelab::model {
+
+namespace {
+
+struct Texel {
+  float r, g, b, a;
+};
+
+Texel texel(const image::Image& image, std::size_t index) {
+  Texel t{};
+  std::memcpy(&t, image.bytes.data() + index * sizeof(Texel), sizeof(Texel));
+  return t;
+}
+
+}  // namespace
+
+FrameSurface surface_from(const image::Image& position) {
+  FrameSurface s;
+  s.width = position.width;
+  s.height = position.height;
+  const std::size_t count = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Texel p = texel(position, i);
+    // The clear colour's alpha is 1 and the position render writes 2: the resolve's alpha is 1 +
+    // the share of samples the mesh covers.
+    if (p.a <= 1) continue;
+    if (p.a < 2) {  // some samples see the background
+      s.outline.push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
+    s.pixels.push_back(static_cast<std::uint32_t>(i));
+    s.points.push_back({{p.r, p.g, p.b}, {}, {}});
+  }
+  return s;
+}
+
+void add_normals(FrameSurface& s, const image::Image& normal, NormalKind kind) {
+  for (std::size_t i = 0; i < s.pixels.size(); ++i) {
+    const Texel n = texel(normal, s.pixels[i]);
+    (kind == NormalKind::flat ? s.points[i].flat_normal : s.points[i].normal) = {n.r, n.g, n.b};
+  }
+}
+
+}  // namespace shadelab::model

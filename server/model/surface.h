@@ -1,0 +1,40 @@
+#pragma once
+// The geometry under each pixel of a frame, as the reference's rasterisation has it: what the
+// homework's formula (model/lighting.h) needs to shade the pixel on the CPU. Read from three float
+// renders of the reference's vertex shader (grade/formula_geometry.h): the eye-space position,
+// the normal as interpolated (not normalized) and the normal as a `flat` varying gives it, each
+// resolved over the frame's samples; the position's alpha is 1 + the share of samples the mesh
+// covers. Kept as the object's pixels alone: a tenth of a homework frame.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "image/image.h"
+
+namespace shadelab::model {
+
+struct SurfacePoint {
+  glm::vec3 position;     // eye space (the eye at the origin)
+  glm::vec3 normal;       // interpolated, as the fragment shader receives it before normalize()
+  glm::vec3 flat_normal;  // the provoking vertex's, as a `flat` varying receives it
+};
+
+// A frame's interior: the pixels every sample of which the mesh covers (an outline pixel is a
+// blend of the object and the background the model does not draw), in row order.
+struct FrameSurface {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> pixels;  // y * width + x, rows top-down as the frames'
+  std::vector<SurfacePoint> points;   // one per pixel
+  std::vector<std::uint32_t> outline; // the pixels the mesh covers in part
+
+  std::size_t bytes() const { return pixels.size() * 4 + points.size() * sizeof(SurfacePoint) + outline.size() * 4; }
+};
+
+// A surface's pixels and positions from the position render (RGBA32F)...
+FrameSurface surface_from(const image::Image& position);
+// ...then its normals from the normal render and the flat normal render (the same size).
+enum class NormalKind { interpolated, flat };
+void add_normals(FrameSurface& surface, const image::Image& normal, NormalKind kind);
+
+}  // namespace shadelab::model

@@ -1,0 +1,381 @@
+// The homework's formula as a model (model/fit.h, grade/formula_explanation.h). First on a sphere
+// whose every pixel's geometry is known, drawn by the model itself: the fit finds each variant and
+// each changed value. Then through the real server at the course's canvas, on shaders edited as a
+// student edits them: each mistake of the model's kind explained with the right change and its
+// numbers, correct formulations passing with no explanation, unrelated drawings not explained.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <future>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "model/fit.h"
+#include "support/http_fixture.h"
+#include "support/test_support.h"
+
+using nlohmann::json;
+using namespace shadelab;
+
+namespace {
+
+// ---- The fit on a sphere -------------------------------------------------------------------
+
+constexpr int kSize = 128;
+
+// A sphere of radius 1.5 at (0, 0, -6) seen from the origin through a 45-degree frustum: each
+// pixel's eye-space position and normal (shorter than 1 in a ripple, as interpolation between
+// vertices leaves it), and a "flat" normal one per facet of a grid of directions.
+model::FrameSurface sphere() {
+  model::FrameSurface s;
+  s.width = s.height = kSize;
+  const glm::vec3 centre(0, 0, -6);
+  const float radius = 1.5f, half = std::tan(glm::radians(22.5f));
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const glm::vec3 ray = glm::normalize(glm::vec3((2 * (x + 0.5f) / kSize - 1) * half, (1 - 2 * (y + 0.5f) / kSize) * half, -1));
+      const float b = glm::dot(ray, centre), c = glm::dot(centre, centre) - radius * radius, disc = b * b - c;
+      if (disc <= 0.05f) continue;  // the outline and the background
+      const glm::vec3 p = ray * (b - std::sqrt(disc));
+      const glm::vec3 n = (p - centre) / radius;
+      const float shorter = 0.9f + 0.1f * std::abs(std::sin(0.4f * static_cast<float>(x)) * std::sin(0.4f * static_cast<float>(y)));
+      s.pixels.push_back(static_cast<std::uint32_t>(y * kSize + x));
+      s.points.push_back({p, n * shorter, glm::normalize(glm::round(n * 6.0f) / 6.0f)});
+    }
+  return s;
+}
+
+model::Parameters course_values() {
+  return {{{0.2f, 0.1f, 0.1f}, {0.7f, 0.5f, 0.1f}, {0.1f, 0.4f, 0.8f}, glm::vec3(1)}, 6.0f};
+}
+
+// The page's light, an orange one and one behind the sphere (as the course's probes).
+std::vector<model::Light> lights() {
+  return {{{16, 8, 4}, glm::vec3(1)}, {{16, 8, 4}, {1, 0.6f, 0.3f}}, {{-6, 4, -20}, glm::vec3(1)}};
+}
+
+image::Image drawn_by(model::Variant v, const model::Parameters& p, const model::FrameSurface& s, const model::Light& light) {
+  image::Image out = image::Image::blank(kSize, kSize, image::PixelType::u8);
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const glm::vec3 c = model::as_canvas_stores(model::shade(v, p, model::Terms::phong, s.points[i], light));
+    std::uint8_t* px = out.bytes.data() + static_cast<std::size_t>(s.pixels[i]) * 4;
+    for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>(std::lround(c[k] * 255));
+    px[3] = 255;
+  }
+  return out;
+}
+
+struct Drawn {
+  model::FrameSurface surface = sphere();
+  std::vector<image::Image> images;
+  std::vector<model::DrawnFrame> frames;
+};
+
+std::unique_ptr<Drawn> draw(model::Variant v, const model::Parameters& p) {
+  auto d = std::make_unique<Drawn>();
+  for (const auto& l : lights()) d->images.push_back(drawn_by(v, p, d->surface, l));
+  for (std::size_t i = 0; i < d->images.size(); ++i) d->frames.push_back({&d->surface, &d->images[i], lights()[i], 0.01});
+  return d;
+}
+
+model::FitOptions options() {
+  model::FitOptions o;
+  o.course = course_values();
+  return o;
+}
+
+// V = normalize(position) and R = reflect(L, N) draw the same: V·reflect(L, N) = -V·reflect(-L, N).
+bool same_drawing(model::Variant a, model::Variant b) {
+  const auto pair = [](model::Variant v) { return v == model::Variant::view_away || v == model::Variant::reflect_sign; };
+  return a == b || (pair(a) && pair(b));
+}
+
+TEST(FormulaModelTest, EveryVariantIsFoundOnTheFramesItDraws) {
+  for (const auto& v : model::variants()) {
+    if (v.variant == model::Variant::formula) continue;
+    SCOPED_TRACE(std::string(v.id));
+    const auto d = draw(v.variant, course_values());
+    const auto fits = model::fit_variants(d->frames, options());
+    ASSERT_FALSE(fits.empty());
+    EXPECT_TRUE(fits.front().reproduces);
+    EXPECT_TRUE(same_drawing(fits.front().variant, v.variant)) << model::info(fits.front().variant).id;
+    EXPECT_NEAR(fits.front().parameters.exponent, 6.0f, 0.3f);
+    // The formula with the course's values does not draw these frames: the variant is needed.
+    const auto& course = course_values().colours;
+    for (const auto& f : fits) {
+      const auto& c = f.parameters.colours;
+      const bool course_values_kept = glm::length(c.ambient - course.ambient) + glm::length(c.diffuse - course.diffuse) +
+                                          glm::length(c.specular - course.specular) < 0.02f;
+      EXPECT_FALSE(f.variant == model::Variant::formula && f.reproduces && course_values_kept);
+    }
+  }
+}
+
+TEST(FormulaModelTest, ChangedValuesAreFoundWithinFivePercent) {
+  auto doubled_ambient = course_values();
+  doubled_ambient.colours.ambient *= 2.0f;
+  auto halved_specular = course_values();
+  halved_specular.colours.specular *= 0.5f;
+  auto sharper = course_values();
+  sharper.exponent = 12.0f;
+  for (const auto& [name, p] : {std::pair{"ambient", doubled_ambient}, std::pair{"specular", halved_specular}, std::pair{"exponent", sharper}}) {
+    SCOPED_TRACE(name);
+    const auto d = draw(model::Variant::formula, p);
+    const auto fits = model::fit_variants(d->frames, options());
+    ASSERT_TRUE(fits.front().reproduces);
+    EXPECT_EQ(fits.front().variant, model::Variant::formula);
+    const auto& f = fits.front().parameters;
+    EXPECT_NEAR(f.exponent, p.exponent, 0.05f * p.exponent);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(f.colours.ambient[c], p.colours.ambient[c], 0.05f * p.colours.ambient[c] + 0.004f);
+      EXPECT_NEAR(f.colours.specular[c], p.colours.specular[c], 0.05f * p.colours.specular[c] + 0.004f);
+    }
+  }
+}
+
+TEST(FormulaModelTest, ALightWrittenIntoTheShaderIsFoundWhereItIs) {
+  auto moved = course_values();
+  moved.light_position = glm::vec3(-10, 8, 4);
+  const auto d = draw(model::Variant::formula, moved);
+  for (const auto& f : model::fit_variants(d->frames, options())) EXPECT_FALSE(f.reproduces) << model::info(f.variant).id;
+  const auto fit = model::fit_light_position(d->frames, options());
+  EXPECT_TRUE(fit.reproduces) << fit.worst_failing;
+  ASSERT_TRUE(fit.parameters.light_position);
+  EXPECT_LT(glm::distance(*fit.parameters.light_position, glm::vec3(-10, 8, 4)), 0.05f * glm::length(glm::vec3(-10, 8, 4)))
+      << fit.parameters.light_position->x << ", " << fit.parameters.light_position->y << ", " << fit.parameters.light_position->z;
+}
+
+TEST(FormulaModelTest, NoiseIsReproducedByNoVariant) {
+  auto d = draw(model::Variant::formula, course_values());
+  std::uint32_t state = 12345;
+  for (auto& image : d->images)
+    for (std::size_t i = 0; i < image.bytes.size(); i += 4) {
+      state = state * 1664525u + 1013904223u;
+      image.bytes[i] = static_cast<std::uint8_t>(state >> 24);
+    }
+  for (const auto& f : model::fit_variants(d->frames, options())) EXPECT_FALSE(f.reproduces) << model::info(f.variant).id;
+}
+
+// ---- Through the real server, at the course's canvas ----------------------------------------
+
+class FormulaGradeTest : public ::testing::Test {
+ public:
+  static void SetUpTestSuite() {
+    auto config = testkit::test_config();
+    // The references and the formula's geometry at 512 x 512, kept for the suite's other processes.
+    config.reference_store = "/tmp/shadelab-formula-test-" + std::to_string(::getuid());
+    server_ = new testkit::RunningService(config);
+  }
+  static void TearDownTestSuite() { delete server_; }
+  void SetUp() override { ASSERT_TRUE(server_->ok()) << server_->failure; }
+
+  struct Edit {
+    std::string find, replace;
+    bool vertex = false;
+  };
+  // The checkpoint's reference with a student's edits, graded against it at the course's canvas.
+  static json grade(const std::string& checkpoint, const std::vector<Edit>& edits, const std::string& size = "") {
+    auto p = *testkit::course().preset(checkpoint);
+    for (const auto& e : edits) {
+      auto& text = e.vertex ? p.vertex.text : p.fragment.text;
+      const auto at = text.find(e.find);
+      EXPECT_NE(at, std::string::npos) << e.find;
+      if (at != std::string::npos) text.replace(at, e.find.size(), e.replace);
+    }
+    json job = {{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"vertexName", "phong_vert.js"},
+                {"fragmentName", "phong_frag.js"}, {"reference", checkpoint}};
+    if (!size.empty()) job["width"] = 160, job["height"] = 120;
+    auto r = server_->client().Post("/api/grade", job.dump(), "application/json");
+    if (!r || r->status != 200) {
+      ADD_FAILURE() << "no grade: " << (r ? r->body : "no response");
+      return json::object();
+    }
+    return json::parse(r->body);
+  }
+  // Several grades at once: the server's two workers share them.
+  static std::vector<json> grade_all(const std::string& checkpoint, const std::vector<std::vector<Edit>>& cases) {
+    std::vector<std::future<json>> pending;
+    for (const auto& edits : cases) pending.push_back(std::async(std::launch::async, [&, edits] { return grade(checkpoint, edits); }));
+    std::vector<json> out;
+    for (auto& p : pending) out.push_back(p.get());
+    return out;
+  }
+  static testkit::RunningService* server_;
+};
+testkit::RunningService* FormulaGradeTest::server_ = nullptr;
+
+struct Expected {
+  std::string what;
+  std::vector<FormulaGradeTest::Edit> edits;
+  std::string variant;           // the explanation's
+  std::string parameter;         // a changed value it names, or ""
+  std::vector<double> value;     // that value, within 5%
+};
+
+void expect_explained(const json& r, const Expected& e) {
+  SCOPED_TRACE(e.what);
+  ASSERT_TRUE(r.contains("explanation")) << r.dump().substr(0, 800);
+  const json& x = r["explanation"];
+  EXPECT_FALSE(r["pass"]);
+  EXPECT_TRUE(x["explained"]) << x.dump();
+  EXPECT_EQ(x["variant"], e.variant) << x.dump();
+  if (!e.parameter.empty()) {
+    bool found = false;
+    for (const auto& p : x["parameters"])
+      if (p["name"] == e.parameter) {
+        found = true;
+        // Within 5% of the value's length (a colour's, a position's) of each component.
+        double length = 0;
+        for (const double v : e.value) length += v * v;
+        for (std::size_t i = 0; i < e.value.size(); ++i) EXPECT_NEAR(p["fitted"][i].get<double>(), e.value[i], 0.05 * std::sqrt(length) + 0.01) << p.dump();
+      }
+    EXPECT_TRUE(found) << x.dump();
+  } else {
+    EXPECT_TRUE(x["parameters"].empty()) << x.dump();
+  }
+  EXPECT_LE(x["residual"].get<double>(), 0.02);
+  // The student reads it: in the messages, with the homework's names.
+  bool said = false;
+  for (const auto& m : r["messages"]) said = said || m == x["text"];
+  if (r["diagnosis"] == "") {
+    EXPECT_TRUE(said) << r["messages"];
+  }
+}
+
+TEST_F(FormulaGradeTest, SpecularMistakesOfTheModelsKindAreExplained) {
+  const std::vector<Expected> cases = {
+      {"the light's position used as a direction", {{"normalize(uLightPosition - vPosition)", "normalize(uLightPosition)"}}, "light_as_direction"},
+      {"the view vector away from the eye", {{"normalize(-vPosition)", "normalize(vPosition)"}}, "view_away"},
+      {"a fixed view vector", {{"normalize(-vPosition)", "vec3(0.0, 0.0, 1.0)"}}, "fixed_view"},
+      {"the normal negated", {{"vec3 N = normalize(vNormal);", "vec3 N = -normalize(vNormal);"}}, "negated_normal"},
+      {"Blinn's half vector", {{"vec3 R = reflect(-L, N);\n        color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);",
+                                "vec3 H = normalize(L + V);\n        color += uSpecularColor * uLightColor * pow(max(0.0, dot(N, H)), specularAlpha);"}},
+       "half_vector"},
+      {"no max on N.L", {{"max(0.0, NdotL)", "NdotL"}}, "unclamped_diffuse"},
+      {"the light's colour left out", {{"uDiffuseColor * uLightColor * max", "uDiffuseColor * max"}, {"uSpecularColor * uLightColor * pow", "uSpecularColor * pow"}}, "no_light_colour"},
+      {"a light written into the shader elsewhere", {{"normalize(uLightPosition - vPosition)", "normalize(vec3(-10.0, 8.0, 4.0) - vPosition)"}},
+       "formula", "lightPosition", {-10.0, 8.0, 4.0}},
+      {"an ambient colour doubled", {{"vec4 color = uAmbientColor +", "vec4 color = 2.0 * uAmbientColor +"}}, "formula", "ambient", {0.4, 0.2, 0.2}},
+      {"a specular term halved", {{"uSpecularColor * uLightColor * pow", "0.5 * uSpecularColor * uLightColor * pow"}}, "formula", "specular", {0.05, 0.2, 0.4}},
+      {"an exponent of 12", {{"float specularAlpha = 6.0;", "float specularAlpha = 12.0;"}}, "formula", "exponent", {12.0}},
+      {"the diffuse and specular colours swapped",
+       {{"vec4 color = uAmbientColor + uDiffuseColor", "vec4 color = uAmbientColor + uSpecularColor"}, {"color += uSpecularColor * uLightColor", "color += uDiffuseColor * uLightColor"}},
+       "formula", "diffuse", {0.1, 0.4, 0.8}},
+  };
+  std::vector<std::vector<Edit>> edits;
+  for (const auto& c : cases) edits.push_back(c.edits);
+  const auto grades = grade_all("specular", edits);
+  for (std::size_t i = 0; i < cases.size(); ++i) expect_explained(grades[i], cases[i]);
+  // The view vector away and reflect(L, N) draw the same frames: both are said.
+  EXPECT_EQ(grades[1]["explanation"]["alsoFits"], json::array({"reflect_sign"}));
+}
+
+TEST_F(FormulaGradeTest, DiffuseMistakesOfTheModelsKindAreExplained) {
+  const std::vector<Expected> cases = {
+      {"the light's position used as a direction", {{"normalize(uLightPosition - vPosition)", "normalize(uLightPosition)"}}, "light_as_direction"},
+      {"the normal negated", {{"vec3 N = normalize(vNormal);", "vec3 N = -normalize(vNormal);"}}, "negated_normal"},
+      {"no max on N.L", {{"max(0.0, dot(N, L))", "dot(N, L)"}}, "unclamped_diffuse"},
+      {"the light's colour left out", {{"uDiffuseColor * uLightColor * max", "uDiffuseColor * max"}}, "no_light_colour"},
+      {"an ambient colour doubled", {{"fragColor = uAmbientColor + diffuse;", "fragColor = 2.0 * uAmbientColor + diffuse;"}}, "formula", "ambient", {0.4, 0.2, 0.2}},
+      {"the diffuse term left out", {{"max(0.0, dot(N, L))", "0.0"}}, "formula", "diffuse", {0, 0, 0}},
+  };
+  std::vector<std::vector<Edit>> edits;
+  for (const auto& c : cases) edits.push_back(c.edits);
+  const auto grades = grade_all("diffuse", edits);
+  for (std::size_t i = 0; i < cases.size(); ++i) expect_explained(grades[i], cases[i]);
+}
+
+// The catalogue's mistakes are the model's test set: where the model can draw one, its reading
+// agrees with the catalogue's; where it cannot (flat shading's highlights, one per triangle, blur
+// into the pixel the model shades once), it says nothing rather than something else.
+TEST_F(FormulaGradeTest, TheCatalogueAgreesWithTheModel) {
+  const std::map<std::string, std::pair<std::string, std::string>> reading = {
+      {"unnormalized_normals", {"unnormalized_normal", ""}}, {"missing_specular", {"formula", "specular"}},
+      {"unguarded_specular", {"unguarded_specular", ""}},    {"missing_diffuse", {"formula", "diffuse"}},
+      {"handout_exponent", {"formula", "exponent"}},         {"flat_shading", {"flat_normal", ""}}};
+  for (const auto& checkpoint : {"specular", "diffuse"}) {
+    const auto found = testkit::course().checkpoint(checkpoint);
+    ASSERT_TRUE(found);
+    const auto* c = found->checkpoint;
+    std::vector<json> grades;
+    std::vector<std::future<json>> pending;
+    for (const auto& m : c->mistakes)
+      pending.push_back(std::async(std::launch::async, [&, m] {
+        json job = {{"vertex", m.shaders.vertex.text}, {"fragment", m.shaders.fragment.text}, {"reference", checkpoint}};
+        auto r = server_->client().Post("/api/grade", job.dump(), "application/json");
+        return r && r->status == 200 ? json::parse(r->body) : json::object();
+      }));
+    for (std::size_t i = 0; i < c->mistakes.size(); ++i) {
+      const std::string id = c->mistakes[i].shaders.id;
+      SCOPED_TRACE(std::string(checkpoint) + ": " + id);
+      const json r = pending[i].get();
+      if (r.value("pass", false)) {  // too slight to fail at this size (diffuse's unnormalized normals): nothing to explain
+        EXPECT_FALSE(r.contains("explanation"));
+        continue;
+      }
+      ASSERT_TRUE(r.contains("explanation")) << r.dump().substr(0, 600);
+      EXPECT_EQ(r["diagnosis"], id);  // the catalogue's words stay the student's
+      const json& x = r["explanation"];
+      ASSERT_TRUE(reading.count(id)) << id;
+      const auto& [variant, parameter] = reading.at(id);
+      if (!x["explained"]) {
+        EXPECT_EQ(id, "flat_shading") << x.dump();  // the one the model may not draw
+        continue;
+      }
+      EXPECT_EQ(x["variant"], variant) << x.dump();
+      if (!parameter.empty()) {
+        ASSERT_FALSE(x["parameters"].empty()) << x.dump();
+        EXPECT_EQ(x["parameters"][0]["name"], parameter) << x.dump();
+      }
+    }
+  }
+}
+
+TEST_F(FormulaGradeTest, CorrectFormulationsPassWithNoExplanation) {
+  const std::vector<std::vector<Edit>> correct = {
+      {{"vec3 R = reflect(-L, N);", "vec3 R = 2.0 * dot(N, L) * N - L;"}},
+      {{"if (NdotL > 0.0) {", "{"}, {"color += uSpecularColor * uLightColor * pow", "color += step(0.0, NdotL) * uSpecularColor * uLightColor * pow"}},
+      {{"float specularAlpha = 6.0;", "const float specularAlpha = 3.0 + 3.0;"}, {"vec3 V = normalize(-vPosition);", "vec3 V = -vPosition / length(vPosition);"}},
+  };
+  for (const auto& r : grade_all("specular", correct)) {
+    EXPECT_TRUE(r["pass"]) << r.dump().substr(0, 800);
+    EXPECT_FALSE(r.contains("explanation"));
+  }
+}
+
+TEST_F(FormulaGradeTest, UnrelatedDrawingsAreNotExplained) {
+  const std::vector<std::vector<Edit>> unrelated = {
+      {{"fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);"}},
+      {{"fragColor = color;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);"}},
+      {{"fragColor = color;", "fragColor = vec4(abs(N), 1.0);"}},
+  };
+  const auto grades = grade_all("specular", unrelated);
+  for (const auto& r : grades) {
+    ASSERT_TRUE(r.contains("explanation")) << r.dump().substr(0, 600);
+    EXPECT_FALSE(r["explanation"]["explained"]) << r["explanation"].dump();
+    EXPECT_FALSE(r["pass"]);
+  }
+  EXPECT_TRUE(grades[0]["explanation"]["text"].get<std::string>().starts_with("Your object is one colour, (0.30, 0.80, 0.20), everywhere"))
+      << grades[0]["explanation"];
+  // Not explained, it says where the frames differ, in the homework's parts.
+  const std::string noise = grades[1]["explanation"]["text"];
+  EXPECT_NE(noise.find("The grader cannot say why from the homework's formula"), std::string::npos) << noise;
+  EXPECT_NE(noise.find("the lit side: "), std::string::npos) << noise;
+}
+
+// Frames so small that a pixel holds many of the bunny's triangles: the formula cannot draw the
+// reference itself within the rule, and says so rather than guess.
+TEST_F(FormulaGradeTest, FramesTooSmallToReadAreSaidToBe) {
+  const json r = grade("specular", {{"normalize(uLightPosition - vPosition)", "normalize(uLightPosition)"}}, "160x120");
+  ASSERT_TRUE(r.contains("explanation")) << r.dump().substr(0, 600);
+  EXPECT_FALSE(r["explanation"]["explained"]);
+  EXPECT_TRUE(r["explanation"]["text"].get<std::string>().starts_with("The grader cannot read frames this small")) << r["explanation"];
+}
+
+}  // namespace
