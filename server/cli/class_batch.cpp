@@ -31,18 +31,19 @@ struct Entry {
   std::string diagnosis, message;
   std::string frames;              // the saved frames' fingerprint; empty: none handed in
   std::vector<std::string> flags;  // the grade's flags, in words
+  std::string explanation;         // a failing grade's, in a few words (grade::Explanation::label); "" for none
 };
 
 json to_json(const Entry& e) {
   return {{"student", e.student}, {"score", e.score}, {"maxScore", e.max_score}, {"pass", e.pass},
-          {"diagnosis", e.diagnosis}, {"message", e.message}, {"frames", e.frames}, {"flags", e.flags}};
+          {"diagnosis", e.diagnosis}, {"message", e.message}, {"frames", e.frames}, {"flags", e.flags}, {"explanation", e.explanation}};
 }
 
 std::optional<Entry> entry_from(const std::string& line) {
   const json j = json::parse(line, nullptr, false);
   if (!j.is_object() || !j.contains("student") || !j["student"].is_string()) return std::nullopt;  // a line cut short by a kill
   Entry e{j["student"], j.value("score", 0.0), j.value("maxScore", 0.0), j.value("pass", false), j.value("diagnosis", ""),
-          j.value("message", ""), j.value("frames", ""), {}};
+          j.value("message", ""), j.value("frames", ""), {}, j.value("explanation", "")};
   for (const auto& f : j.value("flags", json::array()))
     if (f.is_string()) e.flags.push_back(f);
   return e;
@@ -50,7 +51,8 @@ std::optional<Entry> entry_from(const std::string& line) {
 
 Entry entry_of(const std::string& student, const StudentGrade& g) {
   const grade::Report& r = g.report;
-  Entry e{student, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0], g.frames_fingerprint, {}};
+  Entry e{student, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0], g.frames_fingerprint, {},
+          r.explanation ? r.explanation->label : ""};
   for (const auto& f : r.flags) e.flags.push_back(f.message);
   return e;
 }
@@ -133,11 +135,31 @@ std::string joined_flags(const std::vector<std::string>& flags) {
 }
 
 Status write_summary(const fs::path& out, const std::map<std::string, Entry>& entries) {
-  std::string summary = "student,score,max_score,pass,diagnosis,message,flags\n";
+  std::string summary = "student,score,max_score,pass,diagnosis,message,flags,explanation\n";
   for (const auto& [who, e] : entries)
     summary += csv(who) + "," + std::to_string(e.score) + "," + std::to_string(e.max_score) + "," + (e.pass ? "true" : "false") + "," +
-               csv(e.diagnosis) + "," + csv(e.message) + "," + csv(joined_flags(e.flags)) + "\n";
+               csv(e.diagnosis) + "," + csv(e.message) + "," + csv(joined_flags(e.flags)) + "," + csv(e.explanation) + "\n";
   return write_file(out / "summary.csv", summary);
+}
+
+// The failing students counted by what the formula says of them, most first (then by name).
+std::vector<std::pair<std::string, std::vector<std::string>>> by_explanation(const std::map<std::string, Entry>& entries) {
+  std::map<std::string, std::vector<std::string>> groups;
+  for (const auto& [who, e] : entries)
+    if (!e.explanation.empty()) groups[e.explanation].push_back(who);
+  std::vector<std::pair<std::string, std::vector<std::string>>> out(groups.begin(), groups.end());
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.second.size() > b.second.size(); });
+  return out;
+}
+
+Status write_explanations(const fs::path& out, const std::map<std::string, Entry>& entries) {
+  std::string text = "explanation,students,who\n";
+  for (const auto& [label, who] : by_explanation(entries)) {
+    std::string names;
+    for (const auto& w : who) names += (names.empty() ? "" : " ") + w;
+    text += csv(label) + "," + std::to_string(who.size()) + "," + csv(names) + "\n";
+  }
+  return write_file(out / "explanations.csv", text);
 }
 
 std::vector<Student> students_of(const BatchOptions& o) {
@@ -250,6 +272,7 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
   auto entries = read_journals(o.out);
   flag_shared_frames(entries, o.deliverable);
   if (auto summary = write_summary(o.out, entries); !summary && !error) error = summary.take_error();
+  if (auto explanations = write_explanations(o.out, entries); !explanations && !error) error = explanations.take_error();
   if (error) {
     std::cerr << "error: the batch stopped: " << error->message << " [" << info(error->code).name << "]\n"
               << "run the same command again to grade the rest (finished students are kept)\n";
@@ -261,6 +284,8 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
   size_t flagged = 0;
   for (const auto& s : students)
     if (const auto e = entries.find(s.name); e != entries.end()) flagged += !e->second.flags.empty();
+  for (const auto& [label, who] : by_explanation(entries))
+    std::cerr << who.size() << (who.size() == 1 ? " student: " : " students: ") << label << "\n";
   if (flagged > 0) std::cerr << flagged << " students flagged for the TA: see the flags column of " << (o.out / "summary.csv").string() << "\n";
   std::cerr << "graded " << students.size() << " submissions" << (o.shard.count > 1 ? " in this shard" : "") << ", mean score "
             << total / static_cast<double>(students.size()) << "; results in " << o.out.string() << "/\n";
