@@ -103,8 +103,8 @@ Reading read(const model::Fit& fit, const model::Parameters& course, const model
   if (const auto& at = fit.parameters.light_position) {
     r.parameters.push_back(parameter("lightPosition", page.position, *at));
     r.changes.push_back("your light acts as if at " + position(*at) + " under every light the grader draws, where the course's " +
-                        first_name(f.light_position) + " is " + position(page.position) +
-                        ": a position written into the shader stays where it is when the page moves the light");
+                        first_name(f.light_position) + " is " + position(page.position) + ": L must point to " +
+                        first_name(f.light_position) + ", the light the page sets; a position written into the shader ignores it");
     r.labels.emplace_back("light moved");
     ++r.count;
   }
