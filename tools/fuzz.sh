@@ -21,7 +21,13 @@ build=$root/build-fuzz
 if [[ ! -f $build/build.ninja ]]; then
   CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DSHADELAB_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 fi
-cmake --build "$build" -j "$(nproc)" >/dev/null
+# Quiet when it builds; ninja writes a compiler's or linker's errors to stdout, so they are shown
+# when it does not (a fuzz target that does not link is a red run that should say why).
+if ! build_log=$(cmake --build "$build" -j "$(nproc)" 2>&1); then
+  printf '%s\n' "$build_log" | grep -E -B2 -A8 'error|undefined reference' | head -60 >&2
+  echo "fuzz: the fuzz build failed (build-fuzz/); its errors are above" >&2
+  exit 1
+fi
 
 targets=("$@")
 if ((${#targets[@]} == 0)); then
