@@ -35,6 +35,46 @@ json tolerance_json(const grade::GradeOptions& o) {
   return out;
 }
 
+// One checkpoint as the profile writes it: what is not its default, and its catalogue and probes.
+json checkpoint_json(const Checkpoint& k) {
+  json mistakes = json::array();
+  for (const auto& m : k.mistakes) {
+    json entry = {{"id", m.id}, {"message", m.message}};
+    if (!m.preset.empty()) {
+      entry["preset"] = m.preset;
+    } else {
+      json edits = json::array();
+      for (const auto& e : m.edits)
+        edits.push_back({{"stage", e.stage == Stage::vertex ? "vertex" : "fragment"}, {"find", e.find}, {"replace", e.replace}});
+      entry["edits"] = std::move(edits);
+    }
+    mistakes.push_back(std::move(entry));
+  }
+  json probes = json::array();
+  for (const auto& p : k.probes) {
+    probes.push_back({{"name", p.name}});
+    if (p.light_position) probes.back()["lightPosition"] = as_written(*p.light_position);
+    if (p.light_color) probes.back()["lightColor"] = as_written(*p.light_color);
+    if (!p.checks.empty()) probes.back()["checks"] = p.checks;
+  }
+  json entry = {{"name", k.name}, {"title", k.title}, {"prefix", k.prefix}, {"reference", k.reference}, {"points", k.points}};
+  // The weights of the tests that apply, when one is not the default.
+  const auto& w = k.weights;
+  const TestWeights defaults;
+  if (w.frames != defaults.frames || w.code != defaults.code || w.probe != defaults.probe || w.match != defaults.match) {
+    json weights = {{"frames", w.frames}};
+    if (k.applies(DeliverableTest::code)) weights["code"] = w.code;
+    if (k.applies(DeliverableTest::probe)) weights["probe"] = w.probe;
+    if (k.applies(DeliverableTest::match)) weights["match"] = w.match;
+    entry["weights"] = std::move(weights);
+  }
+  if (!k.code.empty()) entry["code"] = k.code;
+  if (!mistakes.empty()) entry["mistakes"] = std::move(mistakes);
+  if (!probes.empty()) entry["probes"] = std::move(probes);
+  if (k.formula) entry["formula"] = {{"terms", model::to_string(k.formula->terms)}, {"position", k.formula->position}, {"normal", k.formula->normal}};
+  return entry;
+}
+
 }  // namespace
 
 json to_json(const Course& c, bool portable) {
@@ -53,44 +93,7 @@ json to_json(const Course& c, bool portable) {
     if (p.is_public) presets.back()["public"] = true;
   }
   json checkpoints = json::array();
-  for (const auto& k : c.checkpoints) {
-    json mistakes = json::array();
-    for (const auto& m : k.mistakes) {
-      json entry = {{"id", m.id}, {"message", m.message}};
-      if (!m.preset.empty()) {
-        entry["preset"] = m.preset;
-      } else {
-        json edits = json::array();
-        for (const auto& e : m.edits)
-          edits.push_back({{"stage", e.stage == Stage::vertex ? "vertex" : "fragment"}, {"find", e.find}, {"replace", e.replace}});
-        entry["edits"] = std::move(edits);
-      }
-      mistakes.push_back(std::move(entry));
-    }
-    json probes = json::array();
-    for (const auto& p : k.probes) {
-      probes.push_back({{"name", p.name}});
-      if (p.light_position) probes.back()["lightPosition"] = as_written(*p.light_position);
-      if (p.light_color) probes.back()["lightColor"] = as_written(*p.light_color);
-      if (!p.checks.empty()) probes.back()["checks"] = p.checks;
-    }
-    json entry = {{"name", k.name}, {"title", k.title}, {"prefix", k.prefix}, {"reference", k.reference}, {"points", k.points}};
-    // The weights of the tests that apply, when one is not the default.
-    const auto& w = k.weights;
-    const TestWeights defaults;
-    if (w.frames != defaults.frames || w.code != defaults.code || w.probe != defaults.probe || w.match != defaults.match) {
-      json weights = {{"frames", w.frames}};
-      if (k.applies(DeliverableTest::code)) weights["code"] = w.code;
-      if (k.applies(DeliverableTest::probe)) weights["probe"] = w.probe;
-      if (k.applies(DeliverableTest::match)) weights["match"] = w.match;
-      entry["weights"] = std::move(weights);
-    }
-    if (!k.code.empty()) entry["code"] = k.code;
-    if (!mistakes.empty()) entry["mistakes"] = std::move(mistakes);
-    if (!probes.empty()) entry["probes"] = std::move(probes);
-    if (k.formula) entry["formula"] = {{"terms", model::to_string(k.formula->terms)}, {"position", k.formula->position}, {"normal", k.formula->normal}};
-    checkpoints.push_back(std::move(entry));
-  }
+  for (const auto& k : c.checkpoints) checkpoints.push_back(checkpoint_json(k));
   json aliases = json::array();
   for (const auto& a : c.aliases) aliases.push_back({{"name", a.name}, {"checkpoint", a.checkpoint}, {"note", a.note}});
   const auto& cam = c.camera;

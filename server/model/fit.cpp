@@ -135,7 +135,6 @@ glm::vec4 shaded(const Factors& f, const Parameters& p, Terms terms) {
   return {c, alpha_of(f, p, terms)};
 }
 
-// As the canvas stores it: clamped, then 8 bits.
 }  // namespace
 
 glm::vec3 as_canvas_stores(const glm::vec4& c) {
@@ -147,12 +146,10 @@ glm::vec3 as_canvas_stores(const glm::vec4& c) {
 
 namespace {
 
-glm::vec3 stored(const glm::vec4& c) { return as_canvas_stores(c); }
-
 double rms_of(const std::vector<Sampled>& sample, const std::vector<Factors>& f, const Parameters& p, Terms terms) {
   double sum = 0;
   for (std::size_t i = 0; i < sample.size(); ++i) {
-    const glm::vec3 d = stored(shaded(f[i], p, terms)) - sample[i].drawn;
+    const glm::vec3 d = as_canvas_stores(shaded(f[i], p, terms)) - sample[i].drawn;
     sum += static_cast<double>(glm::dot(d, d)) / 3;
   }
   return sample.empty() ? 0 : std::sqrt(sum / static_cast<double>(sample.size()));
@@ -190,7 +187,7 @@ Trial best_exponent(const Design& design, const FitOptions& o) {
 // Whether the model draws a pixel off. Where its alpha is under 1 the canvas divides the colour by
 // it, and so an error of a colour step by as much: the threshold is the colour's before the division.
 bool off(const glm::vec4& model, const glm::vec3& drawn, double threshold) {
-  const glm::vec3 d = glm::abs(stored(model) - drawn);
+  const glm::vec3 d = glm::abs(as_canvas_stores(model) - drawn);
   const double alpha = std::clamp(static_cast<double>(model.a), 1.0 / 255, 1.0);
   return std::max({d.r, d.g, d.b}) > threshold / alpha;
 }
