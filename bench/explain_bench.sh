@@ -3,9 +3,12 @@
 # grade failed"). A written set of wrong submissions for the diffuse and specular checkpoints, each
 # the course's reference with one change a student makes, graded at the course's canvas; for each,
 # whether the explanation names the change (the expected variant, and the changed value's name).
+# The same for saved frames: each submission drawn as a 60 Hz page saves it (`shadelab render
+# --angles`, 0.05-0.3 degrees behind each frame's angle) and graded as the page grades it.
 # Then the cost, one sitting, whole processes on a warm reference store: the same failing and
-# passing grades with the built-in course and with the same course less its checkpoints' `formula`
-# (no explanation), alternating, against one render of the course's job (`shadelab render`).
+# passing grades (code, and saved frames) with the built-in course and with the same course less
+# its checkpoints' `formula` and its mistakes' readings (no explanation; every known mistake
+# rendered), alternating, against one render of the course's job (`shadelab render`).
 #   bench/explain_bench.sh [repeats, default 5]      SHADELAB_BIN: another build's shadelab
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -21,6 +24,8 @@ work = sys.argv[1]
 course = json.load(open(work + "/course.json"))
 for c in course["checkpoints"]:
     c.pop("formula", None)
+    for m in c.get("mistakes", []):
+        m.pop("reading", None)  # a reading is the formula's: without it, every mistake is rendered
 json.dump(course, open(work + "/no_formula.json", "w"))
 PY
 
@@ -81,9 +86,7 @@ def write(i, checkpoint, edits):
     open(paths[1], "w").write(f)
     return paths
 
-def grade(paths, checkpoint, course=None):
-    args = [bin, "grade", "--vert", paths[0], "--frag", paths[1], "--reference", checkpoint, "--cache-dir", store]
-    if course: args += ["--course", course]
+def run_grade(args):
     start = time.monotonic()
     run = subprocess.run(args, capture_output=True, text=True)
     if "{" not in run.stdout:
@@ -91,39 +94,74 @@ def grade(paths, checkpoint, course=None):
     out = run.stdout
     return time.monotonic() - start, json.loads(out[out.index("{"):out.rindex("}") + 1])
 
-print("| deliverable | change | explanation | expected | right |")
-print("| --- | --- | --- | --- | --- |")
-tally = {}
-written = []
-for i, (name, checkpoint, edits, variant, value) in enumerate(cases):
-    paths = write(i, checkpoint, edits)
-    written.append((paths, checkpoint))
-    _, r = grade(paths, checkpoint)
+def grade(paths, checkpoint, course=None):
+    args = [bin, "grade", "--vert", paths[0], "--frag", paths[1], "--reference", checkpoint, "--cache-dir", store]
+    return run_grade(args + (["--course", course] if course else []))
+
+PAGE_ANGLES = ["0", "19.88", "39.79", "59.95", "79.7", "99.83", "119.74", "139.91", "159.77"]
+
+def saved_frames(i, paths, checkpoint):
+    folder = os.path.join(work, "saved%02d" % i)
+    subprocess.run([bin, "render", "--vert", paths[0], "--frag", paths[1], "--angles"] + PAGE_ANGLES +
+                   ["--frames-dir", os.path.join(folder, "images"), "--prefix", checkpoint], check=True, capture_output=True)
+    return folder
+
+def grade_saved(folder, checkpoint, course=None):
+    args = [bin, "grade", "--saved-frames", folder, "--reference", checkpoint, "--cache-dir", store]
+    seconds, r = run_grade(args + (["--course", course] if course else []))
+    return seconds, r["frames"]
+
+def read_right(r, variant, value):
     x = r.get("explanation", {})
     got = x.get("variant", "") if x.get("explained") else ""
     names = [p["name"] for p in x.get("parameters", [])]
     right = (got in variant.split("|") if variant else got == "") and (not value or value in names)
-    wrong = bool(got) and not right
-    t = tally.setdefault(checkpoint, [0, 0, 0, 0])
-    t[0] += 1; t[1] += right; t[2] += wrong; t[3] += bool(variant)
+    return x, right, bool(got) and not right
+
+def verdict(r, x, right, wrong):
     said = (x.get("label", "") or "(none)") if not r["pass"] else "passes"
-    print("| %s | %s | %s | %s | %s |" % (checkpoint, name, said, (variant + (" " + value if value else "")) or "not explained", "yes" if right else ("WRONG" if wrong else "no")))
+    return said, "yes" if right else ("WRONG" if wrong else "no")
+
+print("| deliverable | change | code: explanation | right | saved frames: explanation | right | expected |")
+print("| --- | --- | --- | --- | --- | --- | --- |")
+tally = {}
+written = []
+for i, (name, checkpoint, edits, variant, value) in enumerate(cases):
+    paths = write(i, checkpoint, edits)
+    folder = saved_frames(i, paths, checkpoint)
+    written.append((paths, checkpoint, folder))
+    _, r = grade(paths, checkpoint)
+    _, s = grade_saved(folder, checkpoint)
+    x, right, wrong = read_right(r, variant, value)
+    xs, right_s, wrong_s = read_right(s, variant, value)
+    for kind, ok, bad in (("code", right, wrong), ("saved frames", right_s, wrong_s)):
+        t = tally.setdefault((checkpoint, kind), [0, 0, 0, 0])
+        t[0] += 1; t[1] += ok; t[2] += bad; t[3] += bool(variant)
+    print("| %s | %s | %s | %s | %s | %s | %s |" % ((checkpoint, name) + verdict(r, x, right, wrong) + verdict(s, xs, right_s, wrong_s) +
+                                               ((variant + (" " + value if value else "")) or "not explained",)))
 print()
-for checkpoint, (n, right, wrong, explainable) in tally.items():
-    print("%s: %d of %d read right (%d to be explained, the rest not); wrong explanations: %d" % (checkpoint, right, n, explainable, wrong))
+for (checkpoint, kind), (n, right, wrong, explainable) in tally.items():
+    print("%s, %s: %d of %d read right (%d to be explained, the rest not); wrong explanations: %d" % (checkpoint, kind, right, n, explainable, wrong))
 
 # The cost: the failing grades above with and without the formula, and a passing one, alternating;
 # against one render of the course's job.
 no_formula = os.path.join(work, "no_formula.json")
 failing = [written[k] for k in (0, 12, 16, 29)]  # light as a direction, ambient doubled, exponent 12, noise
+catalogued = [written[k] for k in (14, 17)]  # specular missing, exponent 0.6: the catalogue's, read by the formula
 passing = write(99, "specular", [])
-samples = {"with": [], "without": [], "passing with": [], "passing without": [], "render": []}
+passing_saved = saved_frames(99, passing, "specular")
+samples = {k: [] for k in ("with", "without", "catalogued with", "catalogued without", "passing with", "passing without",
+                           "saved with", "saved without", "saved passing with", "saved passing without", "render")}
 for rep in range(repeats):
     order = [("with", None), ("without", no_formula)] if rep % 2 == 0 else [("without", no_formula), ("with", None)]
     for label, course in order:
-        for paths, checkpoint in failing:
+        for paths, checkpoint, folder in failing:
             samples[label].append(grade(paths, checkpoint, course)[0])
+            samples["saved " + label].append(grade_saved(folder, checkpoint, course)[0])
+        for paths, checkpoint, _ in catalogued:
+            samples["catalogued " + label].append(grade(paths, checkpoint, course)[0])
         samples["passing " + label].append(grade(passing, "specular", course)[0])
+        samples["saved passing " + label].append(grade_saved(passing_saved, "specular", course)[0])
     start = time.monotonic()
     subprocess.run([bin, "render", "--preset", "specular", "--grid", os.path.join(work, "grid.png")], check=True, capture_output=True)
     samples["render"].append(time.monotonic() - start)
@@ -132,6 +170,8 @@ print("| run | median s | range |")
 print("| --- | --- | --- |")
 for label, values in samples.items():
     print("| %s | %.2f | %.2f-%.2f |" % (label, statistics.median(values), min(values), max(values)))
-print("explaining a failing grade costs %.2f s (median), one render of the job %.2f s" %
-      (statistics.median(samples["with"]) - statistics.median(samples["without"]), statistics.median(samples["render"])))
+m = lambda k: statistics.median(samples[k])
+print("explaining a failing grade costs %.2f s (median; a catalogued mistake the formula reads %.2f s), failing saved frames %.2f s; "
+      "one render of the job %.2f s" % (m("with") - m("without"), m("catalogued with") - m("catalogued without"),
+                                        m("saved with") - m("saved without"), m("render")))
 PY

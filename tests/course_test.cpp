@@ -22,6 +22,7 @@
 #include "course/course_reader.h"
 #include "course/script_facts.h"
 #include "course/unseen_roles.h"
+#include "model/lighting.h"
 #include "support/files.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
@@ -97,6 +98,15 @@ TEST(CourseProfileTest, ABadProfileIsRefusedWithTheFieldAndTheReason) {
   EXPECT_EQ(with([](json& j) { j["checkpoints"][1]["mistakes"][0] = {{"id", "nothing"}, {"message", "x"}, {"preset", "diffuse"}}; }),
             "test.json: checkpoints[1].mistakes[0]: the mistake's shaders are the reference's own: it would match every correct submission");
   EXPECT_EQ(with([](json& j) { j["aliases"][0]["checkpoint"] = "phong"; }), "test.json: aliases[0].checkpoint: 'phong' is not one of checkpoints");
+  // A mistake's reading names the formula's own variants and values, on a checkpoint with a formula.
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["mistakes"][2]["reading"] = {{"variant", "blinn"}}; }),
+            "test.json: checkpoints[2].mistakes[2].reading.variant: 'blinn' is not one of the formula's variants");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["mistakes"][2]["reading"]["values"] = {{"shininess", {12}}}; }),
+            "test.json: checkpoints[2].mistakes[2].reading.values.shininess: expected ambient, diffuse, specular, exponent or lightPosition");
+  EXPECT_TRUE(with([](json& j) { j["checkpoints"][2]["mistakes"][5]["reading"]["values"]["exponent"] = {0.6, 6}; })
+                  .starts_with("test.json: checkpoints[2].mistakes[5].reading.values.exponent: "));
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["mistakes"][0]["reading"] = {{"variant", "flat_normal"}}; }),
+            "test.json: checkpoints[0].mistakes[0].reading: a reading is the formula's: the checkpoint has no formula");
   EXPECT_EQ(error_of(json::array()), "test.json: a course profile must be a JSON object");
   // Through the command line: the same words, and the failure's code.
   const fs::path bad = fs::temp_directory_path() / ("shadelab_course_bad_" + std::to_string(::getpid()) + ".json");
@@ -174,6 +184,7 @@ TEST(CourseProfileTest, TheSchemaAndTheReaderAgree) {
       {"checkpoints/1/mistakes/0", [](json& j) { j["checkpoints"][1]["mistakes"][0]["preset"] = "specular"; }},
       {"notebook/images/0/file", [](json& j) { j["notebook"]["images"][0]["file"] = "/etc/passwd.png"; }},
       {"camera/fovYDegrees", [](json& j) { j["camera"]["fovYDegrees"] = 180; }},
+      {"checkpoints/2/mistakes/2/reading/variant", [](json& j) { j["checkpoints"][2]["mistakes"][2]["reading"] = {{"variant", "blinn"}}; }},
   };
   for (const auto& [where, change] : bad) {
     json j = builtin_json();
@@ -182,6 +193,16 @@ TEST(CourseProfileTest, TheSchemaAndTheReaderAgree) {
     EXPECT_TRUE(by_schema.starts_with(where + ":")) << where << ": the schema says '" << by_schema << "'";
     EXPECT_NE(by_reader, "(read)") << where << ": the reader took it";
   }
+}
+
+// A mistake's reading names the formula's variants as the model's table does (model/lighting.cpp).
+TEST(CourseProfileTest, TheSchemaNamesEveryVariantOfTheFormula) {
+  std::ifstream in(kSource / "docs/course-profile.schema.json");
+  const json schema = json::parse(in);
+  std::vector<std::string> named, variants;
+  for (const auto& v : schema["$defs"]["mistake"]["properties"]["reading"]["properties"]["variant"]["enum"]) named.push_back(v);
+  for (const auto& v : model::variants()) variants.emplace_back(v.id);
+  EXPECT_EQ(named, variants);
 }
 
 // The page script's facts as a course writes them: numbers by name, small arithmetic, a helper's

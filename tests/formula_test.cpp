@@ -16,6 +16,7 @@
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "image/encode.h"
 #include "model/fit.h"
 #include "support/http_fixture.h"
 #include "support/test_support.h"
@@ -179,8 +180,8 @@ class FormulaGradeTest : public ::testing::Test {
     std::string find, replace;
     bool vertex = false;
   };
-  // The checkpoint's reference with a student's edits, graded against it at the course's canvas.
-  static json grade(const std::string& checkpoint, const std::vector<Edit>& edits, const std::string& size = "") {
+  // The checkpoint's reference with a student's edits.
+  static course::Preset edited(const std::string& checkpoint, const std::vector<Edit>& edits) {
     auto p = *testkit::course().preset(checkpoint);
     for (const auto& e : edits) {
       auto& text = e.vertex ? p.vertex.text : p.fragment.text;
@@ -188,6 +189,11 @@ class FormulaGradeTest : public ::testing::Test {
       EXPECT_NE(at, std::string::npos) << e.find;
       if (at != std::string::npos) text.replace(at, e.find.size(), e.replace);
     }
+    return p;
+  }
+  // ... graded against it at the course's canvas.
+  static json grade(const std::string& checkpoint, const std::vector<Edit>& edits, const std::string& size = "") {
+    const auto p = edited(checkpoint, edits);
     json job = {{"vertex", p.vertex.text}, {"fragment", p.fragment.text}, {"vertexName", "phong_vert.js"},
                 {"fragmentName", "phong_frag.js"}, {"reference", checkpoint}};
     if (!size.empty()) job["width"] = 160, job["height"] = 120;
@@ -197,6 +203,33 @@ class FormulaGradeTest : public ::testing::Test {
       return json::object();
     }
     return json::parse(r->body);
+  }
+  // The frames a student's page saves of the edited shaders (drawn `lags` degrees behind each
+  // frame's angle, as a 60 Hz page draws them), handed in alone and graded: the frames' report.
+  static json grade_saved(const std::string& checkpoint, const std::vector<Edit>& edits) {
+    const std::vector<double> lags = {0, 0.12, 0.21, 0.05, 0.3, 0.17, 0.26, 0.09, 0.23};
+    const auto p = edited(checkpoint, edits);
+    render::RenderRequest request = testkit::preset_request(checkpoint);
+    request.vertex = p.vertex;
+    request.fragment = p.fragment;
+    request.angles.clear();
+    for (std::size_t k = 0; k < lags.size(); ++k) request.angles.push_back(static_cast<double>(k) * request.degrees_per_frame - lags[k]);
+    auto rendered = testkit::render_frames(request, testkit::builtin(testkit::course().default_mesh));
+    if (!rendered) return json::object();
+    const auto found = testkit::course().checkpoint(checkpoint);
+    httplib::MultipartFormDataItems items = {{"reference", checkpoint, "", ""}};
+    for (std::size_t k = 0; k < rendered->frames.size(); ++k) {
+      auto png = image::encode_png(rendered->frames[k]);
+      EXPECT_TRUE(png.ok());
+      items.push_back({"frames", std::string(png->begin(), png->end()),
+                       testkit::course().frame_file(found->checkpoint->prefix, static_cast<int>(k), "png"), "image/png"});
+    }
+    auto r = server_->client().Post("/api/grade", items);
+    if (!r || r->status != 200) {
+      ADD_FAILURE() << "no grade: " << (r ? r->body : "no response");
+      return json::object();
+    }
+    return json::parse(r->body)["frames"];
   }
   // Several grades at once: the server's two workers share them.
   static std::vector<json> grade_all(const std::string& checkpoint, const std::vector<std::vector<Edit>>& cases) {
@@ -291,19 +324,18 @@ TEST_F(FormulaGradeTest, DiffuseMistakesOfTheModelsKindAreExplained) {
   for (std::size_t i = 0; i < cases.size(); ++i) expect_explained(grades[i], cases[i]);
 }
 
-// The catalogue's mistakes are the model's test set: where the model can draw one, its reading
-// agrees with the catalogue's; where it cannot (flat shading's highlights, one per triangle, blur
-// into the pixel the model shades once), it says nothing rather than something else.
-TEST_F(FormulaGradeTest, TheCatalogueAgreesWithTheModel) {
-  const std::map<std::string, std::pair<std::string, std::string>> reading = {
-      {"unnormalized_normals", {"unnormalized_normal", ""}}, {"missing_specular", {"formula", "specular"}},
-      {"unguarded_specular", {"unguarded_specular", ""}},    {"missing_diffuse", {"formula", "diffuse"}},
-      {"handout_exponent", {"formula", "exponent"}},         {"flat_shading", {"flat_normal", ""}}};
+// The catalogue's mistakes are the model's test set: a mistake the profile says the formula reads
+// is diagnosed by that reading, with no render of its own (the catalogue's words stay the
+// student's); one it cannot draw (flat shading's highlights, one per triangle, blur into the pixel
+// the model shades once) has no reading, and is rendered and compared as before.
+TEST_F(FormulaGradeTest, TheCatalogueIsDiagnosedByItsReadings) {
   for (const auto& checkpoint : {"specular", "diffuse"}) {
     const auto found = testkit::course().checkpoint(checkpoint);
     ASSERT_TRUE(found);
     const auto* c = found->checkpoint;
-    std::vector<json> grades;
+    const int lights = 1 + static_cast<int>(c->probes.size());
+    int unread = 0;
+    for (const auto& m : c->mistakes) unread += !m.shaders.reading;
     std::vector<std::future<json>> pending;
     for (const auto& m : c->mistakes)
       pending.push_back(std::async(std::launch::async, [&, m] {
@@ -312,27 +344,25 @@ TEST_F(FormulaGradeTest, TheCatalogueAgreesWithTheModel) {
         return r && r->status == 200 ? json::parse(r->body) : json::object();
       }));
     for (std::size_t i = 0; i < c->mistakes.size(); ++i) {
-      const std::string id = c->mistakes[i].shaders.id;
-      SCOPED_TRACE(std::string(checkpoint) + ": " + id);
+      const auto& m = c->mistakes[i].shaders;
+      SCOPED_TRACE(std::string(checkpoint) + ": " + m.id);
       const json r = pending[i].get();
       if (r.value("pass", false)) {  // too slight to fail at this size (diffuse's unnormalized normals): nothing to explain
         EXPECT_FALSE(r.contains("explanation"));
         continue;
       }
       ASSERT_TRUE(r.contains("explanation")) << r.dump().substr(0, 600);
-      EXPECT_EQ(r["diagnosis"], id);  // the catalogue's words stay the student's
+      EXPECT_EQ(r["diagnosis"], m.id) << r["explanation"].dump();
+      if (!m.reading) continue;
       const json& x = r["explanation"];
-      ASSERT_TRUE(reading.count(id)) << id;
-      const auto& [variant, parameter] = reading.at(id);
-      if (!x["explained"]) {
-        EXPECT_EQ(id, "flat_shading") << x.dump();  // the one the model may not draw
-        continue;
-      }
-      EXPECT_EQ(x["variant"], variant) << x.dump();
-      if (!parameter.empty()) {
-        ASSERT_FALSE(x["parameters"].empty()) << x.dump();
-        EXPECT_EQ(x["parameters"][0]["name"], parameter) << x.dump();
-      }
+      EXPECT_TRUE(x["explained"]) << x.dump();
+      EXPECT_EQ(x["variant"], model::info(m.reading->variant).id) << x.dump();
+      ASSERT_EQ(x["parameters"].size(), m.reading->values.size()) << x.dump();
+      for (std::size_t k = 0; k < m.reading->values.size(); ++k) EXPECT_EQ(x["parameters"][k]["name"], to_string(m.reading->values[k].parameter));
+      // The grader's sets: the reference's and the geometry's, and the mistakes with no reading,
+      // each under every light; none of the read mistakes' own.
+      const json& work = r["graderWork"];
+      EXPECT_LE(work["rendered"].get<int>() + work["fromStore"].get<int>() + work["fromMemory"].get<int>(), lights + 3 + unread * lights) << work;
     }
   }
 }
@@ -367,6 +397,30 @@ TEST_F(FormulaGradeTest, UnrelatedDrawingsAreNotExplained) {
   const std::string noise = grades[1]["explanation"]["text"];
   EXPECT_NE(noise.find("The grader cannot say why from the homework's formula"), std::string::npos) << noise;
   EXPECT_NE(noise.find("the lit side: "), std::string::npos) << noise;
+}
+
+// The page's only grade is the frames a student saves, drawn a little behind each frame's angle:
+// they are read as code is, on the geometry at the angles their outlines fit.
+TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
+  const std::vector<std::pair<std::string, Expected>> cases = {
+      {"specular", {"the light's position used as a direction", {{"normalize(uLightPosition - vPosition)", "normalize(uLightPosition)"}}, "light_as_direction"}},
+      {"specular", {"an exponent of 12", {{"float specularAlpha = 6.0;", "float specularAlpha = 12.0;"}}, "formula", "exponent", {12.0}}},
+      {"specular", {"a specular term halved", {{"uSpecularColor * uLightColor * pow", "0.5 * uSpecularColor * uLightColor * pow"}}, "formula", "specular", {0.05, 0.2, 0.4}}},
+      {"diffuse", {"the normal negated", {{"vec3 N = normalize(vNormal);", "vec3 N = -normalize(vNormal);"}}, "negated_normal"}},
+      {"diffuse", {"an ambient colour doubled", {{"fragColor = uAmbientColor + diffuse;", "fragColor = 2.0 * uAmbientColor + diffuse;"}}, "formula", "ambient", {0.4, 0.2, 0.2}}},
+  };
+  for (const auto& [checkpoint, c] : cases) {
+    const json r = grade_saved(checkpoint, c.edits);
+    expect_explained(r, c);
+    EXPECT_GT(r["graderWork"]["rendered"].get<int>(), 0);  // the geometry at the frames' own angles
+  }
+  // Noise is not explained, and frames that are right have nothing to explain.
+  const json noise = grade_saved("specular", {{"fragColor = color;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);"}});
+  ASSERT_TRUE(noise.contains("explanation")) << noise.dump().substr(0, 600);
+  EXPECT_FALSE(noise["explanation"]["explained"]) << noise["explanation"].dump();
+  const json right = grade_saved("specular", {});
+  EXPECT_TRUE(right["pass"]) << right["messages"];
+  EXPECT_FALSE(right.contains("explanation"));
 }
 
 // Frames so small that a pixel holds many of the bunny's triangles: the formula cannot draw the

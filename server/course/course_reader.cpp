@@ -261,8 +261,33 @@ class Parser {
     }
   }
 
+  // What the checkpoint's formula reads a mistake as: its variant (the formula's own by default)
+  // and the values it changes, by their names in a report: three numbers for a colour or the
+  // light's position, one for the exponent.
+  grade::FormulaReading reading(const JsonReader& r) {
+    r.only({"variant", "values"});
+    grade::FormulaReading out;
+    const std::string variant = r.text("variant", "formula");
+    if (auto v = model::variant_named(variant)) out.variant = *v;
+    else r.fail_at(r.at("variant"), "'" + variant + "' is not one of the formula's variants");
+    if (!r.has("values")) return out;
+    const JsonReader values = r.object("values");
+    if (!r.get("values").is_object()) return out;
+    for (const auto& [name, ignored] : r.get("values").items()) {
+      const auto parameter = model::parameter_named(name);
+      if (!parameter) {
+        values.fail_at(values.at(name), "expected ambient, diffuse, specular, exponent or lightPosition");
+        continue;
+      }
+      const std::size_t size = *parameter == model::Parameter::exponent ? 1 : 3;
+      out.values.push_back({*parameter, values.numbers(name, {}, size, size, -1e7, 1e7)});
+    }
+    if (out.variant == model::Variant::formula && out.values.empty()) r.fail(r.path() + ": the formula unchanged is the reference: give a variant or values");
+    return out;
+  }
+
   Mistake mistake(const JsonReader& m, const Preset& reference, const std::set<std::string>& ids) {
-    m.only({"id", "message", "edits", "preset"});
+    m.only({"id", "message", "edits", "preset", "reading"});
     m.require("id") && m.require("message");
     Mistake out;
     out.id = m.text("id", "");
@@ -282,6 +307,7 @@ class Parser {
     }
     out.shaders.id = out.id;
     out.shaders.message = out.message;
+    if (m.has("reading")) out.shaders.reading = reading(m.object("reading"));
     if (error_.empty() && out.shaders.vertex.text == reference.vertex.text && out.shaders.fragment.text == reference.fragment.text)
       m.fail(m.path() + ": the mistake's shaders are the reference's own: it would match every correct submission");
     return out;
@@ -360,6 +386,9 @@ class Parser {
           p.fail(p.path() + ": a probe colours the light, but no uniform has the role lightColor");
       }
       if (c.has("formula")) out.formula = formula(c.object("formula"), reference);
+      for (std::size_t i = 0; i < out.mistakes.size(); ++i)
+        if (out.mistakes[i].shaders.reading && !out.formula)
+          c.fail_at(JsonReader::element(c.at("mistakes"), i) + ".reading", "a reading is the formula's: the checkpoint has no formula");
       course_.checkpoints.push_back(std::move(out));
     }
     course_.default_checkpoint = r.text("defaultCheckpoint", course_.checkpoints.empty() ? "" : course_.checkpoints.back().name);

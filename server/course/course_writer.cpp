@@ -48,6 +48,11 @@ json checkpoint_json(const Checkpoint& k) {
         edits.push_back({{"stage", e.stage == Stage::vertex ? "vertex" : "fragment"}, {"find", e.find}, {"replace", e.replace}});
       entry["edits"] = std::move(edits);
     }
+    if (const auto& r = m.shaders.reading) {
+      entry["reading"] = json::object();
+      if (r->variant != model::Variant::formula) entry["reading"]["variant"] = std::string(model::info(r->variant).id);
+      for (const auto& v : r->values) entry["reading"]["values"][std::string(to_string(v.parameter))] = v.value;
+    }
     mistakes.push_back(std::move(entry));
   }
   json probes = json::array();

@@ -75,8 +75,8 @@ std::string filled(std::string_view words, const FormulaSpec& f) {
   return out;
 }
 
-Explanation::Parameter parameter(const std::string& name, const glm::vec3& course, const glm::vec3& fitted) {
-  return {name, {course.r, course.g, course.b}, {fitted.r, fitted.g, fitted.b}};
+Explanation::Parameter parameter(model::Parameter name, const glm::vec3& course, const glm::vec3& fitted) {
+  return {std::string(to_string(name)), {course.r, course.g, course.b}, {fitted.r, fitted.g, fitted.b}};
 }
 
 // "your ambient colour acts as (0.40, 0.20, 0.20) where the course's uAmbientColor is (0.20, 0.10, 0.10), 2.0 times it"
@@ -101,7 +101,7 @@ std::string position(const glm::vec3& p) {
 Reading read(const model::Fit& fit, const model::Parameters& course, const model::Light& page, const FormulaSpec& f) {
   Reading r{&fit};
   if (const auto& at = fit.parameters.light_position) {
-    r.parameters.push_back(parameter("lightPosition", page.position, *at));
+    r.parameters.push_back(parameter(model::Parameter::light_position, page.position, *at));
     r.changes.push_back("your light acts as if at " + position(*at) + " under every light the grader draws, where the course's " +
                         first_name(f.light_position) + " is " + position(page.position) + ": L must point to " +
                         first_name(f.light_position) + ", the light the page sets; a position written into the shader ignores it");
@@ -119,27 +119,27 @@ Reading read(const model::Fit& fit, const model::Parameters& course, const model
   const bool phong = f.terms == model::Terms::phong;
   const bool swapped = phong && !near(c.diffuse, c.specular) && near(p.diffuse, c.specular) && near(p.specular, c.diffuse);
   if (!near(p.ambient, c.ambient)) {
-    r.parameters.push_back(parameter("ambient", c.ambient, p.ambient));
+    r.parameters.push_back(parameter(model::Parameter::ambient, c.ambient, p.ambient));
     r.changes.push_back(colour_words("ambient", f.ambient, c.ambient, p.ambient));
     r.labels.push_back(colour_label("ambient", p.ambient));
     ++r.count;
   }
   if (swapped) {
-    r.parameters.push_back(parameter("diffuse", c.diffuse, p.diffuse));
-    r.parameters.push_back(parameter("specular", c.specular, p.specular));
+    r.parameters.push_back(parameter(model::Parameter::diffuse, c.diffuse, p.diffuse));
+    r.parameters.push_back(parameter(model::Parameter::specular, c.specular, p.specular));
     r.changes.push_back("your diffuse and specular colours are swapped: the diffuse acts as " + triple(p.diffuse) + ", the course's " +
                         first_name(f.specular) + ", and the specular as " + triple(p.specular) + ", its " + first_name(f.diffuse));
     r.labels.emplace_back("diffuse and specular colours swapped");
     ++r.count;
   } else {
     if (!near(p.diffuse, c.diffuse)) {
-      r.parameters.push_back(parameter("diffuse", c.diffuse, p.diffuse));
+      r.parameters.push_back(parameter(model::Parameter::diffuse, c.diffuse, p.diffuse));
       r.changes.push_back(colour_words("diffuse", f.diffuse, c.diffuse, p.diffuse));
       r.labels.push_back(colour_label("diffuse", p.diffuse));
       ++r.count;
     }
     if (phong && !near(p.specular, c.specular)) {
-      r.parameters.push_back(parameter("specular", c.specular, p.specular));
+      r.parameters.push_back(parameter(model::Parameter::specular, c.specular, p.specular));
       r.changes.push_back(colour_words("specular", f.specular, c.specular, p.specular));
       r.labels.push_back(colour_label("specular", p.specular));
       ++r.count;
@@ -147,7 +147,7 @@ Reading read(const model::Fit& fit, const model::Parameters& course, const model
   }
   const bool highlight_shows = phong && fit.specular_peak * std::max({p.specular.r, p.specular.g, p.specular.b}) > kColourTolerance;
   if (highlight_shows && std::abs(fit.parameters.exponent / course.exponent - 1) > kExponentTolerance) {
-    r.parameters.push_back({"exponent", {course.exponent}, {fit.parameters.exponent}});
+    r.parameters.push_back({std::string(to_string(model::Parameter::exponent)), {course.exponent}, {fit.parameters.exponent}});
     r.changes.push_back("your exponent acts as " + number(fit.parameters.exponent, "%.1f") + " where the course's " + f.exponent.variable +
                         " is " + number(course.exponent, "%.1f"));
     r.labels.emplace_back("exponent changed");
@@ -207,6 +207,7 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
   o.terms = f.terms;
   o.course = course_parameters(f, e.values);
   o.threshold = options.compare.threshold;
+  o.spatial_tolerance = options.compare.spatial_tolerance;
   const auto lights = formula_lights(f, e.values, e.probes);
   const std::vector<model::FrameSurface>& surfaces = *e.surfaces;
   const std::size_t n = surfaces.size();
@@ -286,6 +287,45 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
       out.text += " It fits as well: " + joined(readings[i].changes) + ".";
     }
   return out;
+}
+
+bool reads_as(const Explanation& e, const FormulaReading& reading) {
+  const std::string variant(model::info(reading.variant).id);
+  const bool also = reading.values.empty() && std::find(e.also_fits.begin(), e.also_fits.end(), variant) != e.also_fits.end();
+  if (!e.explained || (e.variant != variant && !also) || e.parameters.size() != reading.values.size()) return false;
+  for (const auto& want : reading.values) {
+    const auto found = std::find_if(e.parameters.begin(), e.parameters.end(),
+                                    [&](const Explanation::Parameter& p) { return p.name == to_string(want.parameter); });
+    if (found == e.parameters.end() || found->fitted.size() != want.value.size()) return false;
+    for (std::size_t i = 0; i < want.value.size(); ++i) {
+      const double off = std::abs(found->fitted[i] - want.value[i]);
+      const bool close = want.parameter == model::Parameter::exponent ? off <= kExponentTolerance * want.value[i]
+                         : want.parameter == model::Parameter::light_position ? off <= kExponentTolerance * std::max(1.0, std::abs(want.value[i]))
+                                                                              : off <= kColourTolerance;
+      if (!close) return false;
+    }
+  }
+  return true;
+}
+
+CatalogueWork catalogue_work(const std::vector<Mistake>& mistakes, const std::optional<Explanation>& e) {
+  CatalogueWork out;
+  for (const auto& m : mistakes) {
+    if (!e || !e->explained || !m.reading) out.to_render.push_back(&m);
+    else if (!out.recognised && reads_as(*e, *m.reading)) out.recognised = &m;
+  }
+  return out;
+}
+
+std::optional<RenderedMistake> recognised_mistake(const CatalogueWork& work) {
+  if (!work.recognised) return std::nullopt;
+  return RenderedMistake{work.recognised->id, work.recognised->message, {}};
+}
+
+void say_explanation(Report& report) {
+  if (!report.explanation || !report.diagnosis.empty()) return;
+  auto& m = report.messages;
+  m.insert(report.explanation->explained ? m.begin() : m.end(), report.explanation->text);
 }
 
 }  // namespace shadelab::grade

@@ -4,13 +4,17 @@
 // The work, for a deliverable of 9 frames: the reference at the lag grid's angles (65 frames,
 // once per course: the store and the worker's memory keep it), the lags fitted against it, then
 // the reference rendered once at the fitted angles (one render of the job) and compared. Only a
-// failing set pays for more: each known mistake rendered at the same angles, for the diagnosis.
+// failing set pays for more: each known mistake rendered at the same angles, for the diagnosis,
+// and the formula's geometry at the angles the frames' outlines fit, for the explanation (three
+// float renders, kept in memory only: no other student's frames are drawn at those angles).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "core/words.h"
 #include "grade/diagnosis.h"
+#include "grade/formula_explanation.h"
 #include "grade/grade_session.h"
 #include "grade/lag_fit.h"
 #include "grade/provenance.h"
@@ -57,8 +61,6 @@ std::vector<double> fitted_angles(const std::vector<LagFit>& fits, const LagGrid
   for (const auto& f : fits) out.push_back(std::round((grid.nominal(f.frame) - f.lag_degrees) * 1000) / 1000);
   return out;
 }
-
-bool is_clear(const std::uint8_t* p) { return p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 255; }
 
 // How much two frames' outlines overlap: the pixels either covers that both cover.
 double outline_overlap(const image::Image& a, const image::Image& b) {
@@ -184,6 +186,29 @@ Report code_match(const SharedFrames& saved, const SharedFrames& code, const Sha
 
 }  // namespace
 
+std::optional<Explanation> GradeSession::saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options,
+                                                                  const render::RenderRequest& grid_request,
+                                                                  const scene::Mesh& mesh, const std::string& mesh_key, const SharedFrames& saved,
+                                                                  const SharedFrames& grid_frames, const LagGrid& grid) {
+  if (!spec.formula) return std::nullopt;
+  std::vector<const image::Image*> images;
+  for (const auto& f : saved) images.push_back(f.get());
+  // The grid's own angles, not refined between its steps: the reference's frames there are in
+  // hand, and a twentieth of a degree moves no interior pixel's shading by a level.
+  render::RenderRequest at = grid_request;
+  at.angles.clear();
+  SharedFrames reference;
+  const std::vector<double> angles = grid.angles();
+  for (const LagFit& f : fit_outline_lags(images, grid_frames, grid)) {
+    at.angles.push_back(angles[f.best]);
+    reference.push_back(grid_frames[f.best]);
+  }
+  at.frames = static_cast<int>(at.angles.size());
+  const auto* geometry = surfaces(*spec.formula, at, mesh, mesh_key, GeometryKept::in_memory);
+  if (!geometry) return std::nullopt;
+  return explain_with_formula({&*spec.formula, at.uniforms, {}, geometry, &saved, &reference}, options);
+}
+
 Expected<SharedFrames> GradeSession::at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles) {
   request.angles = angles;
   request.frames = static_cast<int>(angles.size());
@@ -198,7 +223,7 @@ Expected<SharedFrames> GradeSession::at_angles(render::RenderRequest request, co
 // fitted on their own lag grid (frames of other shading fit the reference's grid at the wrong
 // angles: the shading, not the rotation, decides the fit) and rendered again at their own angles.
 // Most mistakes are ruled out by one render of the job.
-GradeSession::MistakesAtLags GradeSession::mistakes_at_lags(const GradeSpec& spec, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
+GradeSession::MistakesAtLags GradeSession::mistakes_at_lags(const std::vector<const Mistake*>& which, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
                                                             const std::string& mesh_key, const std::vector<const image::Image*>& saved,
                                                             const std::vector<LagFit>& fits, const LagGrid& grid) {
   const std::vector<double> angles = fitted_angles(fits, grid);
@@ -210,16 +235,16 @@ GradeSession::MistakesAtLags GradeSession::mistakes_at_lags(const GradeSpec& spe
   };
   std::vector<Candidate> candidates;
   double best = total_residual(fits);
-  for (const auto& mk : spec.mistakes) {
+  for (const Mistake* mk : which) {
     render::RenderRequest mr = grid_request;
-    mr.vertex = mk.vertex;
-    mr.fragment = mk.fragment;
+    mr.vertex = mk->vertex;
+    mr.fragment = mk->fragment;
     auto at = at_angles(mr, mesh, angles);
     if (!at) continue;  // a catalogued mistake that does not render diagnoses nothing
     double residual = 0;
     for (size_t k = 0; k < saved.size(); ++k) residual += squared_difference(*saved[k], *(*at)[k]);
     best = std::min(best, residual);
-    candidates.push_back({&mk, std::move(mr), std::move(*at), residual});
+    candidates.push_back({mk, std::move(mr), std::move(*at), residual});
   }
   const double reference_residual = total_residual(fits);
   MistakesAtLags out;
@@ -279,11 +304,19 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   options.compare.spatial_tolerance = true;
   options.compare.outline_tolerance = true;
   options.closer_than_reference = options.saved_frames_closer_than_reference;
-  GradeResult result = grade::grade(*frames, {}, *reference, {}, options);
+  GradeResult result = grade::assess(*frames, {}, *reference, options);
   std::vector<LagFit> diagnosed_fits = fits;
+  std::optional<Explanation> explanation;
   if (!result.pass) {
-    MistakesAtLags mistakes = mistakes_at_lags(spec, ref, **mesh, mesh_key, saved_images, fits, grid);
-    result = grade::grade(*frames, {}, *reference, mistakes.rendered, options);
+    // The formula first (a known mistake it reads needs no render), for frames of the mesh's
+    // shape in their own order: it reads shading, not rotations or outlines.
+    const bool in_order = std::none_of(fits.begin(), fits.end(), [](const LagFit& f) { return f.looks_like.has_value(); });
+    if (in_order && worst_outline_overlap(*frames, *reference) >= options.same_outline)
+      explanation = saved_frames_explanation(spec, options, ref, **mesh, mesh_key, *frames, *grid_frames, grid);
+    const CatalogueWork catalogue = catalogue_work(spec.mistakes, explanation);
+    const auto recognised = recognised_mistake(catalogue);
+    MistakesAtLags mistakes = mistakes_at_lags(catalogue.to_render, ref, **mesh, mesh_key, saved_images, fits, grid);
+    explain(result, *frames, *reference, mistakes.rendered, options, recognised ? &*recognised : nullptr);
     for (const auto& [id, own] : mistakes.fits)
       if (id == result.diagnosis) diagnosed_fits = own;
   }
@@ -297,6 +330,10 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
     }
   settle(out.frames);
   judge_provenance(out.frames, saved_images, *grid_frames, grid, diagnosed_fits, spec.frames_from_page);
+  if (!out.frames.pass) {
+    out.frames.explanation = std::move(explanation);
+    say_explanation(out.frames);
+  }
 
   if (has_code && code_error) out.code = failed_submission(*code_error, spec.reference_name, spec.options.max_score);
   if (has_code && !code_error) {

@@ -78,14 +78,15 @@ Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& 
   return frames;
 }
 
-std::vector<RenderedMistake> GradeSession::rendered_mistakes(const GradeSpec& spec, const render::RenderRequest& reference,
-                                                             const scene::Mesh& mesh, const std::string& mesh_key) {
+std::vector<RenderedMistake> GradeSession::rendered_mistakes(const GradeSpec& spec, const std::vector<const Mistake*>& which,
+                                                             const render::RenderRequest& reference, const scene::Mesh& mesh,
+                                                             const std::string& mesh_key) {
   std::vector<RenderedMistake> mistakes;
-  for (const auto& mk : spec.mistakes) {
+  for (const Mistake* mk : which) {
     render::RenderRequest mr = reference;
-    mr.vertex = mk.vertex;
-    mr.fragment = mk.fragment;
-    if (auto frames = cached_under_lights(spec, mr, mesh, mesh_key)) mistakes.push_back({mk.id, mk.message, std::move(*frames)});
+    mr.vertex = mk->vertex;
+    mr.fragment = mk->fragment;
+    if (auto frames = cached_under_lights(spec, mr, mesh, mesh_key)) mistakes.push_back({mk->id, mk->message, std::move(*frames)});
   }
   return mistakes;
 }
@@ -124,7 +125,7 @@ static void name_probes_that_fail(Report& report, const std::vector<Probe>& prob
 }
 
 const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
-                                                              const scene::Mesh& mesh, const std::string& mesh_key) {
+                                                              const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept) {
   auto requests = geometry_requests(formula, reference);
   if (!requests) return nullptr;
   std::string key = render::pixel_identity((*requests)[0]) + '\0' + formula.normal_varying + '\0' + mesh_key;
@@ -136,8 +137,9 @@ const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec
   // are ten times the surfaces' size.
   std::vector<model::FrameSurface> out;
   for (std::size_t i = 0; i < requests->size(); ++i) {
-    auto frames = stored_or_rendered((*requests)[i], mesh, mesh_key);
+    auto frames = kept == GeometryKept::with_references ? stored_or_rendered((*requests)[i], mesh, mesh_key) : frames_of((*requests)[i], mesh);
     if (!frames) return nullptr;
+    if (kept == GeometryKept::in_memory) ++work_.rendered;
     for (std::size_t k = 0; k < frames->size(); ++k) {
       if (i == 0) out.push_back(model::surface_from(*(*frames)[k]));
       else if (k < out.size()) model::add_normals(out[k], *(*frames)[k], i == 1 ? model::NormalKind::interpolated : model::NormalKind::flat);
@@ -152,7 +154,7 @@ std::optional<Explanation> GradeSession::formula_explanation(const GradeSpec& sp
                                                               const scene::Mesh& mesh, const std::string& mesh_key,
                                                               const SharedFrames& student, const SharedFrames& reference_frames) {
   if (!spec.formula) return std::nullopt;
-  const auto* geometry = surfaces(*spec.formula, reference, mesh, mesh_key);
+  const auto* geometry = surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references);
   if (!geometry) return std::nullopt;
   return explain_with_formula({&*spec.formula, reference.uniforms, spec.probes, geometry, &student, &reference_frames}, spec.options);
 }
@@ -236,9 +238,17 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
   ref.fragment = spec.reference_fragment;
   auto reference = cached_under_lights(spec, ref, **mesh, mesh_key);
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
-  // The catalogue only for a submission that fails: a passing one needs no diagnosis.
+  // The formula and the catalogue only for a submission that fails: a passing one needs no
+  // diagnosis. The formula first: a known mistake it reads needs no render (catalogue_work).
   GradeResult result = assess(student->frames, student->non_finite, *reference, spec.options);
-  if (!result.pass) explain(result, student->frames, *reference, rendered_mistakes(spec, ref, **mesh, mesh_key), spec.options);
+  std::optional<Explanation> explanation;
+  if (!result.pass) {
+    explanation = formula_explanation(spec, ref, **mesh, mesh_key, student->frames, *reference);
+    const CatalogueWork catalogue = catalogue_work(spec.mistakes, explanation);
+    const auto recognised = recognised_mistake(catalogue);
+    explain(result, student->frames, *reference, rendered_mistakes(spec, catalogue.to_render, ref, **mesh, mesh_key), spec.options,
+            recognised ? &*recognised : nullptr);
+  }
 
   std::vector<std::string> lights = {"homework"};
   for (const auto& p : spec.probes) lights.push_back(p.name);
@@ -252,15 +262,8 @@ Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::R
       if (out.report.diagnosis.empty()) out.report.diagnosis = changed_constant_diagnosis(found.variable);
       out.report.messages.insert(out.report.messages.begin(), found.message);
     }
-  if (!out.report.pass) {
-    out.report.explanation = formula_explanation(spec, ref, **mesh, mesh_key, student->frames, *reference);
-    // The catalogue's words (or a changed starter constant's) where they recognised the mistake;
-    // else the formula's: first when they explain, after what the probes say when they cannot.
-    if (out.report.explanation && out.report.diagnosis.empty()) {
-      auto& m = out.report.messages;
-      m.insert(out.report.explanation->explained ? m.begin() : m.end(), out.report.explanation->text);
-    }
-  }
+  out.report.explanation = std::move(explanation);
+  say_explanation(out.report);
   if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r);  // the homework light's
   return out;
 }

@@ -72,9 +72,9 @@ class GradeSession {
   Expected<SharedFrames> stored_or_rendered(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
   // A reference set from the worker's memory, else stored_or_rendered (and kept in memory).
   Expected<SharedFrames> cached_frames(const render::RenderRequest& request, const scene::Mesh& mesh, const std::string& mesh_key);
-  // The reference's and the known mistakes' frames under every light, for a submission that failed.
-  std::vector<RenderedMistake> rendered_mistakes(const GradeSpec& spec, const render::RenderRequest& reference, const scene::Mesh& mesh,
-                                                 const std::string& mesh_key);
+  // Those of the known mistakes, under every light, for a submission that failed.
+  std::vector<RenderedMistake> rendered_mistakes(const GradeSpec& spec, const std::vector<const Mistake*>& which,
+                                                 const render::RenderRequest& reference, const scene::Mesh& mesh, const std::string& mesh_key);
   const std::string& mesh_address(const std::string& mesh_key, const scene::Mesh& mesh);
   // A grade's start: the counts zeroed, the store its spec names opened.
   void begin(const GradeSpec& spec);
@@ -86,7 +86,7 @@ class GradeSession {
     std::vector<RenderedMistake> rendered;
     std::vector<std::pair<std::string, std::vector<LagFit>>> fits;
   };
-  MistakesAtLags mistakes_at_lags(const GradeSpec& spec, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
+  MistakesAtLags mistakes_at_lags(const std::vector<const Mistake*>& which, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
                                   const std::string& mesh_key, const std::vector<const image::Image*>& saved,
                                   const std::vector<LagFit>& fits, const LagGrid& grid);
   // `request` rendered at `angles` (the grader's work, counted).
@@ -101,15 +101,25 @@ class GradeSession {
   };
   Expected<SubmissionFrames> submission_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh);
   Expected<render::RenderRequest> with_light(const GradeSpec& spec, const render::RenderRequest& base, const Probe& probe);
+  // Where the formula's geometry is kept: with the references (the store too) for the course's own
+  // angles, which every code grade shares; in the worker's memory only for a student's saved
+  // frames' angles, which are theirs alone (108 MB of float frames a set at 512 x 512 on disk).
+  enum class GeometryKept { with_references, in_memory };
   // The geometry the formula is evaluated on, per angle of `reference`: from the worker's memory,
   // else from the store or rendered (grade/formula_geometry.h); null when it does not render.
   const std::vector<model::FrameSurface>* surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
-                                                   const scene::Mesh& mesh, const std::string& mesh_key);
+                                                   const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept);
   // A failing submission's frames read by the checkpoint's formula (grade/formula_explanation.h),
   // on the geometry of `reference` (rendered once per course, kept as references are); none when
   // the spec has no formula or the geometry does not render.
   std::optional<Explanation> formula_explanation(const GradeSpec& spec, const render::RenderRequest& reference, const scene::Mesh& mesh,
                                                  const std::string& mesh_key, const SharedFrames& student, const SharedFrames& reference_frames);
+  // Failing saved frames read by the formula: on the geometry at the angles their outlines fit
+  // (grade/lag_fit.h's fit_outline_lags: shading of another kind misleads the reference's fit),
+  // against the reference's grid frames at the same angles, under the saved frames' `options`.
+  std::optional<Explanation> saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options, const render::RenderRequest& grid_request,
+                                                      const scene::Mesh& mesh, const std::string& mesh_key, const SharedFrames& saved,
+                                                      const SharedFrames& grid_frames, const LagGrid& grid);
 
   render::Renderer& renderer_;
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch

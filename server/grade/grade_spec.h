@@ -15,12 +15,26 @@
 
 namespace shadelab::grade {
 
+// What the checkpoint's formula reads a known mistake as (grade/formula_explanation.h): its
+// variant and the values it changes, with the values the mistake gives them.
+struct FormulaReading {
+  model::Variant variant = model::Variant::formula;
+  struct Value {
+    model::Parameter parameter;
+    std::vector<double> value;  // three for a colour or a position, one for the exponent
+  };
+  std::vector<Value> values;
+};
+
 // A known mistake: the reference with one deliberate change. A submission that matches a
 // mistake's render better than the reference's is told, in these words, what it got wrong.
 struct Mistake {
   std::string id;       // "missing_specular"
   std::string message;  // what the student reads
   shader::ShaderFile vertex, fragment;
+  // A submission the formula reads so is this mistake, without a render of the mistake's own (one
+  // a light); none for a mistake the formula cannot draw, which is rendered and compared.
+  std::optional<FormulaReading> reading;
 };
 
 // Extra frames rendered under another light, for mistakes the homework's light cannot show: with

@@ -16,8 +16,6 @@ namespace {
 // Small shares keep their digits: 0.004%, not 0.0%.
 std::string fine_percent(double f) { return shadelab::percent(f, f < 0.001 ? 3 : 1); }
 
-bool is_clear(const std::uint8_t* p) { return p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 255; }
-
 // Failing pixels over the pixels the object covers in either image (see FrameGrade).
 double failing_of_object(const image::Image& a, const image::Image& b, double failing_fraction) {
   std::size_t covered = 0;
@@ -127,22 +125,23 @@ GradeResult assess(const SharedFrames& student, const std::vector<image::NonFini
 }
 
 void explain(GradeResult& r, const SharedFrames& student, const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes,
-             const GradeOptions& options) {
+             const GradeOptions& options, const RenderedMistake* recognised) {
   if (r.pass) return;
   const size_t worst = worst_frame(r);
   const auto passing = std::count_if(r.frames.begin(), r.frames.end(), [](const FrameGrade& f) { return f.pass; });
   const double worst_object = r.frames[worst].failing_fraction_of_object;
   // Which known mistake explains the frames best, if one explains them at all?
-  const RenderedMistake* best = nullptr;
+  const RenderedMistake* best = recognised;
   double failing_sum = 0;
   for (const auto& f : r.frames) failing_sum += f.failing_fraction_of_object;
   double best_failing = failing_sum / static_cast<double>(r.frames.size());
   const double reference_failing = best_failing;
-  for (const auto& m : mistakes) {
-    const AgainstCandidate fit = against(student, m.frames, options);
-    const bool explains = fit.matching == 1.0 || fit.mean_failing < options.closer_than_reference * reference_failing;
-    if (explains && fit.mean_failing < best_failing) best = &m, best_failing = fit.mean_failing;
-  }
+  if (!recognised)  // the formula's reading found it: nothing to compare
+    for (const auto& m : mistakes) {
+      const AgainstCandidate fit = against(student, m.frames, options);
+      const bool explains = fit.matching == 1.0 || fit.mean_failing < options.closer_than_reference * reference_failing;
+      if (explains && fit.mean_failing < best_failing) best = &m, best_failing = fit.mean_failing;
+    }
   if (best) {
     if (r.diagnosis.empty()) r.diagnosis = best->id;
     r.messages.push_back(best->message);

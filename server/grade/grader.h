@@ -1,6 +1,7 @@
 #pragma once
 // From rendered frames to a verdict, a score and messages a student understands. Pure CPU work
 // on images: the worker renders, this decides.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -8,6 +9,10 @@
 #include "image/metrics.h"
 
 namespace shadelab::grade {
+
+// Whether an 8-bit RGBA pixel is the page's clear colour, opaque black: the object is every pixel
+// that is not (a shader that draws opaque black draws nothing the grader can tell from it).
+inline bool is_clear(const std::uint8_t* rgba) { return rgba[0] == 0 && rgba[1] == 0 && rgba[2] == 0 && rgba[3] == 255; }
 
 // Every threshold of a verdict. A course profile's `tolerance` sets its own (Course::tolerance);
 // these are the defaults where it says nothing.
@@ -68,7 +73,9 @@ GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinit
 // is. grade() is assess, then explain when it failed.
 GradeResult assess(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite, const SharedFrames& reference,
                    const GradeOptions& options);
+// `recognised`: a known mistake found without frames of its own (by the formula's reading,
+// grade/formula_explanation.h), the diagnosis before any rendered one; it has no frames.
 void explain(GradeResult& result, const SharedFrames& student, const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes,
-             const GradeOptions& options);
+             const GradeOptions& options, const RenderedMistake* recognised = nullptr);
 
 }  // namespace shadelab::grade

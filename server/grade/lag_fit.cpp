@@ -64,14 +64,24 @@ bool turns_before_edge(const std::vector<double>& error) {
   return curvature > 0 && 0.5 * (left - right) / curvature < 1.0;
 }
 
-LagFit fit_one(int k, const image::Image& frame, const SharedFrames& grid_frames, const LagGrid& grid) {
+// The pixels one frame draws over the clear colour and the other does not.
+double outline_difference(const image::Image& a, const image::Image& b) {
+  SHADELAB_CHECK(a.bytes.size() == b.bytes.size() && a.type == image::PixelType::u8, "frames of one size and type");
+  double count = 0;
+  for (size_t i = 0; i < a.bytes.size(); i += 4) count += is_clear(&a.bytes[i]) != is_clear(&b.bytes[i]);
+  return count;
+}
+
+using Difference = double (*)(const image::Image&, const image::Image&);
+
+LagFit fit_one(int k, const image::Image& frame, const SharedFrames& grid_frames, const LagGrid& grid, Difference difference) {
   LagFit fit{k, grid.index(k, 0), 0, false, std::nullopt, 0};
   if (k == 0) {
-    fit.residual = squared_difference(frame, *grid_frames[fit.best]);
+    fit.residual = difference(frame, *grid_frames[fit.best]);
     return fit;
   }
   std::vector<double> error(static_cast<size_t>(grid.steps()));
-  for (int j = 0; j < grid.steps(); ++j) error[static_cast<size_t>(j)] = squared_difference(frame, *grid_frames[grid.index(k, j)]);
+  for (int j = 0; j < grid.steps(); ++j) error[static_cast<size_t>(j)] = difference(frame, *grid_frames[grid.index(k, j)]);
   const int best = static_cast<int>(std::min_element(error.begin(), error.end()) - error.begin());
   fit.best = grid.index(k, best);
   fit.lag_degrees = refined_step(error, best) * grid.step;
@@ -86,7 +96,7 @@ std::vector<LagFit> fit_lags(const std::vector<const image::Image*>& saved, cons
   SHADELAB_CHECK(grid_frames.size() == grid.angles().size(), "the reference grid must be rendered at the grid's angles");
   std::vector<LagFit> fits;
   for (int k = 0; k < static_cast<int>(saved.size()); ++k) {
-    LagFit fit = fit_one(k, *saved[static_cast<size_t>(k)], grid_frames, grid);
+    LagFit fit = fit_one(k, *saved[static_cast<size_t>(k)], grid_frames, grid, squared_difference);
     // Out of order, or saved twice: another frame's nominal angle fits clearly better.
     const double own = fit.residual;
     for (int m = 0; m < grid.frames; ++m) {
@@ -97,6 +107,13 @@ std::vector<LagFit> fit_lags(const std::vector<const image::Image*>& saved, cons
     }
     fits.push_back(fit);
   }
+  return fits;
+}
+
+std::vector<LagFit> fit_outline_lags(const std::vector<const image::Image*>& saved, const SharedFrames& grid_frames, const LagGrid& grid) {
+  SHADELAB_CHECK(grid_frames.size() == grid.angles().size(), "the reference grid must be rendered at the grid's angles");
+  std::vector<LagFit> fits;
+  for (int k = 0; k < static_cast<int>(saved.size()); ++k) fits.push_back(fit_one(k, *saved[static_cast<size_t>(k)], grid_frames, grid, outline_difference));
   return fits;
 }
 

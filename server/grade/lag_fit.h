@@ -50,6 +50,11 @@ double total_residual(const std::vector<LagFit>& fits);
 // One fit per saved frame; `grid_frames` is the reference rendered at grid.angles().
 std::vector<LagFit> fit_lags(const std::vector<const image::Image*>& saved, const SharedFrames& grid_frames, const LagGrid& grid);
 
+// The same fit by the outline alone (the pixels drawn over the clear colour), whatever the shading:
+// frames shaded otherwise than the reference fit its grid by their shading, at the wrong angles,
+// but their outline is the reference's. Each fit's residual counts pixels, and looks_like is not set.
+std::vector<LagFit> fit_outline_lags(const std::vector<const image::Image*>& saved, const SharedFrames& grid_frames, const LagGrid& grid);
+
 // The sum of squared RGB differences of two frames of one size, in [0, 3 * pixels].
 double squared_difference(const image::Image& a, const image::Image& b);
 

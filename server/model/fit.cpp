@@ -226,12 +226,39 @@ glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, cons
   return shaded(factors(variant, point, {parameters.light_position.value_or(light.position), light.colour}), parameters, terms);
 }
 
+namespace {
+
+// Whether some interior pixel within one of `pixel` has the model's colour close to `drawn`.
+// `model` holds the model's colour at every interior pixel (alpha < 0 elsewhere).
+bool near_neighbour(const std::vector<glm::vec4>& model, int width, int height, std::uint32_t pixel, const glm::vec3& drawn, double threshold) {
+  const int x = static_cast<int>(pixel % static_cast<std::uint32_t>(width)), y = static_cast<int>(pixel / static_cast<std::uint32_t>(width));
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int nx = x + dx, ny = y + dy;
+      if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+      const glm::vec4& m = model[static_cast<std::size_t>(ny) * static_cast<std::size_t>(width) + static_cast<std::size_t>(nx)];
+      if (m.a >= 0 && !off(m, drawn, threshold)) return true;
+    }
+  return false;
+}
+
+}  // namespace
+
 double failing_share(Variant v, const Parameters& p, const DrawnFrame& frame, const FitOptions& o) {
   const auto& s = *frame.surface;
   if (s.points.empty()) return 0;
   std::size_t failing = 0;
-  for (std::size_t i = 0; i < s.points.size(); ++i)
-    failing += off(shade(v, p, o.terms, s.points[i], frame.light), drawn_colour(*frame.drawn, s.pixels[i]), o.threshold);
+  if (!o.spatial_tolerance) {
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+      failing += off(shade(v, p, o.terms, s.points[i], frame.light), drawn_colour(*frame.drawn, s.pixels[i]), o.threshold);
+  } else {
+    std::vector<glm::vec4> model(static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height), glm::vec4(-1));
+    for (std::size_t i = 0; i < s.points.size(); ++i) model[s.pixels[i]] = shade(v, p, o.terms, s.points[i], frame.light);
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      const glm::vec3 drawn = drawn_colour(*frame.drawn, s.pixels[i]);
+      failing += off(model[s.pixels[i]], drawn, o.threshold) && !near_neighbour(model, s.width, s.height, s.pixels[i], drawn, o.threshold);
+    }
+  }
   return static_cast<double>(failing) / static_cast<double>(s.points.size());
 }
 

@@ -47,6 +47,9 @@ struct FitOptions {
   Parameters course;              // the values the fit starts from and keeps where the frames do not tell
   double threshold = 0.016;       // as image::CompareOptions
   std::size_t sample = 4096;      // pixels each variant is tried on before the full check
+  // As image::CompareOptions: a pixel the model draws off still matches where the model's colour
+  // at a pixel within one of it is close (frames from another rasteriser: a student's saved frames).
+  bool spatial_tolerance = false;
 };
 
 struct Fit {

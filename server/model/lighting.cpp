@@ -12,6 +12,12 @@ namespace {
 
 constexpr EnumName<Terms> kTerms[] = {{Terms::lambert, "lambert"}, {Terms::phong, "phong"}};
 
+constexpr EnumName<Parameter> kParameters[] = {{Parameter::ambient, "ambient"},
+                                               {Parameter::diffuse, "diffuse"},
+                                               {Parameter::specular, "specular"},
+                                               {Parameter::exponent, "exponent"},
+                                               {Parameter::light_position, "lightPosition"}};
+
 constexpr VariantInfo kVariants[] = {
     {Variant::formula, "formula", "the formula", false, "the homework's formula", "the homework's formula"},
     {Variant::light_as_direction, "light_as_direction", "light used as a direction", false,
@@ -71,6 +77,14 @@ std::optional<Terms> terms_named(std::string_view name) { return value_in(kTerms
 
 std::span<const VariantInfo> variants() { return kVariants; }
 const VariantInfo& info(Variant variant) { return kVariants[static_cast<std::size_t>(variant)]; }
+std::optional<Variant> variant_named(std::string_view id) {
+  for (const auto& v : kVariants)
+    if (v.id == id) return v.variant;
+  return std::nullopt;
+}
+
+std::string_view to_string(Parameter parameter) { return name_in(kParameters, parameter); }
+std::optional<Parameter> parameter_named(std::string_view name) { return value_in(kParameters, name); }
 
 Factors factors(Variant v, const SurfacePoint& p, const Light& light) {
   const glm::vec3 n = normal_of(v, p);

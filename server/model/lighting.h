@@ -50,6 +50,12 @@ struct VariantInfo {
 
 std::span<const VariantInfo> variants();
 const VariantInfo& info(Variant variant);
+std::optional<Variant> variant_named(std::string_view id);
+
+// The values a fit finds, by the names a report and a course profile give them.
+enum class Parameter { ambient, diffuse, specular, exponent, light_position };
+std::string_view to_string(Parameter parameter);  // "ambient", ..., "lightPosition"
+std::optional<Parameter> parameter_named(std::string_view name);
 
 struct Light {
   glm::vec3 position;  // eye space

@@ -35,7 +35,32 @@ void from_json(const json& j, SharedStoreConfig& s) {
 
 namespace shadelab::grade {
 
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Mistake, id, message, vertex, fragment)
+void to_json(json& j, const FormulaReading& r) {
+  j = {{"variant", std::string(model::info(r.variant).id)}, {"values", json::array()}};
+  for (const auto& v : r.values) j["values"].push_back({{"parameter", model::to_string(v.parameter)}, {"value", v.value}});
+}
+void from_json(const json& j, FormulaReading& r) {
+  const auto variant = model::variant_named(j.at("variant").get<std::string>());
+  if (!variant) throw json::other_error::create(501, "unknown variant", &j);
+  r.variant = *variant;
+  for (const auto& v : j.at("values")) {
+    const auto parameter = model::parameter_named(v.at("parameter").get<std::string>());
+    if (!parameter) throw json::other_error::create(501, "unknown parameter", &v);
+    r.values.push_back({*parameter, v.at("value").get<std::vector<double>>()});
+  }
+}
+
+void to_json(json& j, const Mistake& m) {
+  j = {{"id", m.id}, {"message", m.message}, {"vertex", m.vertex}, {"fragment", m.fragment}};
+  if (m.reading) j["reading"] = *m.reading;
+}
+void from_json(const json& j, Mistake& m) {
+  j.at("id").get_to(m.id);
+  j.at("message").get_to(m.message);
+  j.at("vertex").get_to(m.vertex);
+  j.at("fragment").get_to(m.fragment);
+  if (j.contains("reading")) m.reading = j.at("reading").get<FormulaReading>();
+}
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StarterConstant, variable, meaning, value)
 
 void to_json(json& j, const Probe& p) {

@@ -117,6 +117,21 @@ describe("saved frames, made as the course's page makes them", () => {
     assert.equal(await page.textContent("#saved-example"), `${example}.png`, "the hint names the course's own files");
   });
 
+  // A mistake no one catalogued, saved from chromium's own rasteriser: the formula reads it, and
+  // the student reads why on the page, in the homework's terms.
+  test("a mistake outside the catalogue is explained on the page by the homework's formula", async () => {
+    const specular = course.checkpoints.find((c) => c.name === "specular");
+    await useShaders(specular.reference, [{ stage: "fragment", find: "normalize(uLightPosition - vPosition)", replace: "normalize(uLightPosition)" }]);
+    const { results } = await saveAndCheck(specular, CLOCKS[0]);
+    const { frames } = results.find((r) => r.deliverable === "specular");
+    assert.equal(frames.pass, false);
+    assert.equal(frames.explanation?.explained, true, JSON.stringify(frames.explanation));
+    assert.equal(frames.explanation.variant, "light_as_direction");
+    const shown = await page.textContent("#saved-results article[data-checkpoint=specular]");
+    assert.match(shown, /Your frames are the homework's formula with one change: the light comes from the direction uLightPosition/);
+    await page.screenshot({ path: path.join(artifacts, "saved_frames_explained.png"), fullPage: true });
+  });
+
   // Each mistake of the catalogue, as a student's page would have saved it at 60 Hz. Two change
   // too little for any frame the page saves to show them, and pass; what finds them is said.
   const INVISIBLE_IN_FRAMES = {
