@@ -194,7 +194,9 @@ std::optional<Explanation> GradeSession::saved_frames_explanation(const GradeSpe
   std::vector<const image::Image*> images;
   for (const auto& f : saved) images.push_back(f.get());
   // The grid's own angles, not refined between its steps: the reference's frames there are in
-  // hand, and a twentieth of a degree moves no interior pixel's shading by a level.
+  // hand, and a twentieth of a degree (the most a frame is off) moves smooth shading by less than
+  // the threshold. Shading that changes sharply with the angle (flat normals, an exponent under 1)
+  // is then not always read (docs/grading.md: "What it cannot read").
   render::RenderRequest at = grid_request;
   at.angles.clear();
   SharedFrames reference;
@@ -223,9 +225,10 @@ Expected<SharedFrames> GradeSession::at_angles(render::RenderRequest request, co
 // fitted on their own lag grid (frames of other shading fit the reference's grid at the wrong
 // angles: the shading, not the rotation, decides the fit) and rendered again at their own angles.
 // Most mistakes are ruled out by one render of the job.
-GradeSession::MistakesAtLags GradeSession::mistakes_at_lags(const std::vector<const Mistake*>& which, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
-                                                            const std::string& mesh_key, const std::vector<const image::Image*>& saved,
-                                                            const std::vector<LagFit>& fits, const LagGrid& grid) {
+GradeSession::MistakesAtLags GradeSession::mistakes_at_lags(const std::vector<const Mistake*>& which, const render::RenderRequest& grid_request,
+                                                            const scene::Mesh& mesh, const std::string& mesh_key,
+                                                            const std::vector<const image::Image*>& saved, const std::vector<LagFit>& fits,
+                                                            const LagGrid& grid) {
   const std::vector<double> angles = fitted_angles(fits, grid);
   struct Candidate {
     const Mistake* mistake;

@@ -80,14 +80,14 @@ class GradeSession {
   void begin(const GradeSpec& spec);
   // The cluster's store, connected once and kept for the next grade; null for none.
   store::SharedStore* shared_store(const store::SharedStoreConfig& config);
-  // The known mistakes a failing set of saved frames is compared with, each at the angles the
-  // frames fit it at (`fits` says which mistake's, when not the reference's).
+  // `which` of the known mistakes (catalogue_work's), compared with a failing set of saved frames,
+  // each at the angles the frames fit it at (`fits` says which mistake's, when not the reference's).
   struct MistakesAtLags {
     std::vector<RenderedMistake> rendered;
     std::vector<std::pair<std::string, std::vector<LagFit>>> fits;
   };
-  MistakesAtLags mistakes_at_lags(const std::vector<const Mistake*>& which, const render::RenderRequest& grid_request, const scene::Mesh& mesh,
-                                  const std::string& mesh_key, const std::vector<const image::Image*>& saved,
+  MistakesAtLags mistakes_at_lags(const std::vector<const Mistake*>& which, const render::RenderRequest& grid_request,
+                                  const scene::Mesh& mesh, const std::string& mesh_key, const std::vector<const image::Image*>& saved,
                                   const std::vector<LagFit>& fits, const LagGrid& grid);
   // `request` rendered at `angles` (the grader's work, counted).
   Expected<SharedFrames> at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles);
