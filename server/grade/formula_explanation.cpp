@@ -16,6 +16,8 @@ namespace {
 // than 5% off (the fit finds the course's 6.0 to within 1% on its own reference).
 constexpr float kColourTolerance = 0.02f;
 constexpr double kExponentTolerance = 0.05;
+// A reading's light position: 5% of each coordinate, as the fit finds a moved light.
+constexpr double kPositionTolerance = 0.05;
 // Explanations whose residual is within this factor of the best one's fit as well.
 constexpr double kAsWell = 1.25;
 // The most changes an explanation may make: a student's slip is one or two.
@@ -289,6 +291,21 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
   return out;
 }
 
+namespace {
+
+// Whether a fitted value is a reading's, within what the frames tell apart: a colour's step, the
+// exponent's 5%, a position's 5% of each coordinate (of 1 at least).
+bool close_enough(model::Parameter parameter, double fitted, double wanted) {
+  const double off = std::abs(fitted - wanted);
+  switch (parameter) {
+    case model::Parameter::exponent: return off <= kExponentTolerance * wanted;
+    case model::Parameter::light_position: return off <= kPositionTolerance * std::max(1.0, std::abs(wanted));
+    default: return off <= kColourTolerance;
+  }
+}
+
+}  // namespace
+
 bool reads_as(const Explanation& e, const FormulaReading& reading) {
   const std::string variant(model::info(reading.variant).id);
   const bool also = reading.values.empty() && std::find(e.also_fits.begin(), e.also_fits.end(), variant) != e.also_fits.end();
@@ -297,13 +314,8 @@ bool reads_as(const Explanation& e, const FormulaReading& reading) {
     const auto found = std::find_if(e.parameters.begin(), e.parameters.end(),
                                     [&](const Explanation::Parameter& p) { return p.name == to_string(want.parameter); });
     if (found == e.parameters.end() || found->fitted.size() != want.value.size()) return false;
-    for (std::size_t i = 0; i < want.value.size(); ++i) {
-      const double off = std::abs(found->fitted[i] - want.value[i]);
-      const bool close = want.parameter == model::Parameter::exponent ? off <= kExponentTolerance * want.value[i]
-                         : want.parameter == model::Parameter::light_position ? off <= kExponentTolerance * std::max(1.0, std::abs(want.value[i]))
-                                                                              : off <= kColourTolerance;
-      if (!close) return false;
-    }
+    for (std::size_t i = 0; i < want.value.size(); ++i)
+      if (!close_enough(want.parameter, found->fitted[i], want.value[i])) return false;
   }
   return true;
 }
