@@ -186,6 +186,58 @@ std::string where_they_differ(const std::string& text, const std::vector<RegionD
   return text + " Where your frames differ from the reference: " + comma_list(where) + ".";
 }
 
+// The order explanations are offered in: the fewest changes first; of as many, values changed
+// before the formula's structure (frames with no highlight in view fit "the specular term is
+// missing" and a view vector that points away alike: the missing term is the likelier slip, and
+// both are said), a variant's course values before its fitted ones; then the closest.
+bool before(const Reading& a, const Reading& b) {
+  const auto structural = [](const Reading& r) { return r.fit->variant != model::Variant::formula; };
+  if (a.count != b.count) return a.count < b.count;
+  if (structural(a) != structural(b)) return !structural(a);
+  if (a.fit->course_values != b.fit->course_values) return a.fit->course_values;
+  return a.fit->rms < b.fit->rms;
+}
+
+// Whether a reading is said beside the best one: as many changes, and as close (kAsWell).
+bool as_well(const Reading& r, const Reading& best) { return r.count == best.count && r.fit->rms <= kAsWell * best.fit->rms; }
+
+// The readings that reproduce the frames: the best, then those that fit as well. Each fit is
+// checked on every pixel only when it could still be one of them, in the order they are offered:
+// a check is the explanation's cost (a frame's every pixel, each frame), and frames with the
+// specular term missing are reproduced by every change to the specular's direction alike. A
+// variant is settled by its first fit that reproduces (its course values, where they do): a
+// variant with no change (the formula with the course's values) is no reading.
+std::vector<Reading> reproducing_readings(std::vector<model::Fit>& candidates, const std::vector<model::DrawnFrame>& frames,
+                                          const model::FitOptions& o, const model::Light& page, const FormulaSpec& f) {
+  std::vector<Reading> offered;
+  for (const auto& c : candidates)
+    if (model::worth_checking(c, frames))
+      if (Reading r = read(c, o.course, page, f); r.count <= kMostChanges) offered.push_back(std::move(r));
+  std::stable_sort(offered.begin(), offered.end(), before);
+  std::vector<Reading> out;
+  std::vector<model::Variant> settled;
+  for (auto& r : offered) {
+    if (!out.empty() && r.count != out.front().count) break;
+    if (std::find(settled.begin(), settled.end(), r.fit->variant) != settled.end() || (!out.empty() && !as_well(r, out.front()))) continue;
+    model::Fit& fit = candidates[static_cast<std::size_t>(r.fit - candidates.data())];
+    model::check_pixels(fit, frames, o, model::Extent::until_off);
+    if (!fit.reproduces) continue;
+    settled.push_back(fit.variant);
+    if (r.count > 0) out.push_back(std::move(r));
+  }
+  return out;
+}
+
+// The fit a student is told is closest where no reading reproduces the frames, checked whole:
+// one that reproduces with too many changes (or none), else the fitted values closest on the sample.
+const model::Fit& closest_fit(std::vector<model::Fit>& candidates, const std::vector<model::DrawnFrame>& frames, const model::FitOptions& o) {
+  model::Fit* closest = nullptr;
+  for (auto& c : candidates)
+    if ((c.reproduces || !c.course_values) && (!closest || (c.reproduces != closest->reproduces ? c.reproduces : c.rms < closest->rms))) closest = &c;
+  check_pixels(*closest, frames, o, model::Extent::whole);
+  return *closest;
+}
+
 }  // namespace
 
 model::Parameters course_parameters(const FormulaSpec& f, const std::vector<render::UniformSetting>& values) {
@@ -242,11 +294,8 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
     out.label = "one colour";
     return out;
   }
-  const std::vector<model::Fit> fits = model::fit_variants(frames, o);
-  std::vector<Reading> readings;
-  for (const auto& fit : fits)
-    if (fit.reproduces)
-      if (Reading r = read(fit, o.course, lights.front(), f); r.count > 0 && r.count <= kMostChanges) readings.push_back(std::move(r));
+  std::vector<model::Fit> candidates = model::sample_fits(frames, o);
+  std::vector<Reading> readings = reproducing_readings(candidates, frames, o, lights.front(), f);
   // A light the student moved (written into the shader) is looked for only when no single change
   // of the rest explains the frames: its search costs more than every variant's together.
   model::Fit moved_light;
@@ -254,19 +303,11 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
     moved_light = model::fit_light_position(frames, o);
     if (moved_light.reproduces)
       if (Reading r = read(moved_light, o.course, lights.front(), f); r.count <= kMostChanges) readings.push_back(std::move(r));
+    std::stable_sort(readings.begin(), readings.end(), before);
   }
-  // The fewest changes first; of as many, values changed before the formula's structure (frames
-  // with no highlight in view fit "the specular term is missing" and a view vector that points
-  // away alike: the missing term is the likelier slip, and both are said); then the closest.
-  const auto structural = [](const Reading& r) { return r.fit->variant != model::Variant::formula; };
-  std::stable_sort(readings.begin(), readings.end(), [&](const Reading& a, const Reading& b) {
-    if (a.count != b.count) return a.count < b.count;
-    if (structural(a) != structural(b)) return !structural(a);
-    return a.fit->rms < b.fit->rms;
-  });
 
   if (readings.empty()) {
-    const model::Fit& closest = fits.front();
+    const model::Fit& closest = closest_fit(candidates, frames, o);
     out.variant = std::string(model::info(closest.variant).id);
     out.residual = closest.worst_failing;
     out.text = where_they_differ("The grader cannot say why from the homework's formula: no change of one or two of its parts reproduces your "

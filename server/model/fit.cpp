@@ -199,27 +199,6 @@ double sample_failing(const std::vector<Sampled>& sample, const std::vector<Fact
   return sample.empty() ? 1 : static_cast<double>(failing) / static_cast<double>(sample.size());
 }
 
-// Whether every frame is within what it allows, and the worst frame's share off.
-struct Check {
-  bool within = true;
-  double worst = 0;
-};
-
-// `until_off`: stop at the first frame off (its share then bounds the worst from below): a check
-// that fails costs a frame, not all of them.
-enum class Extent { whole, until_off };
-
-Check check(Variant v, const Parameters& p, const std::vector<DrawnFrame>& frames, const FitOptions& o, Extent extent) {
-  Check c;
-  for (const auto& frame : frames) {
-    const double share = failing_share(v, p, frame, o);
-    c.worst = std::max(c.worst, share);
-    c.within = c.within && share <= frame.allowed;
-    if (!c.within && extent == Extent::until_off) break;
-  }
-  return c;
-}
-
 }  // namespace
 
 glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, const SurfacePoint& point, const Light& light) {
@@ -262,40 +241,79 @@ double failing_share(Variant v, const Parameters& p, const DrawnFrame& frame, co
   return static_cast<double>(failing) / static_cast<double>(s.points.size());
 }
 
-std::vector<Fit> fit_variants(const std::vector<DrawnFrame>& frames, const FitOptions& o) {
+namespace {
+
+double most_allowed(const std::vector<DrawnFrame>& frames) {
+  double most = 0;
+  for (const auto& frame : frames) most = std::max(most, frame.allowed);
+  return most;
+}
+
+Fit sample_fit(Variant v, const Parameters& p, const std::vector<Sampled>& sample, const std::vector<Factors>& f, const FitOptions& o) {
+  Fit fit{v, p, rms_of(sample, f, p, o.terms), sample_failing(sample, f, p, o)};
+  fit.worst_failing = fit.sample_failing;
+  for (const auto& factor : f) fit.specular_peak = std::max(fit.specular_peak, specular_factor(factor, p.exponent));
+  return fit;
+}
+
+}  // namespace
+
+std::vector<Fit> sample_fits(const std::vector<DrawnFrame>& frames, const FitOptions& o) {
   const std::vector<Sampled> sample = sample_of(frames, o.sample);
-  double most_allowed = 0;
-  for (const auto& frame : frames) most_allowed = std::max(most_allowed, frame.allowed);
+  const double margin = kSampleMargin * most_allowed(frames);
   std::vector<Fit> fits;
   for (const VariantInfo& v : variants()) {
     if (v.specular_only && o.terms != Terms::phong) continue;
     std::vector<Factors> f;
     f.reserve(sample.size());
     for (const auto& s : sample) f.push_back(factors(v.variant, frames[s.frame].surface->points[s.point], frames[s.frame].light));
-    const Trial t = best_exponent(design_of(sample, f, o), o);
-    Fit fit{v.variant, t.parameters, rms_of(sample, f, t.parameters, o.terms)};
-    for (const auto& factor : f) fit.specular_peak = std::max(fit.specular_peak, specular_factor(factor, t.parameters.exponent));
-    // Every pixel only where the sample is close (kSampleMargin).
-    fit.worst_failing = sample_failing(sample, f, t.parameters, o);
-    if (fit.worst_failing <= kSampleMargin * most_allowed) {
-      Check c = check(v.variant, o.course, frames, o, Extent::until_off);
-      if (c.within) {
-        fit.parameters = o.course;
-        fit.rms = rms_of(sample, f, o.course, o.terms);
-      } else {
-        c = check(v.variant, t.parameters, frames, o, Extent::until_off);
-      }
-      fit.worst_failing = c.worst;
-      fit.reproduces = c.within;
+    if (Fit course = sample_fit(v.variant, o.course, sample, f, o); course.sample_failing <= margin) {
+      course.course_values = true;
+      fits.push_back(course);
     }
-    fits.push_back(fit);
+    fits.push_back(sample_fit(v.variant, best_exponent(design_of(sample, f, o), o).parameters, sample, f, o));
+  }
+  return fits;
+}
+
+bool worth_checking(const Fit& fit, const std::vector<DrawnFrame>& frames) {
+  return fit.sample_failing <= kSampleMargin * most_allowed(frames);
+}
+
+void check_pixels(Fit& fit, const std::vector<DrawnFrame>& frames, const FitOptions& o, Extent extent) {
+  fit.worst_failing = 0;
+  fit.reproduces = true;
+  for (const auto& frame : frames) {
+    const double share = failing_share(fit.variant, fit.parameters, frame, o);
+    fit.worst_failing = std::max(fit.worst_failing, share);
+    fit.reproduces = fit.reproduces && share <= frame.allowed;
+    if (!fit.reproduces && extent == Extent::until_off) break;
+  }
+  fit.checked = true;
+}
+
+std::vector<Fit> fit_variants(const std::vector<DrawnFrame>& frames, const FitOptions& o) {
+  const std::vector<Fit> candidates = sample_fits(frames, o);
+  std::vector<Fit> fits;
+  for (std::size_t i = 0; i < candidates.size();) {
+    std::size_t end = i;  // the variant's candidates: its course values (where the sample allows), then its fitted ones
+    while (end < candidates.size() && candidates[end].variant == candidates[i].variant) ++end;
+    Fit chosen = candidates[end - 1];
+    if (worth_checking(chosen, frames))
+      for (std::size_t k = i; k < end; ++k) {
+        chosen = candidates[k];
+        check_pixels(chosen, frames, o, Extent::until_off);
+        if (chosen.reproduces) break;
+      }
+    fits.push_back(chosen);
+    i = end;
   }
   std::stable_sort(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) {
     if (a.reproduces != b.reproduces) return a.reproduces;
     return a.rms < b.rms;
   });
   // The closest, where none reproduces, with how far off its worst frame is (what the student reads).
-  if (Fit& closest = fits.front(); !closest.reproduces) closest.worst_failing = check(closest.variant, closest.parameters, frames, o, Extent::whole).worst;
+  if (Fit& closest = fits.front(); !closest.reproduces) check_pixels(closest, frames, o, Extent::whole);
   return fits;
 }
 
@@ -363,9 +381,7 @@ Fit fit_light_position(const std::vector<DrawnFrame>& frames, const FitOptions& 
   Trial t = least_squares(design_of(sample, f, o), o.course.exponent, o);
   t.parameters.light_position = best;
   Fit fit{Variant::formula, t.parameters, rms_of(sample, f, t.parameters, o.terms)};
-  const Check c = check(Variant::formula, t.parameters, frames, o, Extent::whole);
-  fit.worst_failing = c.worst;
-  fit.reproduces = c.within;
+  check_pixels(fit, frames, o, Extent::whole);
   for (const auto& factor : f) fit.specular_peak = std::max(fit.specular_peak, specular_factor(factor, o.course.exponent));
   return fit;
 }

@@ -56,14 +56,34 @@ struct Fit {
   Variant variant = Variant::formula;
   Parameters parameters;
   double rms = 0;            // on the sample, in [0, 1] colour units
-  double worst_failing = 1;  // the worst frame's share of interior pixels off by more than the threshold
-  bool reproduces = false;   // every frame within what it allows
+  double sample_failing = 1; // the sample's share of pixels off by more than the threshold
+  // Until `checked`, the sample's share and false; then the worst frame's share of interior
+  // pixels off and whether every frame is within what it allows.
+  double worst_failing = 1;
+  bool reproduces = false;
+  bool checked = false;
+  bool course_values = false;  // the course's own values, not the fitted ones
   float specular_peak = 0;   // the largest specular factor on the sample: 0 where no highlight is in view
 };
 
-// Every variant the checkpoint's terms allow, fitted, best first (reproducing ones first, then by
-// rms). A variant that reproduces the frames with the course's own values keeps them: the fit's
-// values are then what the clamp and the 8 bits blur, not what the student changed.
+// Every variant the checkpoint's terms allow, fitted on the sample alone: the course's own values
+// first where the sample finds them close (a variant that reproduces the frames with them keeps
+// them: the fitted values are then what the clamp and the 8 bits blur, not what the student
+// changed), then the fitted ones; variant after variant, as variants() lists them. None checked.
+std::vector<Fit> sample_fits(const std::vector<DrawnFrame>& frames, const FitOptions& options);
+
+// Whether a fit's sample is close enough to be worth a check of every pixel (kSampleMargin).
+bool worth_checking(const Fit& fit, const std::vector<DrawnFrame>& frames);
+
+// The fit checked on every interior pixel of every frame, or (`until_off`) up to the first frame
+// off: a check that fails costs a frame, not all of them, and its worst share is then a bound.
+enum class Extent { whole, until_off };
+void check_pixels(Fit& fit, const std::vector<DrawnFrame>& frames, const FitOptions& options, Extent extent);
+
+// Every variant, checked: the course's values where they reproduce, else the fitted ones; best
+// first (reproducing ones first, then by rms), the closest checked whole where none reproduces.
+// What a test wants; an explanation checks only the fits that could be its reading
+// (grade/formula_explanation.cpp).
 std::vector<Fit> fit_variants(const std::vector<DrawnFrame>& frames, const FitOptions& options);
 
 // The formula with the light at one fitted position under every frame (the colours fitted with it,
