@@ -408,6 +408,10 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
       {"specular", {"a specular term halved", {{"uSpecularColor * uLightColor * pow", "0.5 * uSpecularColor * uLightColor * pow"}}, "formula", "specular", {0.05, 0.2, 0.4}}},
       {"diffuse", {"the normal negated", {{"vec3 N = normalize(vNormal);", "vec3 N = -normalize(vNormal);"}}, "negated_normal"}},
       {"diffuse", {"an ambient colour doubled", {{"fragColor = uAmbientColor + diffuse;", "fragColor = 2.0 * uAmbientColor + diffuse;"}}, "formula", "ambient", {0.4, 0.2, 0.2}}},
+      // Shading that changes sharply with the angle: read only on the geometry at the frames' own
+      // angles, between the grid's steps.
+      {"specular", {"an exponent under 1", {{"float specularAlpha = 6.0;", "float specularAlpha = 0.6;"}}, "formula", "exponent", {0.6}}},
+      {"diffuse", {"flat normals", {{"out vec3 vNormal;", "flat out vec3 vNormal;", true}, {"in vec3 vNormal;", "flat in vec3 vNormal;"}}, "flat_normal"}},
   };
   for (const auto& [checkpoint, c] : cases) {
     const json r = grade_saved(checkpoint, c.edits);
@@ -418,6 +422,10 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
   const json noise = grade_saved("specular", {{"fragColor = color;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);"}});
   ASSERT_TRUE(noise.contains("explanation")) << noise.dump().substr(0, 600);
   EXPECT_FALSE(noise["explanation"]["explained"]) << noise["explanation"].dump();
+  // One colour is said to be, though another frame's outline falls a pixel away.
+  const json one = grade_saved("specular", {{"fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);"}});
+  ASSERT_TRUE(one.contains("explanation")) << one.dump().substr(0, 600);
+  EXPECT_EQ(one["explanation"]["label"], "one colour") << one["explanation"].dump();
   const json right = grade_saved("specular", {});
   EXPECT_TRUE(right["pass"]) << right["messages"];
   EXPECT_FALSE(right.contains("explanation"));

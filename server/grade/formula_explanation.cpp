@@ -1,6 +1,7 @@
 #include "grade/formula_explanation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -158,19 +159,38 @@ Reading read(const model::Fit& fit, const model::Parameters& course, const model
   return r;
 }
 
-// The colour of every interior pixel the student drew, where it is one (within the threshold):
-// no term that depends on the light shows, and no fit can say which is missing.
+// A frame's middle colour, channel by channel: the median of its interior pixels.
+glm::vec3 median_colour(const model::DrawnFrame& f) {
+  std::array<std::array<std::size_t, 256>, 3> counts{};
+  for (const std::uint32_t pixel : f.surface->pixels)
+    for (int ch = 0; ch < 3; ++ch) ++counts[ch][f.drawn->bytes[static_cast<std::size_t>(pixel) * 4 + ch]];
+  glm::vec3 out(0);
+  for (int ch = 0; ch < 3; ++ch)
+    for (std::size_t value = 0, seen = 0; value < 256; ++value)
+      if (seen += counts[ch][value]; 2 * seen > f.surface->pixels.size()) {
+        out[ch] = static_cast<float>(value) / 255;
+        break;
+      }
+  return out;
+}
+
+// The student's object's colour, where it is one: every frame's interior pixels within the
+// threshold of the first frame's middle colour, but the share a frame may differ (in another
+// rasteriser's frames, an outline a pixel away). No term that depends on the light shows, and no
+// fit can say which is missing.
 std::optional<glm::vec3> one_colour(const std::vector<model::DrawnFrame>& frames, double threshold) {
-  std::optional<glm::vec3> first;
-  for (const auto& f : frames)
+  if (frames.empty() || frames.front().surface->pixels.empty()) return std::nullopt;
+  const glm::vec3 colour = median_colour(frames.front());
+  for (const auto& f : frames) {
+    std::size_t off = 0;
     for (const std::uint32_t pixel : f.surface->pixels) {
       const std::uint8_t* p = f.drawn->bytes.data() + static_cast<std::size_t>(pixel) * 4;
-      const glm::vec3 c = glm::vec3(p[0], p[1], p[2]) / 255.0f;
-      if (!first) first = c;
-      const glm::vec3 d = glm::abs(c - *first);
-      if (std::max({d.r, d.g, d.b}) > threshold) return std::nullopt;
+      const glm::vec3 d = glm::abs(glm::vec3(p[0], p[1], p[2]) / 255.0f - colour);
+      off += std::max({d.r, d.g, d.b}) > threshold;
     }
-  return first;
+    if (static_cast<double>(off) > f.allowed * static_cast<double>(f.surface->pixels.size())) return std::nullopt;
+  }
+  return colour;
 }
 
 std::string joined(const std::vector<std::string>& sentences) {

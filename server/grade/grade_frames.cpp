@@ -193,22 +193,18 @@ std::optional<Explanation> GradeSession::saved_frames_explanation(const GradeSpe
   if (!spec.formula) return std::nullopt;
   std::vector<const image::Image*> images;
   for (const auto& f : saved) images.push_back(f.get());
-  // The grid's own angles, not refined between its steps: the reference's frames there are in
-  // hand, and a twentieth of a degree (the most a frame is off) moves smooth shading by less than
-  // the threshold. Shading that changes sharply with the angle (flat normals, an exponent under 1)
-  // is then not always read (docs/grading.md: "What it cannot read").
+  // The angles each frame was drawn at, refined between the grid's steps, and the reference and
+  // the geometry rendered there (one render more than the grid's frames at their nearest step):
+  // shading that changes sharply with the angle (flat normals, an exponent under 1) moves by more
+  // than the threshold in the twentieth of a degree between them.
   render::RenderRequest at = grid_request;
-  at.angles.clear();
-  SharedFrames reference;
-  const std::vector<double> angles = grid.angles();
-  for (const LagFit& f : fit_outline_lags(images, grid_frames, grid)) {
-    at.angles.push_back(angles[f.best]);
-    reference.push_back(grid_frames[f.best]);
-  }
+  at.angles = fitted_angles(fit_outline_lags(images, grid_frames, grid), grid);
   at.frames = static_cast<int>(at.angles.size());
+  auto reference = at_angles(grid_request, mesh, at.angles);
+  if (!reference) return std::nullopt;
   const auto* geometry = surfaces(*spec.formula, at, mesh, mesh_key, GeometryKept::in_memory);
   if (!geometry) return std::nullopt;
-  return explain_with_formula({&*spec.formula, at.uniforms, {}, geometry, &saved, &reference}, options);
+  return explain_with_formula({&*spec.formula, at.uniforms, {}, geometry, &saved, &*reference}, options);
 }
 
 Expected<SharedFrames> GradeSession::at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles) {

@@ -116,7 +116,7 @@ class GradeSession {
                                                  const std::string& mesh_key, const SharedFrames& student, const SharedFrames& reference_frames);
   // Failing saved frames read by the formula: on the geometry at the angles their outlines fit
   // (grade/lag_fit.h's fit_outline_lags: shading of another kind misleads the reference's fit),
-  // against the reference's grid frames at the same angles, under the saved frames' `options`.
+  // against the reference rendered at the same angles, under the saved frames' `options`.
   std::optional<Explanation> saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options, const render::RenderRequest& grid_request,
                                                       const scene::Mesh& mesh, const std::string& mesh_key, const SharedFrames& saved,
                                                       const SharedFrames& grid_frames, const LagGrid& grid);
