@@ -11,8 +11,8 @@
 #include "core/embedded_files.h"
 #include "core/hash.h"
 #include "core/json_reader.h"
-#include "grade/formula_geometry.h"
 #include "grade/starter_constants.h"
+#include "course/formula_reader.h"
 #include "course/notebook_lines.h"
 #include "scene/scene_description.h"
 
@@ -261,31 +261,6 @@ class Parser {
     }
   }
 
-  // What the checkpoint's formula reads a mistake as: its variant (the formula's own by default)
-  // and the values it changes, by their names in a report: three numbers for a colour or the
-  // light's position, one for the exponent.
-  grade::FormulaReading reading(const JsonReader& r) {
-    r.only({"variant", "values"});
-    grade::FormulaReading out;
-    const std::string variant = r.text("variant", "formula");
-    if (auto v = model::variant_named(variant)) out.variant = *v;
-    else r.fail_at(r.at("variant"), "'" + variant + "' is not one of the formula's variants");
-    if (!r.has("values")) return out;
-    const JsonReader values = r.object("values");
-    if (!r.get("values").is_object()) return out;
-    for (const auto& [name, ignored] : r.get("values").items()) {
-      const auto parameter = model::parameter_named(name);
-      if (!parameter) {
-        values.fail_at(values.at(name), "expected ambient, diffuse, specular, exponent or lightPosition");
-        continue;
-      }
-      const std::size_t size = *parameter == model::Parameter::exponent ? 1 : 3;
-      out.values.push_back({*parameter, values.numbers(name, {}, size, size, -1e7, 1e7)});
-    }
-    if (out.variant == model::Variant::formula && out.values.empty()) r.fail(r.path() + ": the formula unchanged is the reference: give a variant or values");
-    return out;
-  }
-
   Mistake mistake(const JsonReader& m, const Preset& reference, const std::set<std::string>& ids) {
     m.only({"id", "message", "edits", "preset", "reading"});
     m.require("id") && m.require("message");
@@ -307,33 +282,9 @@ class Parser {
     }
     out.shaders.id = out.id;
     out.shaders.message = out.message;
-    if (m.has("reading")) out.shaders.reading = reading(m.object("reading"));
+    if (m.has("reading")) out.shaders.reading = formula_reading(m.object("reading"));
     if (error_.empty() && out.shaders.vertex.text == reference.vertex.text && out.shaders.fragment.text == reference.fragment.text)
       m.fail(m.path() + ": the mistake's shaders are the reference's own: it would match every correct submission");
-    return out;
-  }
-
-  // A checkpoint's formula: its terms, and varyings its reference's vertex shader writes.
-  CheckpointFormula formula(const JsonReader& f, const Preset* reference) {
-    f.only({"terms", "position", "normal"});
-    f.require("terms") && f.require("position") && f.require("normal");
-    CheckpointFormula out;
-    const std::string terms = f.text("terms", "phong");
-    if (auto t = model::terms_named(terms)) out.terms = *t;
-    else f.fail_at(f.at("terms"), "expected lambert or phong");
-    out.position = f.text("position", "");
-    out.normal = f.text("normal", "");
-    for (const char* field : {"position", "normal"}) {
-      const std::string name = f.text(field, "");
-      if (reference && !name.empty() && !grade::writes_vec3_varying(reference->vertex.text, name))
-        f.fail_at(f.at(field), "the reference's vertex shader declares no `out vec3 " + name + ";`");
-    }
-    for (const UniformRole role : {UniformRole::ambient, UniformRole::diffuse, UniformRole::light_position, UniformRole::light_color})
-      if (!course_.uniform_with_role(role)) f.fail(f.path() + ": the formula reads the " + std::string(to_string(role)) + ", but no uniform has that role");
-    if (out.terms == model::Terms::phong && !course_.uniform_with_role(UniformRole::specular))
-      f.fail(f.path() + ": the formula reads the specular colour, but no uniform has that role");
-    if (out.terms == model::Terms::phong && course_.specular_exponent() <= 0)
-      f.fail(f.path() + ": the formula's exponent is the course's specularExponent, and it has none");
     return out;
   }
 
@@ -385,7 +336,7 @@ class Parser {
         if (p.has("lightColor") && !course_.uniform_with_role(UniformRole::light_color))
           p.fail(p.path() + ": a probe colours the light, but no uniform has the role lightColor");
       }
-      if (c.has("formula")) out.formula = formula(c.object("formula"), reference);
+      if (c.has("formula")) out.formula = checkpoint_formula(c.object("formula"), reference, course_);
       for (std::size_t i = 0; i < out.mistakes.size(); ++i)
         if (out.mistakes[i].shaders.reading && !out.formula)
           c.fail_at(JsonReader::element(c.at("mistakes"), i) + ".reading", "a reading is the formula's: the checkpoint has no formula");

@@ -1,0 +1,52 @@
+#include "course/formula_reader.h"
+
+#include "grade/formula_geometry.h"
+
+namespace shadelab::course {
+
+grade::FormulaReading formula_reading(const JsonReader& r) {
+  r.only({"variant", "values"});
+  grade::FormulaReading out;
+  const std::string variant = r.text("variant", "formula");
+  if (auto v = model::variant_named(variant)) out.variant = *v;
+  else r.fail_at(r.at("variant"), "'" + variant + "' is not one of the formula's variants");
+  if (!r.has("values")) return out;
+  const JsonReader values = r.object("values");
+  if (!r.get("values").is_object()) return out;
+  for (const auto& [name, ignored] : r.get("values").items()) {
+    const auto parameter = model::parameter_named(name);
+    if (!parameter) {
+      values.fail_at(values.at(name), "expected ambient, diffuse, specular, exponent or lightPosition");
+      continue;
+    }
+    const std::size_t size = *parameter == model::Parameter::exponent ? 1 : 3;
+    out.values.push_back({*parameter, values.numbers(name, {}, size, size, -1e7, 1e7)});
+  }
+  if (out.variant == model::Variant::formula && out.values.empty()) r.fail(r.path() + ": the formula unchanged is the reference: give a variant or values");
+  return out;
+}
+
+CheckpointFormula checkpoint_formula(const JsonReader& f, const Preset* reference, const Course& course) {
+  f.only({"terms", "position", "normal"});
+  f.require("terms") && f.require("position") && f.require("normal");
+  CheckpointFormula out;
+  const std::string terms = f.text("terms", "phong");
+  if (auto t = model::terms_named(terms)) out.terms = *t;
+  else f.fail_at(f.at("terms"), "expected lambert or phong");
+  out.position = f.text("position", "");
+  out.normal = f.text("normal", "");
+  for (const char* field : {"position", "normal"}) {
+    const std::string name = f.text(field, "");
+    if (reference && !name.empty() && !grade::writes_vec3_varying(reference->vertex.text, name))
+      f.fail_at(f.at(field), "the reference's vertex shader declares no `out vec3 " + name + ";`");
+  }
+  for (const UniformRole role : {UniformRole::ambient, UniformRole::diffuse, UniformRole::light_position, UniformRole::light_color})
+    if (!course.uniform_with_role(role)) f.fail(f.path() + ": the formula reads the " + std::string(to_string(role)) + ", but no uniform has that role");
+  if (out.terms == model::Terms::phong && !course.uniform_with_role(UniformRole::specular))
+    f.fail(f.path() + ": the formula reads the specular colour, but no uniform has that role");
+  if (out.terms == model::Terms::phong && course.specular_exponent() <= 0)
+    f.fail(f.path() + ": the formula's exponent is the course's specularExponent, and it has none");
+  return out;
+}
+
+}  // namespace shadelab::course
