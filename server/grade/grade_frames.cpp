@@ -184,6 +184,37 @@ Report code_match(const SharedFrames& saved, const SharedFrames& code, const Sha
   return r;
 }
 
+// The reference as the student's page drew it (the page's own uniform values), at every angle of
+// the lag grid.
+render::RenderRequest reference_grid(const GradeSpec& spec, const render::RenderRequest& code, const LagGrid& grid) {
+  render::RenderRequest ref = code;
+  ref.uniforms.clear();
+  ref.vertex = spec.reference_vertex;
+  ref.fragment = spec.reference_fragment;
+  ref.angles = grid.angles();
+  ref.frames = static_cast<int>(ref.angles.size());
+  ref.pixel_type = image::PixelType::u8;
+  return ref;
+}
+
+// Frames from another rasteriser (the student's browser): an edge may fall a pixel away, and the
+// outline's pixels be covered differently.
+GradeOptions saved_frames_options(GradeOptions options) {
+  options.compare.spatial_tolerance = true;
+  options.compare.outline_tolerance = true;
+  options.closer_than_reference = options.saved_frames_closer_than_reference;
+  return options;
+}
+
+// A failing set no mistake named, whose outline is not the reference's: another mesh.
+void say_if_another_shape(Report& r, const SharedFrames& frames, const SharedFrames& reference, const GradeOptions& options) {
+  const double outline = worst_outline_overlap(frames, reference);
+  if (outline >= options.same_outline) return;
+  r.diagnosis = to_string(Diagnosis::frames_of_another_shape);
+  r.messages.insert(r.messages.begin(), "the saved frames show another shape than the reference on this mesh (the outlines overlap by " +
+                                            percent(outline) + " at worst): saved with another mesh selected on the page?");
+}
+
 }  // namespace
 
 std::optional<Explanation> GradeSession::saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options,
@@ -279,15 +310,8 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   auto mesh = mesh_source();
   if (!mesh) return mesh.take_error();
 
-  // The reference as the student's page drew it: the page's own uniform values.
   const LagGrid grid{code.frames, code.degrees_per_frame};
-  render::RenderRequest ref = code;
-  ref.uniforms.clear();
-  ref.vertex = spec.reference_vertex;
-  ref.fragment = spec.reference_fragment;
-  ref.angles = grid.angles();
-  ref.frames = static_cast<int>(ref.angles.size());
-  ref.pixel_type = image::PixelType::u8;
+  const render::RenderRequest ref = reference_grid(spec, code, grid);
   auto grid_frames = cached_frames(ref, **mesh, mesh_key);
   if (!grid_frames) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + grid_frames.error().message);
   std::vector<const image::Image*> saved_images;
@@ -297,12 +321,7 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   auto reference = at_angles(ref, **mesh, angles);
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
 
-  // Frames from another rasteriser (the student's browser): an edge may fall a pixel away, and
-  // the outline's pixels be covered differently.
-  GradeOptions options = spec.options;
-  options.compare.spatial_tolerance = true;
-  options.compare.outline_tolerance = true;
-  options.closer_than_reference = options.saved_frames_closer_than_reference;
+  const GradeOptions options = saved_frames_options(spec.options);
   GradeResult result = grade::assess(*frames, {}, *reference, options);
   std::vector<LagFit> diagnosed_fits = fits;
   std::optional<Explanation> explanation;
@@ -321,12 +340,7 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
   }
   FramesGradeOutput out{report(result, spec.reference_name, {"homework"}, fits.size()), {}, {}};
   describe_fits(diagnosed_fits, grid, saved, out.frames);
-  if (!result.pass && out.frames.diagnosis.empty())
-    if (const double outline = worst_outline_overlap(*frames, *reference); outline < options.same_outline) {
-      out.frames.diagnosis = to_string(Diagnosis::frames_of_another_shape);
-      out.frames.messages.insert(out.frames.messages.begin(), "the saved frames show another shape than the reference on this mesh (the outlines overlap by " +
-                                                                  percent(outline) + " at worst): saved with another mesh selected on the page?");
-    }
+  if (!result.pass && out.frames.diagnosis.empty()) say_if_another_shape(out.frames, *frames, *reference, options);
   settle(out.frames);
   judge_provenance(out.frames, saved_images, *grid_frames, grid, diagnosed_fits, spec.frames_from_page);
   if (!out.frames.pass) {
