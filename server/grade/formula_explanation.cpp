@@ -58,7 +58,7 @@ bool near(const glm::vec3& a, const glm::vec3& b) {
 
 // What an explanation changes, counted and said.
 struct Reading {
-  const model::Fit* fit = nullptr;
+  model::Fit* fit = nullptr;  // checked on every pixel in place (reproducing_readings)
   std::vector<Explanation::Parameter> parameters;
   std::vector<std::string> changes;  // a sentence each
   std::vector<std::string> labels;   // a few words each
@@ -101,7 +101,7 @@ std::string position(const glm::vec3& p) {
   return "(" + number(p.x, "%.1f") + ", " + number(p.y, "%.1f") + ", " + number(p.z, "%.1f") + ")";
 }
 
-Reading read(const model::Fit& fit, const model::Parameters& course, const model::Light& page, const FormulaSpec& f) {
+Reading read(model::Fit& fit, const model::Parameters& course, const model::Light& page, const FormulaSpec& f) {
   Reading r{&fit};
   if (const auto& at = fit.parameters.light_position) {
     r.parameters.push_back(parameter(model::Parameter::light_position, page.position, *at));
@@ -230,7 +230,7 @@ bool as_well(const Reading& r, const Reading& best) { return r.count == best.cou
 std::vector<Reading> reproducing_readings(std::vector<model::Fit>& candidates, const std::vector<model::DrawnFrame>& frames,
                                           const model::FitOptions& o, const model::Light& page, const FormulaSpec& f) {
   std::vector<Reading> offered;
-  for (const auto& c : candidates)
+  for (auto& c : candidates)
     if (model::worth_checking(c, frames))
       if (Reading r = read(c, o.course, page, f); r.count <= kMostChanges) offered.push_back(std::move(r));
   std::stable_sort(offered.begin(), offered.end(), before);
@@ -239,7 +239,7 @@ std::vector<Reading> reproducing_readings(std::vector<model::Fit>& candidates, c
   for (auto& r : offered) {
     if (!out.empty() && r.count != out.front().count) break;
     if (std::find(settled.begin(), settled.end(), r.fit->variant) != settled.end() || (!out.empty() && !as_well(r, out.front()))) continue;
-    model::Fit& fit = candidates[static_cast<std::size_t>(r.fit - candidates.data())];
+    model::Fit& fit = *r.fit;
     model::check_pixels(fit, frames, o, model::Extent::until_off);
     if (!fit.reproduces) continue;
     settled.push_back(fit.variant);
@@ -345,7 +345,7 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
   out.text = "Your frames are the homework's formula with " + std::string(best.count == 1 ? "one change" : "two changes") + ": " +
              joined(best.changes) + ". (This reproduces every frame but " + percent(best.fit->worst_failing, 1) + " of its pixels at most.)";
   for (std::size_t i = 1; i < readings.size(); ++i)
-    if (readings[i].count == best.count && readings[i].fit->rms <= kAsWell * best.fit->rms) {
+    if (as_well(readings[i], best)) {
       out.also_fits.push_back(std::string(model::info(readings[i].fit->variant).id));
       out.text += " It fits as well: " + joined(readings[i].changes) + ".";
     }

@@ -289,7 +289,6 @@ void check_pixels(Fit& fit, const std::vector<DrawnFrame>& frames, const FitOpti
     fit.reproduces = fit.reproduces && share <= frame.allowed;
     if (!fit.reproduces && extent == Extent::until_off) break;
   }
-  fit.checked = true;
 }
 
 std::vector<Fit> fit_variants(const std::vector<DrawnFrame>& frames, const FitOptions& o) {

@@ -57,11 +57,10 @@ struct Fit {
   Parameters parameters;
   double rms = 0;            // on the sample, in [0, 1] colour units
   double sample_failing = 1; // the sample's share of pixels off by more than the threshold
-  // Until `checked`, the sample's share and false; then the worst frame's share of interior
+  // Until check_pixels, the sample's share and false; then the worst frame's share of interior
   // pixels off and whether every frame is within what it allows.
   double worst_failing = 1;
   bool reproduces = false;
-  bool checked = false;
   bool course_values = false;  // the course's own values, not the fitted ones
   float specular_peak = 0;   // the largest specular factor on the sample: 0 where no highlight is in view
 };
