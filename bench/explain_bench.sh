@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What reading a failing grade by the homework's formula finds and costs (docs/grading.md, "Why a
-# grade failed"). A written set of wrong submissions for the diffuse and specular checkpoints, each
+# grade failed"). A written set of wrong submissions for the three checkpoints, each
 # the course's reference with one change a student makes, graded at the course's canvas; for each,
 # whether the explanation names the change (the expected variant, and the changed value's name).
 # The same for saved frames: each submission drawn as a 60 Hz page saves it (`shadelab render
@@ -70,6 +70,24 @@ cases = [
     ("one colour", "specular", [("fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);", "f")], "", ""),
     ("noise", "specular", [("fragColor = color;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);", "f")], "", ""),
     ("the normal's colour", "specular", [("fragColor = color;", "fragColor = vec4(abs(N), 1.0);", "f")], "", ""),
+]
+colour = "vColor = vec4(normalize(abs(normal.xyz)), 1.0);"
+channels = lambda swizzle: [("normalize(abs(normal.xyz))", "normalize(abs(normal.%s))" % swizzle, "v")]
+cases += [
+    ("abs() missing", "normals", [("normalize(abs(normal.xyz))", "normalize(normal.xyz)", "v")], "missing_abs", ""),
+    ("0.5 N + 0.5", "normals", [("normalize(abs(normal.xyz))", "0.5 * normalize(normal.xyz) + 0.5", "v")], "offset_normal", ""),
+    ("flat colour", "normals", [("out vec4 vColor;", "flat out vec4 vColor;", "v"), ("in vec4 vColor;", "flat in vec4 vColor;", "f")], "flat_colour", ""),
+    ("colour per fragment", "normals", [("out vec4 vColor;", "out vec3 vN;", "v"), (colour, "vN = normal.xyz;", "v"), ("in vec4 vColor;", "in vec3 vN;", "f"),
+                                        ("fragColor = vColor;", "fragColor = vec4(normalize(abs(vN)), 1.0);", "f")], "fragment_colour", ""),
+    ("red and blue swapped", "normals", channels("zyx"), "swapped_red_blue", ""),
+    ("red and green swapped", "normals", channels("yxz"), "swapped_red_green", ""),
+    ("green and blue swapped", "normals", channels("xzy"), "swapped_green_blue", ""),
+    ("channels rotated", "normals", channels("yzx"), "rotated_channels", ""),
+    ("channels rotated back", "normals", channels("zxy"), "rotated_channels_back", ""),
+    ("one colour", "normals", [("fragColor = vColor;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);", "f")], "", ""),
+    ("noise", "normals", [("fragColor = vColor;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);", "f")], "", ""),
+    ("the position's colour", "normals", [(colour, "vColor = vec4(abs(normalize(aVertexPosition.xyz)), 1.0);", "v")], "", ""),
+    ("the normal not rotated", "normals", [("uMeshToWorldRotMatrix * aVertexNormal", "aVertexNormal", "v")], "", ""),
 ]
 
 def write(i, checkpoint, edits):
@@ -148,9 +166,10 @@ for (checkpoint, kind), (n, right, wrong, explainable) in tally.items():
 no_formula = os.path.join(work, "no_formula.json")
 failing = [written[k] for k in (0, 12, 16, 29)]  # light as a direction, ambient doubled, exponent 12, noise
 catalogued = [written[k] for k in (14, 17)]  # specular missing, exponent 0.6: the catalogue's, read by the formula
+normals = [written[k] for k in (31, 35)]  # abs() missing (the catalogue's), red and blue swapped
 passing = write(99, "specular", [])
 passing_saved = saved_frames(99, passing, "specular")
-samples = {k: [] for k in ("with", "without", "catalogued with", "catalogued without", "passing with", "passing without",
+samples = {k: [] for k in ("with", "without", "catalogued with", "catalogued without", "normals with", "normals without", "passing with", "passing without",
                            "saved with", "saved without", "saved passing with", "saved passing without", "render")}
 for rep in range(repeats):
     order = [("with", None), ("without", no_formula)] if rep % 2 == 0 else [("without", no_formula), ("with", None)]
@@ -160,6 +179,8 @@ for rep in range(repeats):
             samples["saved " + label].append(grade_saved(folder, checkpoint, course)[0])
         for paths, checkpoint, _ in catalogued:
             samples["catalogued " + label].append(grade(paths, checkpoint, course)[0])
+        for paths, checkpoint, _ in normals:
+            samples["normals " + label].append(grade(paths, checkpoint, course)[0])
         samples["passing " + label].append(grade(passing, "specular", course)[0])
         samples["saved passing " + label].append(grade_saved(passing_saved, "specular", course)[0])
     start = time.monotonic()
@@ -171,7 +192,7 @@ print("| --- | --- | --- |")
 for label, values in samples.items():
     print("| %s | %.2f | %.2f-%.2f |" % (label, statistics.median(values), min(values), max(values)))
 m = lambda k: statistics.median(samples[k])
-print("explaining a failing grade costs %.2f s (median; a catalogued mistake the formula reads %.2f s), failing saved frames %.2f s; "
+print("explaining a failing grade costs %.2f s (median; a catalogued mistake the formula reads %.2f s; the normals' %.2f s), failing saved frames %.2f s; "
       "one render of the job %.2f s" % (m("with") - m("without"), m("catalogued with") - m("catalogued without"),
-                                        m("saved with") - m("saved without"), m("render")))
+                                        m("normals with") - m("normals without"), m("saved with") - m("saved without"), m("render")))
 PY

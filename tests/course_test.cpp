@@ -105,8 +105,24 @@ TEST(CourseProfileTest, ABadProfileIsRefusedWithTheFieldAndTheReason) {
             "test.json: checkpoints[2].mistakes[2].reading.values.shininess: expected ambient, diffuse, specular, exponent or lightPosition");
   EXPECT_TRUE(with([](json& j) { j["checkpoints"][2]["mistakes"][5]["reading"]["values"]["exponent"] = {0.6, 6}; })
                   .starts_with("test.json: checkpoints[2].mistakes[5].reading.values.exponent: "));
-  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["mistakes"][0]["reading"] = {{"variant", "flat_normal"}}; }),
+  EXPECT_EQ(with([](json& j) {
+              j["checkpoints"][0].erase("formula");
+              j["checkpoints"][0]["mistakes"][0]["reading"] = {{"variant", "flat_colour"}};
+            }),
             "test.json: checkpoints[0].mistakes[0].reading: a reading is the formula's: the checkpoint has no formula");
+  // The normals' formula: its own variants, no values, the colour varying its reference writes.
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["mistakes"][0]["reading"] = {{"variant", "flat_normal"}}; }),
+            "test.json: checkpoints[0].mistakes[0].reading.variant: 'flat_normal' is not a variant of a normalColour formula");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][1]["mistakes"][0]["reading"] = {{"variant", "missing_abs"}}; }),
+            "test.json: checkpoints[1].mistakes[0].reading.variant: 'missing_abs' is not a variant of a lambert formula");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["mistakes"][0]["reading"]["values"] = {{"ambient", {0.4, 0.2, 0.2}}}; }),
+            "test.json: checkpoints[0].mistakes[0].reading.values: the normal's colour has no values to change");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["formula"]["colour"] = "vNormalColour"; }),
+            "test.json: checkpoints[0].formula.colour: the reference's vertex shader declares no `out vec3 vNormalColour;` or `out vec4 vNormalColour;`");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["formula"].erase("geometry"); }),
+            "test.json: checkpoints[0].formula.position: the reference's vertex shader declares no `out vec3 vPosition;`");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["formula"]["geometry"] = "shiny"; }),
+            "test.json: checkpoints[0].formula.geometry: 'shiny' is not one of presets");
   EXPECT_EQ(error_of(json::array()), "test.json: a course profile must be a JSON object");
   // Through the command line: the same words, and the failure's code.
   const fs::path bad = fs::temp_directory_path() / ("shadelab_course_bad_" + std::to_string(::getpid()) + ".json");

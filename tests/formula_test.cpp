@@ -47,7 +47,9 @@ model::FrameSurface sphere() {
       const glm::vec3 n = (p - centre) / radius;
       const float shorter = 0.9f + 0.1f * std::abs(std::sin(0.4f * static_cast<float>(x)) * std::sin(0.4f * static_cast<float>(y)));
       s.pixels.push_back(static_cast<std::uint32_t>(y * kSize + x));
-      s.points.push_back({p, n * shorter, glm::normalize(glm::round(n * 6.0f) / 6.0f)});
+      // The normal's colour, interpolated between unit colours at the vertices: shorter between them too.
+      const glm::vec3 flat = glm::normalize(glm::round(n * 6.0f) / 6.0f);
+      s.points.push_back({p, n * shorter, flat, glm::abs(n) * shorter, glm::abs(flat)});
     }
   return s;
 }
@@ -61,10 +63,11 @@ std::vector<model::Light> lights() {
   return {{{16, 8, 4}, glm::vec3(1)}, {{16, 8, 4}, {1, 0.6f, 0.3f}}, {{-6, 4, -20}, glm::vec3(1)}};
 }
 
-image::Image drawn_by(model::Variant v, const model::Parameters& p, const model::FrameSurface& s, const model::Light& light) {
+image::Image drawn_by(model::Variant v, const model::Parameters& p, const model::FrameSurface& s, const model::Light& light,
+                     model::Terms terms = model::Terms::phong) {
   image::Image out = image::Image::blank(kSize, kSize, image::PixelType::u8);
   for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const glm::vec3 c = model::as_canvas_stores(model::shade(v, p, model::Terms::phong, s.points[i], light));
+    const glm::vec3 c = model::as_canvas_stores(model::shade(v, p, terms, s.points[i], light));
     std::uint8_t* px = out.bytes.data() + static_cast<std::size_t>(s.pixels[i]) * 4;
     for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>(std::lround(c[k] * 255));
     px[3] = 255;
@@ -78,9 +81,9 @@ struct Drawn {
   std::vector<model::DrawnFrame> frames;
 };
 
-std::unique_ptr<Drawn> draw(model::Variant v, const model::Parameters& p) {
+std::unique_ptr<Drawn> draw(model::Variant v, const model::Parameters& p, model::Terms terms = model::Terms::phong) {
   auto d = std::make_unique<Drawn>();
-  for (const auto& l : lights()) d->images.push_back(drawn_by(v, p, d->surface, l));
+  for (const auto& l : lights()) d->images.push_back(drawn_by(v, p, d->surface, l, terms));
   for (std::size_t i = 0; i < d->images.size(); ++i) d->frames.push_back({&d->surface, &d->images[i], lights()[i], 0.01});
   return d;
 }
@@ -99,7 +102,7 @@ bool same_drawing(model::Variant a, model::Variant b) {
 
 TEST(FormulaModelTest, EveryVariantIsFoundOnTheFramesItDraws) {
   for (const auto& v : model::variants()) {
-    if (v.variant == model::Variant::formula) continue;
+    if (v.variant == model::Variant::formula || !model::applies_to(v, model::Terms::phong)) continue;
     SCOPED_TRACE(std::string(v.id));
     const auto d = draw(v.variant, course_values());
     const auto fits = model::fit_variants(d->frames, options());
@@ -116,6 +119,25 @@ TEST(FormulaModelTest, EveryVariantIsFoundOnTheFramesItDraws) {
       EXPECT_FALSE(f.variant == model::Variant::formula && f.reproduces && course_values_kept);
     }
   }
+}
+
+// The normals deliverable's colour has no values: each variant is what it draws, and only it.
+TEST(FormulaModelTest, EveryNormalColourVariantIsFoundOnTheFramesItDraws) {
+  auto o = options();
+  o.terms = model::Terms::normal_colour;
+  int tried = 0;
+  for (const auto& v : model::variants()) {
+    if (!model::applies_to(v, model::Terms::normal_colour)) continue;
+    SCOPED_TRACE(std::string(v.id));
+    ++tried;
+    const auto d = draw(v.variant, course_values(), model::Terms::normal_colour);
+    const auto fits = model::fit_variants(d->frames, o);
+    ASSERT_FALSE(fits.empty());
+    EXPECT_TRUE(fits.front().reproduces);
+    EXPECT_EQ(fits.front().variant, v.variant) << model::info(fits.front().variant).id;
+    for (std::size_t i = 1; i < fits.size(); ++i) EXPECT_FALSE(fits[i].reproduces) << model::info(fits[i].variant).id;
+  }
+  EXPECT_EQ(tried, 10);  // the formula and its nine changes
 }
 
 TEST(FormulaModelTest, ChangedValuesAreFoundWithinFivePercent) {
@@ -324,16 +346,75 @@ TEST_F(FormulaGradeTest, DiffuseMistakesOfTheModelsKindAreExplained) {
   for (std::size_t i = 0; i < cases.size(); ++i) expect_explained(grades[i], cases[i]);
 }
 
+// The normals deliverable: the colour normalize(abs(N)) per vertex, interpolated. Each change to it
+// a student makes is said, with no value to fit.
+TEST_F(FormulaGradeTest, NormalsMistakesOfTheModelsKindAreExplained) {
+  const std::string colour = "vColor = vec4(normalize(abs(normal.xyz)), 1.0);";
+  const auto channels = [&](const std::string& swizzle) { return Edit{"normalize(abs(normal.xyz))", "normalize(abs(normal." + swizzle + "))", true}; };
+  const std::vector<Expected> cases = {
+      {"abs() missing", {{"normalize(abs(normal.xyz))", "normalize(normal.xyz)", true}}, "missing_abs"},
+      {"0.5 N + 0.5", {{"normalize(abs(normal.xyz))", "0.5 * normalize(normal.xyz) + 0.5", true}}, "offset_normal"},
+      {"a flat colour", {{"out vec4 vColor;", "flat out vec4 vColor;", true}, {"in vec4 vColor;", "flat in vec4 vColor;"}}, "flat_colour"},
+      {"the colour computed per fragment",
+       {{"out vec4 vColor;", "out vec3 vN;", true}, {colour, "vN = normal.xyz;", true}, {"in vec4 vColor;", "in vec3 vN;"},
+        {"fragColor = vColor;", "fragColor = vec4(normalize(abs(vN)), 1.0);"}},
+       "fragment_colour"},
+      {"red and blue swapped", {channels("zyx")}, "swapped_red_blue"},
+      {"red and green swapped", {channels("yxz")}, "swapped_red_green"},
+      {"green and blue swapped", {channels("xzy")}, "swapped_green_blue"},
+      {"channels rotated", {channels("yzx")}, "rotated_channels"},
+      {"channels rotated back", {channels("zxy")}, "rotated_channels_back"},
+  };
+  std::vector<std::vector<Edit>> edits;
+  for (const auto& c : cases) edits.push_back(c.edits);
+  const auto grades = grade_all("normals", edits);
+  for (std::size_t i = 0; i < cases.size(); ++i) expect_explained(grades[i], cases[i]);
+  // Said in the course's names: the reference's colour varying.
+  EXPECT_NE(grades[0]["explanation"]["text"].get<std::string>().find("vColor must be normalize(abs(N))"), std::string::npos) << grades[0]["explanation"];
+
+  const std::vector<std::vector<Edit>> correct = {
+      {{colour, "vColor = vec4(abs(normalize(normal.xyz)), 1.0);", true}},
+      {{colour, "vColor = vec4(normalize(sqrt(normal.xyz * normal.xyz)), 1.0);", true}},
+      {{colour, "vec3 a = abs(normal.xyz);\n    vColor = vec4(a / length(a), 1.0);", true}},
+  };
+  for (const auto& r : grade_all("normals", correct)) {
+    EXPECT_TRUE(r["pass"]) << r.dump().substr(0, 800);
+    EXPECT_FALSE(r.contains("explanation"));
+  }
+
+  // Drawings the normal's colour is not: one colour, noise, the position's colour, and the normal
+  // before the mesh's rotation (a mistake the model has no variant for): never a confident reading.
+  const std::vector<std::vector<Edit>> unrelated = {
+      {{"fragColor = vColor;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);"}},
+      {{"fragColor = vColor;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);"}},
+      {{colour, "vColor = vec4(abs(normalize(aVertexPosition.xyz)), 1.0);", true}},
+      {{"vec4 normal = uMeshToWorldRotMatrix * aVertexNormal;", "vec4 normal = aVertexNormal;", true}},
+  };
+  const auto wrong = grade_all("normals", unrelated);
+  for (const auto& r : wrong) {
+    ASSERT_TRUE(r.contains("explanation")) << r.dump().substr(0, 600);
+    EXPECT_FALSE(r["explanation"]["explained"]) << r["explanation"].dump();
+    EXPECT_FALSE(r["pass"]);
+  }
+  EXPECT_EQ(wrong[0]["explanation"]["label"], "one colour") << wrong[0]["explanation"];
+  // Not explained, it says where the frames differ, by the way the normal faces.
+  const std::string noise = wrong[1]["explanation"]["text"];
+  EXPECT_NE(noise.find("the parts facing the viewer or away (mostly blue): "), std::string::npos) << noise;
+}
+
 // The catalogue's mistakes are the model's test set: a mistake the profile says the formula reads
 // is diagnosed by that reading, with no render of its own (the catalogue's words stay the
 // student's); one it cannot draw (flat shading's highlights, one per triangle, blur into the pixel
 // the model shades once) has no reading, and is rendered and compared as before.
 TEST_F(FormulaGradeTest, TheCatalogueIsDiagnosedByItsReadings) {
-  for (const auto& checkpoint : {"specular", "diffuse"}) {
+  for (const auto& checkpoint : {"specular", "diffuse", "normals"}) {
     const auto found = testkit::course().checkpoint(checkpoint);
     ASSERT_TRUE(found);
     const auto* c = found->checkpoint;
+    ASSERT_TRUE(c->formula);
     const int lights = 1 + static_cast<int>(c->probes.size());
+    // The geometry: the position and the normal, interpolated and flat; the normal's colour, both ways.
+    const int geometry = c->formula->terms == model::Terms::normal_colour ? 5 : 3;
     int unread = 0;
     for (const auto& m : c->mistakes) unread += !m.shaders.reading;
     std::vector<std::future<json>> pending;
@@ -362,7 +443,7 @@ TEST_F(FormulaGradeTest, TheCatalogueIsDiagnosedByItsReadings) {
       // The grader's sets: the reference's and the geometry's, and the mistakes with no reading,
       // each under every light; none of the read mistakes' own.
       const json& work = r["graderWork"];
-      EXPECT_LE(work["rendered"].get<int>() + work["fromStore"].get<int>() + work["fromMemory"].get<int>(), lights + 3 + unread * lights) << work;
+      EXPECT_LE(work["rendered"].get<int>() + work["fromStore"].get<int>() + work["fromMemory"].get<int>(), lights + geometry + unread * lights) << work;
     }
   }
 }
@@ -412,6 +493,8 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
       // angles, between the grid's steps.
       {"specular", {"an exponent under 1", {{"float specularAlpha = 6.0;", "float specularAlpha = 0.6;"}}, "formula", "exponent", {0.6}}},
       {"diffuse", {"flat normals", {{"out vec3 vNormal;", "flat out vec3 vNormal;", true}, {"in vec3 vNormal;", "flat in vec3 vNormal;"}}, "flat_normal"}},
+      {"normals", {"abs() missing", {{"normalize(abs(normal.xyz))", "normalize(normal.xyz)", true}}, "missing_abs"}},
+      {"normals", {"red and blue swapped", {{"normalize(abs(normal.xyz))", "normalize(abs(normal.zyx))", true}}, "swapped_red_blue"}},
   };
   for (const auto& [checkpoint, c] : cases) {
     const json r = grade_saved(checkpoint, c.edits);
@@ -426,6 +509,12 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
   const json one = grade_saved("specular", {{"fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);"}});
   ASSERT_TRUE(one.contains("explanation")) << one.dump().substr(0, 600);
   EXPECT_EQ(one["explanation"]["label"], "one colour") << one["explanation"].dump();
+  // A flat colour changes at every triangle's edge: the outlines fit a frame's angle to a twentieth
+  // of a degree, and the edges move by more than a sample there. The formula's reading just
+  // misses, so the catalogue's render of the mistake says it.
+  const json flat = grade_saved("normals", {{"out vec4 vColor;", "flat out vec4 vColor;", true}, {"in vec4 vColor;", "flat in vec4 vColor;"}});
+  EXPECT_FALSE(flat["pass"]);
+  EXPECT_EQ(flat["diagnosis"], "flat_shading") << flat.dump().substr(0, 800);
   const json right = grade_saved("specular", {});
   EXPECT_TRUE(right["pass"]) << right["messages"];
   EXPECT_FALSE(right.contains("explanation"));

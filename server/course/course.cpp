@@ -179,7 +179,8 @@ grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptio
 
 std::optional<grade::FormulaSpec> Course::formula_spec(const Checkpoint& c) const {
   if (!c.formula) return std::nullopt;
-  grade::FormulaSpec f{c.formula->terms, c.formula->position, c.formula->normal};
+  grade::FormulaSpec f{c.formula->terms, c.formula->position, c.formula->normal, c.formula->colour};
+  if (const Preset* geometry = c.formula->geometry.empty() ? nullptr : preset(c.formula->geometry)) f.geometry_vertex = geometry->vertex;
   const auto input = [&](UniformRole role) {
     grade::FormulaInput in;
     if (const PageUniform* u = uniform_with_role(role)) {

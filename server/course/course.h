@@ -67,10 +67,14 @@ std::string_view to_string(DeliverableTest test);
 
 // The checkpoint's formula (model/lighting.h): its terms, and the varyings its reference's vertex
 // shader writes the eye-space position and the normal to, from which the grader renders the
-// geometry the formula is evaluated on.
+// geometry the formula is evaluated on. The normal's colour: the varying the reference writes it
+// to, and the preset whose vertex shader writes the position and the normal instead (the
+// reference's writes only the colour).
 struct CheckpointFormula {
   model::Terms terms = model::Terms::phong;
   std::string position, normal;  // vPosition, vNormal
+  std::string colour;            // vColor
+  std::string geometry;          // a preset, or empty: the reference
 };
 
 // A deliverable: the frames `images/{frame name with prefix}` and, when `code` names a stem, the

@@ -338,8 +338,15 @@ class Parser {
       }
       if (c.has("formula")) out.formula = checkpoint_formula(c.object("formula"), reference, course_);
       for (std::size_t i = 0; i < out.mistakes.size(); ++i)
-        if (out.mistakes[i].shaders.reading && !out.formula)
-          c.fail_at(JsonReader::element(c.at("mistakes"), i) + ".reading", "a reading is the formula's: the checkpoint has no formula");
+        if (const auto& reading = out.mistakes[i].shaders.reading) {
+          if (!out.formula)
+            c.fail_at(JsonReader::element(c.at("mistakes"), i) + ".reading", "a reading is the formula's: the checkpoint has no formula");
+          else if (!model::applies_to(model::info(reading->variant), out.formula->terms))
+            c.fail_at(JsonReader::element(c.at("mistakes"), i) + ".reading.variant",
+                      "'" + std::string(model::info(reading->variant).id) + "' is not a variant of a " + std::string(model::to_string(out.formula->terms)) + " formula");
+          else if (out.formula->terms == model::Terms::normal_colour && !reading->values.empty())
+            c.fail_at(JsonReader::element(c.at("mistakes"), i) + ".reading.values", "the normal's colour has no values to change");
+        }
       course_.checkpoints.push_back(std::move(out));
     }
     course_.default_checkpoint = r.text("defaultCheckpoint", course_.checkpoints.empty() ? "" : course_.checkpoints.back().name);

@@ -76,7 +76,11 @@ json checkpoint_json(const Checkpoint& k) {
   if (!k.code.empty()) entry["code"] = k.code;
   if (!mistakes.empty()) entry["mistakes"] = std::move(mistakes);
   if (!probes.empty()) entry["probes"] = std::move(probes);
-  if (k.formula) entry["formula"] = {{"terms", model::to_string(k.formula->terms)}, {"position", k.formula->position}, {"normal", k.formula->normal}};
+  if (const auto& f = k.formula) {
+    entry["formula"] = {{"terms", model::to_string(f->terms)}, {"position", f->position}, {"normal", f->normal}};
+    if (!f->colour.empty()) entry["formula"]["colour"] = f->colour;
+    if (!f->geometry.empty()) entry["formula"]["geometry"] = f->geometry;
+  }
   return entry;
 }
 

@@ -26,26 +26,45 @@ grade::FormulaReading formula_reading(const JsonReader& r) {
   return out;
 }
 
+namespace {
+
+// The uniforms the lighting's formula reads, by role, and its exponent.
+void check_lighting_inputs(const JsonReader& f, model::Terms terms, const Course& course) {
+  for (const UniformRole role : {UniformRole::ambient, UniformRole::diffuse, UniformRole::light_position, UniformRole::light_color})
+    if (!course.uniform_with_role(role)) f.fail(f.path() + ": the formula reads the " + std::string(to_string(role)) + ", but no uniform has that role");
+  if (terms == model::Terms::phong && !course.uniform_with_role(UniformRole::specular))
+    f.fail(f.path() + ": the formula reads the specular colour, but no uniform has that role");
+  if (terms == model::Terms::phong && course.specular_exponent() <= 0)
+    f.fail(f.path() + ": the formula's exponent is the course's specularExponent, and it has none");
+}
+
+}  // namespace
+
 CheckpointFormula checkpoint_formula(const JsonReader& f, const Preset* reference, const Course& course) {
-  f.only({"terms", "position", "normal"});
+  f.only({"terms", "position", "normal", "colour", "geometry"});
   f.require("terms") && f.require("position") && f.require("normal");
   CheckpointFormula out;
   const std::string terms = f.text("terms", "phong");
   if (auto t = model::terms_named(terms)) out.terms = *t;
-  else f.fail_at(f.at("terms"), "expected lambert or phong");
+  else f.fail_at(f.at("terms"), "expected lambert, phong or normalColour");
   out.position = f.text("position", "");
   out.normal = f.text("normal", "");
+  out.colour = f.text("colour", "");
+  out.geometry = f.text("geometry", "");
+  const Preset* geometry = reference;
+  if (f.has("geometry") && !(geometry = course.preset(out.geometry))) f.fail_at(f.at("geometry"), "'" + out.geometry + "' is not one of presets");
   for (const char* field : {"position", "normal"}) {
     const std::string name = f.text(field, "");
-    if (reference && !name.empty() && !grade::writes_vec3_varying(reference->vertex.text, name))
-      f.fail_at(f.at(field), "the reference's vertex shader declares no `out vec3 " + name + ";`");
+    if (geometry && !name.empty() && !grade::writes_vec3_varying(geometry->vertex.text, name))
+      f.fail_at(f.at(field), "the " + std::string(out.geometry.empty() ? "reference" : "geometry preset") + "'s vertex shader declares no `out vec3 " + name + ";`");
   }
-  for (const UniformRole role : {UniformRole::ambient, UniformRole::diffuse, UniformRole::light_position, UniformRole::light_color})
-    if (!course.uniform_with_role(role)) f.fail(f.path() + ": the formula reads the " + std::string(to_string(role)) + ", but no uniform has that role");
-  if (out.terms == model::Terms::phong && !course.uniform_with_role(UniformRole::specular))
-    f.fail(f.path() + ": the formula reads the specular colour, but no uniform has that role");
-  if (out.terms == model::Terms::phong && course.specular_exponent() <= 0)
-    f.fail(f.path() + ": the formula's exponent is the course's specularExponent, and it has none");
+  if (out.terms == model::Terms::normal_colour) {
+    if (f.require("colour") && reference && !grade::varying_type(reference->vertex.text, out.colour))
+      f.fail_at(f.at("colour"), "the reference's vertex shader declares no `out vec3 " + out.colour + ";` or `out vec4 " + out.colour + ";`");
+  } else {
+    if (f.has("colour")) f.fail_at(f.at("colour"), "only a normalColour formula reads a colour varying");
+    check_lighting_inputs(f, out.terms, course);
+  }
   return out;
 }
 

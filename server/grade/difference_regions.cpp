@@ -4,21 +4,38 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/common.hpp>
+
 #include "core/words.h"
 
 namespace shadelab::grade {
 
 namespace {
 
-enum Region { highlight, lit, unlit, outline, kRegions };
-constexpr const char* kRegionNames[] = {"the highlight", "the lit side", "the unlit side", "the outline"};
+enum Region { highlight, lit, unlit, sideways, up_or_down, facing, outline, kRegions };
+constexpr const char* kRegionNames[] = {"the highlight",
+                                        "the lit side",
+                                        "the unlit side",
+                                        "the parts facing sideways (mostly red)",
+                                        "the parts facing up or down (mostly green)",
+                                        "the parts facing the viewer or away (mostly blue)",
+                                        "the outline"};
 
 // A highlight pixel: the course's specular term there is at least a quarter of its peak.
 constexpr float kHighlight = 0.25f;
 // A part with fewer of its pixels off is not named: a correct submission may differ that much.
 constexpr double kNoticeable = 0.01;
 
+// The normal's colour is by the normal's largest component: the parts the homework's notebook asks
+// about ("why are the surfaces that face the viewer blue?").
+Region axis_of(const glm::vec3& n) {
+  const glm::vec3 a = glm::abs(n);
+  if (a.x >= a.y && a.x >= a.z) return sideways;
+  return a.y >= a.z ? up_or_down : facing;
+}
+
 Region region_of(const model::SurfacePoint& p, const model::Light& light, const model::FitOptions& o) {
+  if (o.terms == model::Terms::normal_colour) return axis_of(p.normal);
   const model::Factors f = model::factors(model::Variant::formula, p, light);
   if (o.terms == model::Terms::phong && model::specular_factor(f, o.course.exponent) >= kHighlight) return highlight;
   return f.d > 0 ? lit : unlit;

@@ -72,7 +72,8 @@ std::string filled(std::string_view words, const FormulaSpec& f) {
   const std::pair<std::string, std::string> names[] = {{"{light}", first_name(f.light_position)},
                                                        {"{light colour}", first_name(f.light_colour)},
                                                        {"{position}", f.position_varying},
-                                                       {"{normal}", f.normal_varying}};
+                                                       {"{normal}", f.normal_varying},
+                                                       {"{colour}", f.colour_varying}};
   for (const auto& [from, to] : names)
     for (std::size_t at = out.find(from); at != std::string::npos; at = out.find(from, at + to.size())) out.replace(at, from.size(), to);
   return out;
@@ -308,18 +309,21 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
     out.label = "frames too small to read";
     return out;
   }
-  if (const auto colour = one_colour(frames, o.threshold); colour && !near(*colour, o.course.colours.ambient)) {
-    out.text = "Your object is one colour, " + triple(*colour) +
-               ", everywhere: no term that depends on the light shows, so the grader cannot say which part of the formula is missing.";
+  const bool lit = f.terms != model::Terms::normal_colour;
+  if (const auto colour = one_colour(frames, o.threshold); colour && (!lit || !near(*colour, o.course.colours.ambient))) {
+    out.text = "Your object is one colour, " + triple(*colour) + ", everywhere: " +
+               (lit ? "no term that depends on the light shows, so the grader cannot say which part of the formula is missing."
+                    : "the homework's colour follows the normal, normalize(abs(N)), and changes across the surface.");
     out.label = "one colour";
     return out;
   }
   std::vector<model::Fit> candidates = model::sample_fits(frames, o);
   std::vector<Reading> readings = reproducing_readings(candidates, frames, o, lights.front(), f);
   // A light the student moved (written into the shader) is looked for only when no single change
-  // of the rest explains the frames: its search costs more than every variant's together.
+  // of the rest explains the frames: its search costs more than every variant's together. The
+  // normal's colour has no light.
   model::Fit moved_light;
-  if (std::none_of(readings.begin(), readings.end(), [](const Reading& r) { return r.count == 1; })) {
+  if (lit && std::none_of(readings.begin(), readings.end(), [](const Reading& r) { return r.count == 1; })) {
     moved_light = model::fit_light_position(frames, o);
     if (moved_light.reproduces)
       if (Reading r = read(moved_light, o.course, lights.front(), f); r.count <= kMostChanges) readings.push_back(std::move(r));

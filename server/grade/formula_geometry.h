@@ -1,23 +1,35 @@
 #pragma once
-// The geometry the formula (model/lighting.h) is evaluated on, rendered as the reference is: the
-// reference's own vertex shader with a fragment shader that writes, to a float target, the
-// eye-space position, the normal as interpolated, or the normal as a `flat` varying receives it
-// (model/surface.h reads them). Three renders per set of angles, kept with the references (memory,
-// disk, Redis) like any reference render: one course's geometry is rendered once.
-#include <array>
+// The geometry the formula (model/lighting.h) is evaluated on, rendered as the reference is: a
+// vertex shader of the course's with a fragment shader that writes, to a float target, the
+// eye-space position, the normal as interpolated, the normal as a `flat` varying receives it, and
+// for a normal-colour checkpoint the colour the reference's vertex shader computes (model/surface.h
+// reads them). A few renders per set of angles, kept with the references (memory, disk, Redis)
+// like any reference render: one course's geometry is rendered once.
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/expected.h"
 #include "grade/grade_spec.h"
+#include "model/surface.h"
 #include "render/render_request.h"
 
 namespace shadelab::grade {
 
-// Whether a vertex shader declares `out vec3 name;` (with or without a precision qualifier).
+// The type a vertex shader declares `out TYPE name;` with ("vec3", "vec4"; a precision qualifier
+// allowed), if it declares it.
+std::optional<std::string> varying_type(const std::string& vertex, const std::string& name);
+// Whether it declares `out vec3 name;`.
 bool writes_vec3_varying(const std::string& vertex, const std::string& name);
 
-// The position, normal and flat normal renders of `reference` (its size, angles, samples and
-// page), or why the reference's vertex shader cannot give them.
-Expected<std::array<render::RenderRequest, 3>> geometry_requests(const FormulaSpec& formula, const render::RenderRequest& reference);
+struct GeometryRender {
+  render::RenderRequest request;
+  model::Quantity quantity;
+};
+
+// The renders the formula's geometry is read from, the position first (its alpha tells the
+// object's pixels), each the size, angles, samples and page of `reference`; or why the course's
+// vertex shaders cannot give them.
+Expected<std::vector<GeometryRender>> geometry_requests(const FormulaSpec& formula, const render::RenderRequest& reference);
 
 }  // namespace shadelab::grade

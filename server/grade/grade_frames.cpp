@@ -6,7 +6,8 @@
 // the reference rendered once at the fitted angles (one render of the job) and compared. Only a
 // failing set pays for more: each known mistake rendered at the same angles, for the diagnosis,
 // and the formula's geometry at the angles the frames' outlines fit, for the explanation (three
-// float renders, kept in memory only: no other student's frames are drawn at those angles).
+// float renders, five for the normal's colour, kept in memory only: no other student's frames are
+// drawn at those angles).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -128,7 +128,8 @@ const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec
                                                               const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept) {
   auto requests = geometry_requests(formula, reference);
   if (!requests) return nullptr;
-  std::string key = render::pixel_identity((*requests)[0]) + '\0' + formula.normal_varying + '\0' + mesh_key;
+  std::string key = mesh_key;
+  for (const auto& g : *requests) key += '\0' + render::pixel_identity(g.request);
   if (auto* hit = surfaces_.find(key)) {
     ++work_.from_memory;
     return hit;
@@ -136,13 +137,13 @@ const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec
   // A render at a time, each turned into the object's pixels before the next: the float frames
   // are ten times the surfaces' size.
   std::vector<model::FrameSurface> out;
-  for (std::size_t i = 0; i < requests->size(); ++i) {
-    auto frames = kept == GeometryKept::with_references ? stored_or_rendered((*requests)[i], mesh, mesh_key) : frames_of((*requests)[i], mesh);
+  for (const auto& [request, quantity] : *requests) {
+    auto frames = kept == GeometryKept::with_references ? stored_or_rendered(request, mesh, mesh_key) : frames_of(request, mesh);
     if (!frames) return nullptr;
     if (kept == GeometryKept::in_memory) ++work_.rendered;
     for (std::size_t k = 0; k < frames->size(); ++k) {
-      if (i == 0) out.push_back(model::surface_from(*(*frames)[k]));
-      else if (k < out.size()) model::add_normals(out[k], *(*frames)[k], i == 1 ? model::NormalKind::interpolated : model::NormalKind::flat);
+      if (quantity == model::Quantity::position) out.push_back(model::surface_from(*(*frames)[k]));
+      else if (k < out.size()) model::add_quantity(out[k], *(*frames)[k], quantity);
     }
   }
   std::size_t bytes = 0;

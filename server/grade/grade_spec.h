@@ -88,10 +88,15 @@ struct FormulaInput {
 
 // The checkpoint's formula (model/lighting.h), for saying why a failing submission's frames
 // differ: its terms, the varyings the reference's vertex shader writes the eye-space position and
-// the normal to (the model's geometry is rendered from them), and the values it reads.
+// the normal to (the model's geometry is rendered from them), and the values it reads. A
+// normal-colour checkpoint's reference writes the colour (`colour_varying`, vColor) and no normal:
+// its position and normal come from another of the course's vertex shaders with the same
+// transforms (`geometry_vertex`, the diffuse deliverable's).
 struct FormulaSpec {
   model::Terms terms = model::Terms::phong;
   std::string position_varying, normal_varying;  // vPosition, vNormal
+  std::string colour_varying;                    // vColor: a normal-colour checkpoint's
+  shader::ShaderFile geometry_vertex;            // empty: the reference's own vertex shader
   FormulaInput ambient, diffuse, specular, light_position, light_colour;
   StarterConstant exponent;  // specularAlpha, 6.0 (a phong checkpoint's)
 };

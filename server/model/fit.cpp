@@ -48,6 +48,7 @@ bool clamped(float c) { return c <= 0.5f / 255 || c >= 254.5f / 255; }
 
 // The light's alpha is taken as 1, as the page sets it.
 float alpha_of(const Factors& f, const Parameters& p, Terms terms) {
+  if (terms == Terms::normal_colour) return 1;
   float a = p.colours.alpha[0] + p.colours.alpha[1] * f.d;
   if (terms == Terms::phong) a += p.colours.alpha[2] * specular_factor(f, p.exponent);
   return a;
@@ -130,6 +131,7 @@ Trial least_squares(const Design& design, float alpha, const FitOptions& o) {
 }
 
 glm::vec4 shaded(const Factors& f, const Parameters& p, Terms terms) {
+  if (terms == Terms::normal_colour) return {f.colour, 1};
   glm::vec3 c = p.colours.ambient + f.diffuse_light * p.colours.diffuse * f.d;
   if (terms == Terms::phong) c += f.specular_light * p.colours.specular * specular_factor(f, p.exponent);
   return {c, alpha_of(f, p, terms)};
@@ -263,10 +265,15 @@ std::vector<Fit> sample_fits(const std::vector<DrawnFrame>& frames, const FitOpt
   const double margin = kSampleMargin * most_allowed(frames);
   std::vector<Fit> fits;
   for (const VariantInfo& v : variants()) {
-    if (v.specular_only && o.terms != Terms::phong) continue;
+    if (!applies_to(v, o.terms)) continue;
     std::vector<Factors> f;
     f.reserve(sample.size());
     for (const auto& s : sample) f.push_back(factors(v.variant, frames[s.frame].surface->points[s.point], frames[s.frame].light));
+    // The normal's colour has no values to fit: each variant's one fit is what it draws.
+    if (o.terms == Terms::normal_colour) {
+      fits.push_back(sample_fit(v.variant, o.course, sample, f, o));
+      continue;
+    }
     if (Fit course = sample_fit(v.variant, o.course, sample, f, o); course.sample_failing <= margin) {
       course.course_values = true;
       fits.push_back(course);

@@ -15,9 +15,10 @@
 
 namespace shadelab::model {
 
-// Which terms a checkpoint's formula has.
-enum class Terms { lambert, phong };  // ambient + diffuse; ambient + diffuse + specular
-std::string_view to_string(Terms terms);  // "lambert", "phong" (a course profile's words)
+// Which terms a checkpoint's formula has: ambient + diffuse; ambient + diffuse + specular; or the
+// normals deliverable's colour, normalize(abs(N)) per vertex, interpolated (no light, no colours).
+enum class Terms { lambert, phong, normal_colour };
+std::string_view to_string(Terms terms);  // "lambert", "phong", "normalColour" (a course profile's words)
 std::optional<Terms> terms_named(std::string_view name);
 
 // One change to the formula. The table in lighting.cpp gives each its id and words.
@@ -35,21 +36,36 @@ enum class Variant {
   unguarded_specular,          // the specular term also where N·L <= 0
   no_light_colour,             // neither term multiplied by the light's colour
   specular_without_light_colour,  // the specular term not multiplied by it
+  // The normal's colour (Terms::normal_colour):
+  missing_abs,                 // the normal itself, negative components clamped to black
+  offset_normal,               // 0.5 N + 0.5
+  flat_colour,                 // one colour per triangle, the provoking vertex's
+  fragment_colour,             // normalize(abs(N)) per fragment, of the interpolated normal
+  swapped_red_blue,            // (b, g, r) of the colour
+  swapped_red_green,           // (g, r, b)
+  swapped_green_blue,          // (r, b, g)
+  rotated_channels,            // (g, b, r)
+  rotated_channels_back,       // (b, r, g)
 };
+
+// Which formulas a variant changes: every one (the formula itself), the lighting's (a lambert or
+// phong checkpoint), the specular term's alone, or the normal's colour.
+enum class Applies { every, lighting, specular, normal_colour };
 
 struct VariantInfo {
   Variant variant;
   std::string_view id;      // in a report: "light_as_direction"
   std::string_view label;   // for a TA's count of a class: "light used as a direction"
-  bool specular_only;       // changes only the specular term (none for a lambert checkpoint)
+  Applies applies;
   // What the student's code does and what the homework's does, in the homework's terms. {light},
-  // {position}, {normal} and {light colour} stand for the course's names of the light's position
-  // uniform, the position and normal varyings and the light's colour uniform.
+  // {position}, {normal}, {colour} and {light colour} stand for the course's names of the light's
+  // position uniform, the position, normal and colour varyings and the light's colour uniform.
   std::string_view does, should;
 };
 
 std::span<const VariantInfo> variants();
 const VariantInfo& info(Variant variant);
+bool applies_to(const VariantInfo& variant, Terms terms);
 std::optional<Variant> variant_named(std::string_view id);
 
 // The values a fit finds, by the names a report and a course profile give them.
@@ -62,7 +78,7 @@ struct Light {
   glm::vec3 colour;
 };
 
-// What the colours multiply at one point: colour = ambient + diffuse_light ⊙ diffuse · d +
+// What the colours multiply at one point (or, for the normal's colour, the colour itself): colour = ambient + diffuse_light ⊙ diffuse · d +
 // specular_light ⊙ specular · (on ? c^α : 0). The colours enter linearly (the fit's least squares),
 // the exponent through the cosine alone.
 struct Factors {
@@ -70,6 +86,7 @@ struct Factors {
   float c = 0;          // the specular cosine before the exponent, max(R·V, 0) in the formula
   bool on = false;      // whether the specular term is added here
   glm::vec3 diffuse_light{1}, specular_light{1};
+  glm::vec3 colour{0};  // a normal-colour checkpoint's colour (no light, no colours to fit)
 };
 
 Factors factors(Variant variant, const SurfacePoint& point, const Light& light);

@@ -38,10 +38,25 @@ FrameSurface surface_from(const image::Image& position) {
   return s;
 }
 
-void add_normals(FrameSurface& s, const image::Image& normal, NormalKind kind) {
+namespace {
+
+glm::vec3& quantity_of(SurfacePoint& p, Quantity q) {
+  switch (q) {
+    case Quantity::position: return p.position;
+    case Quantity::normal: return p.normal;
+    case Quantity::flat_normal: return p.flat_normal;
+    case Quantity::colour: return p.colour;
+    case Quantity::flat_colour: return p.flat_colour;
+  }
+  return p.position;
+}
+
+}  // namespace
+
+void add_quantity(FrameSurface& s, const image::Image& render, Quantity quantity) {
   for (std::size_t i = 0; i < s.pixels.size(); ++i) {
-    const Texel n = texel(normal, s.pixels[i]);
-    (kind == NormalKind::flat ? s.points[i].flat_normal : s.points[i].normal) = {n.r, n.g, n.b};
+    const Texel t = texel(render, s.pixels[i]);
+    quantity_of(s.points[i], quantity) = {t.r, t.g, t.b};
   }
 }
 

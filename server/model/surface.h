@@ -1,10 +1,11 @@
 #pragma once
 // The geometry under each pixel of a frame, as the reference's rasterisation has it: what the
-// homework's formula (model/lighting.h) needs to shade the pixel on the CPU. Read from three float
-// renders of the reference's vertex shader (grade/formula_geometry.h): the eye-space position,
-// the normal as interpolated (not normalized) and the normal as a `flat` varying gives it, each
-// resolved over the frame's samples; the position's alpha is 1 + the share of samples the mesh
-// covers. Kept as the object's pixels alone: a tenth of a homework frame.
+// homework's formula (model/lighting.h) needs to shade the pixel on the CPU. Read from float renders
+// of the reference's vertex shader (grade/formula_geometry.h): the eye-space position, the normal as
+// interpolated (not normalized) and the normal as a `flat` varying gives it, and for a normal-colour
+// checkpoint the colour its vertex shader computes, as interpolated and flat; each resolved over the frame's
+// samples; the position's alpha is 1 + the share of samples the mesh covers. Kept as the object's
+// pixels alone: a tenth of a homework frame.
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +19,8 @@ struct SurfacePoint {
   glm::vec3 position;     // eye space (the eye at the origin)
   glm::vec3 normal;       // interpolated, as the fragment shader receives it before normalize()
   glm::vec3 flat_normal;  // the provoking vertex's, as a `flat` varying receives it
+  glm::vec3 colour{0};    // a normal-colour checkpoint's: the reference's per-vertex colour, interpolated
+  glm::vec3 flat_colour{0};  // ... and as a `flat` varying gives it (averaged over the pixel's triangles)
 };
 
 // A frame's interior: the pixels every sample of which the mesh covers (an outline pixel is a
@@ -33,8 +36,8 @@ struct FrameSurface {
 
 // A surface's pixels and positions from the position render (RGBA32F)...
 FrameSurface surface_from(const image::Image& position);
-// ...then its normals from the normal render and the flat normal render (the same size).
-enum class NormalKind { interpolated, flat };
-void add_normals(FrameSurface& surface, const image::Image& normal, NormalKind kind);
+// ...then each other quantity from its render (the same size).
+enum class Quantity { position, normal, flat_normal, colour, flat_colour };
+void add_quantity(FrameSurface& surface, const image::Image& render, Quantity quantity);
 
 }  // namespace shadelab::model

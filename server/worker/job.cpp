@@ -78,13 +78,15 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FormulaInput, names, value, alpha)
 
 void to_json(json& j, const FormulaSpec& f) {
   j = {{"terms", model::to_string(f.terms)}, {"positionVarying", f.position_varying}, {"normalVarying", f.normal_varying},
-       {"ambient", f.ambient}, {"diffuse", f.diffuse}, {"specular", f.specular}, {"lightPosition", f.light_position},
+       {"colourVarying", f.colour_varying}, {"geometryVertex", f.geometry_vertex}, {"ambient", f.ambient}, {"diffuse", f.diffuse}, {"specular", f.specular}, {"lightPosition", f.light_position},
        {"lightColour", f.light_colour}, {"exponent", f.exponent}};
 }
 void from_json(const json& j, FormulaSpec& f) {
-  f.terms = enum_from_json(j.at("terms"), {model::Terms::lambert, model::Terms::phong});
+  f.terms = enum_from_json(j.at("terms"), {model::Terms::lambert, model::Terms::phong, model::Terms::normal_colour});
   j.at("positionVarying").get_to(f.position_varying);
   j.at("normalVarying").get_to(f.normal_varying);
+  j.at("colourVarying").get_to(f.colour_varying);
+  j.at("geometryVertex").get_to(f.geometry_vertex);
   j.at("ambient").get_to(f.ambient);
   j.at("diffuse").get_to(f.diffuse);
   j.at("specular").get_to(f.specular);
