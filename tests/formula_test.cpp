@@ -228,8 +228,8 @@ class FormulaGradeTest : public ::testing::Test {
   }
   // The frames a student's page saves of the edited shaders (drawn `lags` degrees behind each
   // frame's angle, as a 60 Hz page draws them), handed in alone and graded: the frames' report.
-  static json grade_saved(const std::string& checkpoint, const std::vector<Edit>& edits) {
-    const std::vector<double> lags = {0, 0.12, 0.21, 0.05, 0.3, 0.17, 0.26, 0.09, 0.23};
+  static json grade_saved(const std::string& checkpoint, const std::vector<Edit>& edits,
+                          const std::vector<double>& lags = {0, 0.12, 0.21, 0.05, 0.3, 0.17, 0.26, 0.09, 0.23}) {
     const auto p = edited(checkpoint, edits);
     render::RenderRequest request = testkit::preset_request(checkpoint);
     request.vertex = p.vertex;
@@ -509,12 +509,16 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
   const json one = grade_saved("specular", {{"fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);"}});
   ASSERT_TRUE(one.contains("explanation")) << one.dump().substr(0, 600);
   EXPECT_EQ(one["explanation"]["label"], "one colour") << one["explanation"].dump();
-  // A flat colour changes at every triangle's edge: the outlines fit a frame's angle to a twentieth
-  // of a degree, and the edges move by more than a sample there. The formula's reading just
-  // misses, so the catalogue's render of the mistake says it.
-  const json flat = grade_saved("normals", {{"out vec4 vColor;", "flat out vec4 vColor;", true}, {"in vec4 vColor;", "flat in vec4 vColor;"}});
+  // A flat colour changes at every triangle's edge: the outlines fit a frame's angle to about a
+  // hundredth of a degree, and 0.012 degrees moves its edges by enough to leave 1.1% of a frame
+  // off. At the page's lags the formula's reading just misses, and the catalogue's render of the
+  // mistake says it; drawn at exactly each frame's angle (a page on a fixed clock), the outlines
+  // fit there and the formula reads it.
+  const std::vector<Edit> flat_colour = {{"out vec4 vColor;", "flat out vec4 vColor;", true}, {"in vec4 vColor;", "flat in vec4 vColor;"}};
+  const json flat = grade_saved("normals", flat_colour);
   EXPECT_FALSE(flat["pass"]);
   EXPECT_EQ(flat["diagnosis"], "flat_shading") << flat.dump().substr(0, 800);
+  expect_explained(grade_saved("normals", flat_colour, std::vector<double>(9, 0.0)), {"a flat colour, no lag", flat_colour, "flat_colour"});
   const json right = grade_saved("specular", {});
   EXPECT_TRUE(right["pass"]) << right["messages"];
   EXPECT_FALSE(right.contains("explanation"));

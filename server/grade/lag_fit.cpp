@@ -44,11 +44,16 @@ double parabola_vertex(double left, double mid, double right) {
 // The best step refined between its neighbours: the parabola through the three steps around it
 // (the first three or the last three at the window's edges: a lag of 0.05 degrees is best at step
 // 0 and lies between it and step 1), kept within half a step of the best and inside the window.
+// Three that do not bend upwards say nothing of where between the steps the best lies: the best
+// step itself (at the window's edge, not the middle three's centre: outlines drawn at exactly the
+// nominal angle differ from the grid's next steps by a count that grows more slowly than linearly,
+// and were fitted half a step late, where a flat colour's every edge has moved).
 double refined_step(const std::vector<double>& error, int best) {
   const int last = static_cast<int>(error.size()) - 1;
   if (last < 2) return best;
   const int c = std::clamp(best, 1, last - 1);
   const auto e = [&](int j) { return error[static_cast<size_t>(j)]; };
+  if (e(c - 1) - 2 * e(c) + e(c + 1) <= 0) return best;
   const double vertex = c + parabola_vertex(e(c - 1), e(c), e(c + 1));
   return std::clamp(vertex, std::max(0.0, best - 0.5), std::min<double>(last, best + 0.5));
 }
