@@ -1,9 +1,9 @@
 #pragma once
 // Where a submission's frames differ from the reference's, in the parts of the object the
 // homework names: the highlight, the lit side, the unlit side and the outline (each pixel's part
-// from the formula at the course's values; for the normal's colour, the way the normal faces), and how: brighter, darker or another hue, with the
-// mean difference of each channel. What the grader says when no change to the formula explains
-// the frames.
+// from the formula at the course's values; for the normal's colour, the way the normal faces),
+// and how: brighter, darker or another hue, with the mean difference of each channel. What the
+// grader says when no change to the formula explains the frames.
 #include <string>
 #include <vector>
 
