@@ -1,6 +1,7 @@
 // Rendering behaviour on a real EGL context (llvmpipe where there is no GPU).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -335,6 +336,31 @@ TEST(RenderTest, InvalidRequestsAreRejectedBeforeRendering) {
   request = testkit::preset_request("smooth");
   request.degrees_per_frame = std::nan("");
   EXPECT_EQ(render_frames(request, bunny()).error().code, ErrorCode::invalid_argument);
+  // A sample position is for a render without MSAA, and lies within the pixel.
+  request = testkit::preset_request("smooth");
+  request.sample_position = std::array<double, 2>{0.375, 0.125};
+  EXPECT_EQ(render_frames(request, bunny()).error().code, ErrorCode::invalid_argument);
+  request.msaa = 0;
+  request.sample_position = std::array<double, 2>{0.5, 1.5};
+  EXPECT_EQ(render_frames(request, bunny()).error().code, ErrorCode::invalid_argument);
+}
+
+// A render at a sample position is the frame moved by a fraction of a pixel: another pixel
+// identity and other pixels along the edges, while the pixel's centre draws the plain render.
+TEST(RenderTest, ASamplePositionMovesTheFrameByLessThanAPixel) {
+  auto request = testkit::preset_request("normals");
+  request.frames = 1;
+  request.msaa = 0;
+  const auto centre = render_frames(request, bunny());
+  auto moved = request;
+  moved.sample_position = std::array<double, 2>{0.5, 0.5};
+  EXPECT_NE(render::pixel_identity(moved), render::pixel_identity(request));
+  const auto at_centre = render_frames(moved, bunny());
+  moved.sample_position = std::array<double, 2>{0.125, 0.625};
+  const auto off_centre = render_frames(moved, bunny());
+  ASSERT_TRUE(centre.ok() && at_centre.ok() && off_centre.ok());
+  EXPECT_EQ(at_centre->frames[0].bytes, centre->frames[0].bytes);
+  EXPECT_NE(off_centre->frames[0].bytes, centre->frames[0].bytes);
 }
 
 TEST(RenderTest, CompileReportsActiveAttributesAndUniforms) {

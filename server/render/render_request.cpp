@@ -21,6 +21,10 @@ std::string pixel_identity(const RenderRequest& r) {
   for (const double v : {double(r.width), double(r.height), double(r.frames), r.degrees_per_frame, double(r.msaa),
                          double(r.pixel_type == image::PixelType::f32), double(r.semantics == FloatSemantics::ieee)})
     append_exact(key, v);
+  if (r.sample_position) {
+    key += "sample:";
+    for (const double v : *r.sample_position) append_exact(key, v);
+  }
   key += "angles:";
   for (const double a : r.angles) append_exact(key, a);
   const auto& c = r.page.camera;
@@ -56,6 +60,11 @@ Status validate(const RenderRequest& r, const RenderLimits& limits) {
   if (!(c.fov_y_degrees > 0 && c.fov_y_degrees < 180) || !(c.near > 0 && c.far > c.near) || !std::isfinite(c.far))
     return invalid("the page's camera needs a field of view in (0, 180) degrees and 0 < near < far");
   if (r.msaa < 0 || r.msaa > 64) return invalid("msaa must be between 0 and 64 samples; got " + std::to_string(r.msaa));
+  if (const auto& at = r.sample_position) {
+    if (r.msaa != 0) return invalid("a sample position is for a render without MSAA (msaa 0)");
+    for (const double v : *at)
+      if (!(v >= 0 && v <= 1)) return invalid("a sample position must lie within the pixel: each coordinate in [0, 1]");
+  }
   for (const auto& u : r.uniforms) {
     if (u.name.empty()) return invalid("a uniform needs a name");
     if (u.values.empty() || u.values.size() > 4096)

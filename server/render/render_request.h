@@ -2,7 +2,9 @@
 // A render job as plain data, validated completely before any GL call. The homework's facts (size,
 // frames, rotation, samples, camera, uniform values) are not defaults here: a course profile fills
 // them (course::Course::render_request), so one offering's numbers live in one place.
+#include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,11 @@ struct RenderRequest {
   double degrees_per_frame = 0;  // frame k is rotated exactly k * degrees_per_frame about +Y...
   std::vector<double> angles;    // ...unless this lists each frame's rotation in degrees (its size is `frames`)
   int msaa = 0;                  // the browser canvas's antialias: true is 4; 0 turns it off
+  // Where in each pixel a render without MSAA samples, in GL's window coordinates within the pixel
+  // ((0, 0) its lower-left corner); its centre unless set. The grader draws its geometry at each of
+  // an MSAA frame's sample positions in turn (grade/formula_geometry.h), so that a pixel's samples
+  // are seen one by one.
+  std::optional<std::array<double, 2>> sample_position;
   PageSetup page;                // the camera and the constant uniforms the page sets
   std::vector<UniformSetting> uniforms;  // the caller's values, over the page's
   image::PixelType pixel_type = image::PixelType::u8;  // f32: float target, for EXR

@@ -55,6 +55,15 @@ struct Variants {
 
 using IndexedSink = Renderer::IndexedSink;
 
+// A clip-space shift that moves the frame by (0.5, 0.5) - `at` pixels: the rasteriser's one sample,
+// at each pixel's centre, then sees what a sample at `at` would.
+glm::mat4 sampling_at(const std::array<double, 2>& at, int width, int height) {
+  glm::mat4 shift(1.0f);
+  shift[3][0] = static_cast<float>(2.0 * (0.5 - at[0]) / width);
+  shift[3][1] = static_cast<float>(2.0 * (0.5 - at[1]) / height);
+  return shift;
+}
+
 }  // namespace
 
 struct Renderer::State {
@@ -272,7 +281,8 @@ struct Renderer::State {
     for (int k = 0; k < request.frames; ++k) {
       const auto submit_start = Clock::now();
       gl::RenderTarget& rt = *(*pair)[static_cast<size_t>(k % 2)];
-      const FrameTransforms t = homework_transforms(request.page.camera, request.width, request.height, frame_angle(request, k));
+      FrameTransforms t = homework_transforms(request.page.camera, request.width, request.height, frame_angle(request, k));
+      if (request.sample_position) t.world_to_clip = sampling_at(*request.sample_position, request.width, request.height) * t.world_to_clip;
       if (plan->world_to_clip) program.set_uniform(*plan->world_to_clip, {glm::value_ptr(t.world_to_clip), 16});
       if (plan->mesh_to_world) program.set_uniform(*plan->mesh_to_world, {glm::value_ptr(t.mesh_to_world), 16});
       if (plan->mesh_to_world_rot) program.set_uniform(*plan->mesh_to_world_rot, {glm::value_ptr(t.mesh_to_world_rot), 16});

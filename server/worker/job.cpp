@@ -164,7 +164,7 @@ void from_json(const json& j, PageSetup& p) {
 
 void to_json(json& j, const RenderRequest& r) {
   j = {{"vertex", r.vertex}, {"fragment", r.fragment}, {"width", r.width}, {"height", r.height}, {"frames", r.frames},
-       {"degreesPerFrame", r.degrees_per_frame}, {"angles", r.angles}, {"msaa", r.msaa}, {"page", r.page},
+       {"degreesPerFrame", r.degrees_per_frame}, {"angles", r.angles}, {"msaa", r.msaa}, {"samplePosition", r.sample_position ? json(*r.sample_position) : json(nullptr)}, {"page", r.page},
        {"uniforms", r.uniforms}, {"pixelType", r.pixel_type == image::PixelType::f32 ? "f32" : "u8"},
        {"semantics", r.semantics == FloatSemantics::ieee ? "ieee" : "asCompiled"}};
 }
@@ -178,6 +178,7 @@ void from_json(const json& j, RenderRequest& r) {
   j.at("degreesPerFrame").get_to(r.degrees_per_frame);
   j.at("angles").get_to(r.angles);
   j.at("msaa").get_to(r.msaa);
+  if (const auto at = j.find("samplePosition"); at != j.end() && !at->is_null()) r.sample_position = at->get<std::array<double, 2>>();
   j.at("page").get_to(r.page);
   j.at("uniforms").get_to(r.uniforms);
   r.pixel_type = j.at("pixelType") == "f32" ? image::PixelType::f32 : image::PixelType::u8;
