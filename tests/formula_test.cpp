@@ -8,7 +8,9 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstring>
 #include <future>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "grade/formula_geometry.h"
 #include "image/encode.h"
 #include "model/fit.h"
 #include "support/http_fixture.h"
@@ -32,24 +35,44 @@ constexpr int kSize = 128;
 
 // A sphere of radius 1.5 at (0, 0, -6) seen from the origin through a 45-degree frustum: each
 // pixel's eye-space position and normal (shorter than 1 in a ripple, as interpolation between
-// vertices leaves it), and a "flat" normal one per facet of a grid of directions.
+// vertices leaves it), and a "flat" normal one per facet of a grid of directions, at each of the
+// pixel's four samples (where a facet's edge crosses the pixel they differ) and averaged over them.
+constexpr glm::vec3 kCentre(0, 0, -6);
+constexpr float kRadius = 1.5f;
+
+// The sphere's point seen at (x, y) in pixels, rows top-down, if the ray meets it `margin` inside.
+std::optional<glm::vec3> sphere_at(float x, float y, float margin) {
+  const float half = std::tan(glm::radians(22.5f));
+  const glm::vec3 ray = glm::normalize(glm::vec3((2 * x / kSize - 1) * half, (1 - 2 * y / kSize) * half, -1));
+  const float b = glm::dot(ray, kCentre), c = glm::dot(kCentre, kCentre) - kRadius * kRadius, disc = b * b - c;
+  if (disc <= margin) return std::nullopt;
+  return ray * (b - std::sqrt(disc));
+}
+
+glm::vec3 facet(const glm::vec3& n) { return glm::normalize(glm::round(n * 6.0f) / 6.0f); }
+
 model::FrameSurface sphere() {
+  constexpr float kSamples[4][2] = {{0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f}};
   model::FrameSurface s;
   s.width = s.height = kSize;
-  const glm::vec3 centre(0, 0, -6);
-  const float radius = 1.5f, half = std::tan(glm::radians(22.5f));
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
-      const glm::vec3 ray = glm::normalize(glm::vec3((2 * (x + 0.5f) / kSize - 1) * half, (1 - 2 * (y + 0.5f) / kSize) * half, -1));
-      const float b = glm::dot(ray, centre), c = glm::dot(centre, centre) - radius * radius, disc = b * b - c;
-      if (disc <= 0.05f) continue;  // the outline and the background
-      const glm::vec3 p = ray * (b - std::sqrt(disc));
-      const glm::vec3 n = (p - centre) / radius;
+      const auto p = sphere_at(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, 0.05f);
+      if (!p) continue;  // the outline and the background
+      const glm::vec3 n = (*p - kCentre) / kRadius;
       const float shorter = 0.9f + 0.1f * std::abs(std::sin(0.4f * static_cast<float>(x)) * std::sin(0.4f * static_cast<float>(y)));
-      s.pixels.push_back(static_cast<std::uint32_t>(y * kSize + x));
+      model::SurfacePoint point{*p, n * shorter, glm::vec3(0)};
+      point.samples = 4;
+      for (int k = 0; k < 4; ++k) {
+        const auto at = sphere_at(static_cast<float>(x) + kSamples[k][0], static_cast<float>(y) + kSamples[k][1], 0);
+        point.sample_flat_normals[static_cast<std::size_t>(k)] = facet(at ? (*at - kCentre) / kRadius : n);
+        point.flat_normal += point.sample_flat_normals[static_cast<std::size_t>(k)] / 4.0f;
+      }
       // The normal's colour, interpolated between unit colours at the vertices: shorter between them too.
-      const glm::vec3 flat = glm::normalize(glm::round(n * 6.0f) / 6.0f);
-      s.points.push_back({p, n * shorter, flat, glm::abs(n) * shorter, glm::abs(flat)});
+      point.colour = glm::abs(n) * shorter;
+      point.flat_colour = glm::abs(facet(n));
+      s.pixels.push_back(static_cast<std::uint32_t>(y * kSize + x));
+      s.points.push_back(point);
     }
   return s;
 }
@@ -140,6 +163,34 @@ TEST(FormulaModelTest, EveryNormalColourVariantIsFoundOnTheFramesItDraws) {
   EXPECT_EQ(tried, 10);  // the formula and its nine changes
 }
 
+// A flat-shaded pixel where a facet's edge crosses it is the mean of its samples' shades: with a
+// sharp highlight, the shade of their averaged normal is another colour. The fit finds flat normals
+// from the samples; the same frames read with the averaged normal alone are not reproduced.
+TEST(FormulaModelTest, AFlatHighlightIsTheMeanOfItsSamplesShades) {
+  auto sharp = course_values();
+  sharp.exponent = 24.0f;
+  sharp.colours.specular = glm::vec3(0.6f, 0.6f, 0.6f);
+  const auto d = draw(model::Variant::flat_normal, sharp);
+  std::size_t crossed = 0;
+  for (const auto& p : d->surface.points) crossed += p.sample_flat_normals[0] != p.sample_flat_normals[3];
+  EXPECT_GT(crossed, d->surface.points.size() / 10);  // edges cross a tenth of the pixels at least
+  auto o = options();
+  const auto fits = model::fit_variants(d->frames, o);
+  ASSERT_TRUE(fits.front().reproduces);
+  EXPECT_EQ(fits.front().variant, model::Variant::flat_normal);
+  EXPECT_NEAR(fits.front().parameters.exponent, 24.0f, 0.05f * 24.0f);
+
+  model::FrameSurface averaged = d->surface;
+  for (auto& p : averaged.points) p.samples = 0;
+  std::vector<model::DrawnFrame> frames = d->frames;
+  for (auto& f : frames) f.surface = &averaged;
+  for (const auto& f : model::fit_variants(frames, o)) {
+    if (f.variant == model::Variant::flat_normal) {
+      EXPECT_FALSE(f.reproduces) << f.worst_failing;
+    }
+  }
+}
+
 TEST(FormulaModelTest, ChangedValuesAreFoundWithinFivePercent) {
   auto doubled_ambient = course_values();
   doubled_ambient.colours.ambient *= 2.0f;
@@ -183,6 +234,59 @@ TEST(FormulaModelTest, NoiseIsReproducedByNoVariant) {
       image.bytes[i] = static_cast<std::uint8_t>(state >> 24);
     }
   for (const auto& f : model::fit_variants(d->frames, options())) EXPECT_FALSE(f.reproduces) << model::info(f.variant).id;
+}
+
+// ---- The geometry the formula is evaluated on -------------------------------------------------
+
+glm::vec4 texel(const image::Image& image, std::size_t i) {
+  glm::vec4 t;
+  std::memcpy(&t, image.bytes.data() + i * sizeof(t), sizeof(t));
+  return t;
+}
+
+// A specular checkpoint's flat normal is rendered once per sample position, without MSAA: each
+// render sees what that sample of the course's 4x MSAA frame sees, so that their mean is the MSAA
+// frame's resolve wherever the mesh covers the pixel (with the sample positions the wrong way up,
+// or off the driver's, a pixel that a triangle's edge crosses would differ).
+TEST(FormulaGeometryTest, EachSampleRenderSeesThatSampleOfTheMsaaFrame) {
+  const auto found = testkit::course().checkpoint("specular");
+  ASSERT_TRUE(found);
+  const auto spec = testkit::course().formula_spec(*found->checkpoint);
+  ASSERT_TRUE(spec);
+  render::RenderRequest reference = testkit::preset_request("specular");
+  reference.frames = 1;
+  reference.angles = {40};
+  EXPECT_TRUE(grade::has_sample_geometry(*spec, reference));
+  const auto requests = grade::geometry_requests(*spec, reference, grade::SampleGeometry::each_sample);
+  ASSERT_TRUE(requests.ok()) << requests.error().message;
+  std::optional<image::Image> resolved;
+  std::vector<image::Image> samples;
+  for (const auto& g : *requests) {
+    if (g.quantity != model::Quantity::flat_normal && g.quantity != model::Quantity::sample_flat_normal) continue;
+    auto r = testkit::render_frames(g.request, testkit::builtin(testkit::course().default_mesh));
+    ASSERT_TRUE(r.ok());
+    if (g.quantity == model::Quantity::flat_normal) {
+      resolved = r->frames[0];
+    } else {
+      EXPECT_EQ(g.sample, static_cast<int>(samples.size()));
+      samples.push_back(r->frames[0]);
+    }
+  }
+  ASSERT_TRUE(resolved);
+  ASSERT_EQ(samples.size(), 4u);
+  std::size_t covered = 0, crossed = 0, differ = 0;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(resolved->width * resolved->height); ++i) {
+    const glm::vec4 r = texel(*resolved, i);
+    if (r.a < 2) continue;  // an outline or the background
+    ++covered;
+    glm::vec3 mean(0);
+    for (const auto& s : samples) mean += glm::vec3(texel(s, i)) / 4.0f;
+    crossed += glm::vec3(texel(samples[0], i)) != glm::vec3(texel(samples[3], i));
+    differ += glm::length(mean - glm::vec3(r)) > 1e-3f;
+  }
+  EXPECT_GT(covered, 10000u);
+  EXPECT_GT(crossed, covered / 10) << "a triangle's edge crosses a tenth of the pixels at least";
+  EXPECT_LE(differ, covered / 1000) << differ << " of " << covered << " pixels";
 }
 
 // ---- Through the real server, at the course's canvas ----------------------------------------
@@ -319,6 +423,7 @@ TEST_F(FormulaGradeTest, SpecularMistakesOfTheModelsKindAreExplained) {
       {"an ambient colour doubled", {{"vec4 color = uAmbientColor +", "vec4 color = 2.0 * uAmbientColor +"}}, "formula", "ambient", {0.4, 0.2, 0.2}},
       {"a specular term halved", {{"uSpecularColor * uLightColor * pow", "0.5 * uSpecularColor * uLightColor * pow"}}, "formula", "specular", {0.05, 0.2, 0.4}},
       {"an exponent of 12", {{"float specularAlpha = 6.0;", "float specularAlpha = 12.0;"}}, "formula", "exponent", {12.0}},
+      {"flat normals", {{"out vec3 vNormal;", "flat out vec3 vNormal;", true}, {"in vec3 vNormal;", "flat in vec3 vNormal;"}}, "flat_normal"},
       {"the diffuse and specular colours swapped",
        {{"vec4 color = uAmbientColor + uDiffuseColor", "vec4 color = uAmbientColor + uSpecularColor"}, {"color += uSpecularColor * uLightColor", "color += uDiffuseColor * uLightColor"}},
        "formula", "diffuse", {0.1, 0.4, 0.8}},
@@ -404,8 +509,7 @@ TEST_F(FormulaGradeTest, NormalsMistakesOfTheModelsKindAreExplained) {
 
 // The catalogue's mistakes are the model's test set: a mistake the profile says the formula reads
 // is diagnosed by that reading, with no render of its own (the catalogue's words stay the
-// student's); one it cannot draw (flat shading's highlights, one per triangle, blur into the pixel
-// the model shades once) has no reading, and is rendered and compared as before.
+// student's); one without a reading is rendered and compared as before.
 TEST_F(FormulaGradeTest, TheCatalogueIsDiagnosedByItsReadings) {
   for (const auto& checkpoint : {"specular", "diffuse", "normals"}) {
     const auto found = testkit::course().checkpoint(checkpoint);
@@ -413,8 +517,9 @@ TEST_F(FormulaGradeTest, TheCatalogueIsDiagnosedByItsReadings) {
     const auto* c = found->checkpoint;
     ASSERT_TRUE(c->formula);
     const int lights = 1 + static_cast<int>(c->probes.size());
-    // The geometry: the position and the normal, interpolated and flat; the normal's colour, both ways.
-    const int geometry = c->formula->terms == model::Terms::normal_colour ? 5 : 3;
+    // The geometry: the position and the normal, interpolated and flat; the normal's colour, both
+    // ways; a specular's flat normal at each of the 4 samples.
+    const int geometry = c->formula->terms == model::Terms::normal_colour ? 5 : c->formula->terms == model::Terms::phong ? 7 : 3;
     int unread = 0;
     for (const auto& m : c->mistakes) unread += !m.shaders.reading;
     std::vector<std::future<json>> pending;
@@ -493,6 +598,8 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
       // angles, between the grid's steps.
       {"specular", {"an exponent under 1", {{"float specularAlpha = 6.0;", "float specularAlpha = 0.6;"}}, "formula", "exponent", {0.6}}},
       {"diffuse", {"flat normals", {{"out vec3 vNormal;", "flat out vec3 vNormal;", true}, {"in vec3 vNormal;", "flat in vec3 vNormal;"}}, "flat_normal"}},
+      // Flat highlights: read on each sample's flat normal at the frames' own angles.
+      {"specular", {"flat normals", {{"out vec3 vNormal;", "flat out vec3 vNormal;", true}, {"in vec3 vNormal;", "flat in vec3 vNormal;"}}, "flat_normal"}},
       {"normals", {"abs() missing", {{"normalize(abs(normal.xyz))", "normalize(normal.xyz)", true}}, "missing_abs"}},
       {"normals", {"red and blue swapped", {{"normalize(abs(normal.xyz))", "normalize(abs(normal.zyx))", true}}, "swapped_red_blue"}},
   };

@@ -284,21 +284,22 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
   o.threshold = options.compare.threshold;
   o.spatial_tolerance = options.compare.spatial_tolerance;
   const auto lights = formula_lights(f, e.values, e.probes);
-  const std::vector<model::FrameSurface>& surfaces = *e.surfaces;
-  const std::size_t n = surfaces.size();
+  const std::vector<model::FrameSurface>* geometry = e.surfaces;
+  const std::vector<model::FrameSurface>& averaged = *geometry;
+  const std::size_t n = averaged.size();
   std::vector<model::DrawnFrame> frames;
   double worst_model_error = 0;
   for (std::size_t l = 0; l < lights.size(); ++l)
     for (std::size_t k = 0; k < n && l * n + k < e.student->size() && l * n + k < e.reference->size(); ++k) {
       // What the formula itself leaves off of the reference's frame is the model's, not the student's.
-      const model::DrawnFrame reference{&surfaces[k], (*e.reference)[l * n + k].get(), lights[l]};
+      const model::DrawnFrame reference{&averaged[k], (*e.reference)[l * n + k].get(), lights[l]};
       const double model_error = model::failing_share(model::Variant::formula, o.course, reference, o);
       worst_model_error = std::max(worst_model_error, model_error);
-      frames.push_back({&surfaces[k], (*e.student)[l * n + k].get(), lights[l], options.max_failing_fraction + model_error});
+      frames.push_back({&averaged[k], (*e.student)[l * n + k].get(), lights[l], options.max_failing_fraction + model_error});
     }
 
   Explanation out;
-  const auto regions = [&] { return difference_regions(surfaces, *e.student, *e.reference, lights.front(), o); };
+  const auto regions = [&] { return difference_regions(*geometry, *e.student, *e.reference, lights.front(), o); };
   // Where the formula cannot draw the reference itself within the rule (frames so small that a
   // pixel holds many triangles), what it finds in the student's frames is not to be trusted.
   if (worst_model_error > options.max_failing_fraction) {
@@ -319,11 +320,28 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
   }
   std::vector<model::Fit> candidates = model::sample_fits(frames, o);
   std::vector<Reading> readings = reproducing_readings(candidates, frames, o, lights.front(), f);
+  const auto one_change = [&] { return std::any_of(readings.begin(), readings.end(), [](const Reading& r) { return r.count == 1; }); };
+  // Flat normals shade a pixel's samples apart, and its highlight is the mean of their shades: read
+  // on each sample's flat normal, four renders more, fetched only when no one change of the
+  // averaged geometry explains the frames. Every frame moves to that geometry (the averaged set may
+  // leave the worker's memory as it comes in).
+  std::vector<model::Fit> flat;
+  if (!one_change() && e.sampled)
+    if (const auto* sampled = e.sampled(); sampled && sampled->size() == n) {
+      geometry = sampled;
+      for (std::size_t i = 0; i < frames.size(); ++i) frames[i].surface = &(*sampled)[i % n];
+      model::FitOptions flat_options = o;
+      flat_options.only = model::Variant::flat_normal;
+      flat = model::sample_fits(frames, flat_options);
+      auto more = reproducing_readings(flat, frames, flat_options, lights.front(), f);
+      readings.insert(readings.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+      std::stable_sort(readings.begin(), readings.end(), before);
+    }
   // A light the student moved (written into the shader) is looked for only when no single change
   // of the rest explains the frames: its search costs more than every variant's together. The
   // normal's colour has no light.
   model::Fit moved_light;
-  if (lit && std::none_of(readings.begin(), readings.end(), [](const Reading& r) { return r.count == 1; })) {
+  if (lit && !one_change()) {
     moved_light = model::fit_light_position(frames, o);
     if (moved_light.reproduces)
       if (Reading r = read(moved_light, o.course, lights.front(), f); r.count <= kMostChanges) readings.push_back(std::move(r));

@@ -4,6 +4,7 @@
 // meets against the reference, said in the homework's terms with the numbers. Where no change of
 // one or two parts reproduces them, it says so and where the frames differ (grade/difference_regions.h):
 // an honest "cannot tell why" rather than a confident wrong explanation.
+#include <functional>
 #include <vector>
 
 #include "grade/grade_spec.h"
@@ -21,6 +22,10 @@ struct FormulaEvidence {
   const std::vector<model::FrameSurface>* surfaces = nullptr;  // one per angle
   const SharedFrames* student = nullptr;       // every light's frames, light after light
   const SharedFrames* reference = nullptr;     // the same, the reference's
+  // The same geometry with each sample's flat normal (grade/formula_geometry.h), fetched only where
+  // no one change explains the frames on `surfaces`: flat shading's highlights are read on it. None
+  // where the formula has no such geometry.
+  std::function<const std::vector<model::FrameSurface>*()> sampled;
 };
 
 Explanation explain_with_formula(const FormulaEvidence& evidence, const GradeOptions& options);

@@ -2,6 +2,8 @@
 
 #include <regex>
 
+#include "render/sample_positions.h"
+
 namespace shadelab::grade {
 
 namespace {
@@ -45,7 +47,11 @@ std::optional<std::string> varying_type(const std::string& vertex, const std::st
 
 bool writes_vec3_varying(const std::string& vertex, const std::string& name) { return varying_type(vertex, name) == "vec3"; }
 
-Expected<std::vector<GeometryRender>> geometry_requests(const FormulaSpec& formula, const render::RenderRequest& reference) {
+bool has_sample_geometry(const FormulaSpec& formula, const render::RenderRequest& reference) {
+  return formula.terms == model::Terms::phong && !render::standard_sample_positions(reference.msaa).empty();
+}
+
+Expected<std::vector<GeometryRender>> geometry_requests(const FormulaSpec& formula, const render::RenderRequest& reference, SampleGeometry samples) {
   const std::string& text = formula.geometry_vertex.text.empty() ? reference.vertex.text : formula.geometry_vertex.text;
   if (!writes_vec3_varying(text, formula.position_varying) || !writes_vec3_varying(text, formula.normal_varying))
     return make_error(ErrorCode::invalid_argument,
@@ -57,6 +63,15 @@ Expected<std::vector<GeometryRender>> geometry_requests(const FormulaSpec& formu
   std::vector<GeometryRender> out = {{writing(base, text, formula.position_varying, "vec3"), model::Quantity::position},
                                      {writing(base, text, formula.normal_varying, "vec3"), model::Quantity::normal}};
   out.push_back({as_flat(base, text, formula.normal_varying, "vec3"), model::Quantity::flat_normal});
+  if (samples == SampleGeometry::each_sample && has_sample_geometry(formula, reference)) {
+    const auto positions = render::standard_sample_positions(reference.msaa);
+    for (std::size_t i = 0; i < positions.size() && i < static_cast<std::size_t>(model::kMaxSamples); ++i) {
+      render::RenderRequest one = base;
+      one.msaa = 0;
+      one.sample_position = positions[i];
+      out.push_back({as_flat(one, text, formula.normal_varying, "vec3"), model::Quantity::sample_flat_normal, static_cast<int>(i)});
+    }
+  }
   if (formula.terms == model::Terms::normal_colour) {
     const auto type = varying_type(reference.vertex.text, formula.colour_varying);
     if (!type) return make_error(ErrorCode::invalid_argument, "the reference's vertex shader does not write " + formula.colour_varying + " as a vec3 or vec4 varying");

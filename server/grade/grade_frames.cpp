@@ -236,7 +236,9 @@ std::optional<Explanation> GradeSession::saved_frames_explanation(const GradeSpe
   if (!reference) return std::nullopt;
   const auto* geometry = surfaces(*spec.formula, at, mesh, mesh_key, GeometryKept::in_memory);
   if (!geometry) return std::nullopt;
-  return explain_with_formula({&*spec.formula, at.uniforms, {}, geometry, &saved, &*reference}, options);
+  return explain_with_formula(
+      {&*spec.formula, at.uniforms, {}, geometry, &saved, &*reference, sampled_surfaces(*spec.formula, at, mesh, mesh_key, GeometryKept::in_memory)},
+      options);
 }
 
 Expected<SharedFrames> GradeSession::at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles) {

@@ -125,30 +125,50 @@ static void name_probes_that_fail(Report& report, const std::vector<Probe>& prob
 }
 
 const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
-                                                              const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept) {
-  auto requests = geometry_requests(formula, reference);
+                                                              const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept,
+                                                              SampleGeometry samples) {
+  auto requests = geometry_requests(formula, reference, samples);
   if (!requests) return nullptr;
-  std::string key = mesh_key;
-  for (const auto& g : *requests) key += '\0' + render::pixel_identity(g.request);
+  const auto key_of = [&](auto begin, auto end) {
+    std::string key = mesh_key;
+    for (auto g = begin; g != end; ++g) key += '\0' + render::pixel_identity(g->request);
+    return key;
+  };
+  std::string key = key_of(requests->begin(), requests->end());
   if (auto* hit = surfaces_.find(key)) {
     ++work_.from_memory;
     return hit;
   }
   // A render at a time, each turned into the object's pixels before the next: the float frames
-  // are ten times the surfaces' size.
+  // are ten times the surfaces' size. The samples start from the averaged geometry where this
+  // worker holds it (the grade that asks for them has just read it).
   std::vector<model::FrameSurface> out;
-  for (const auto& [request, quantity] : *requests) {
+  auto first = std::find_if(requests->begin(), requests->end(), [](const GeometryRender& g) { return g.quantity == model::Quantity::sample_flat_normal; });
+  if (const auto* averaged = first != requests->end() ? surfaces_.find(key_of(requests->begin(), first)) : nullptr)
+    out = *averaged;
+  else
+    first = requests->begin();
+  for (auto it = first; it != requests->end(); ++it) {
+    const auto& [request, quantity, sample] = *it;
     auto frames = kept == GeometryKept::with_references ? stored_or_rendered(request, mesh, mesh_key) : frames_of(request, mesh);
     if (!frames) return nullptr;
     if (kept == GeometryKept::in_memory) ++work_.rendered;
     for (std::size_t k = 0; k < frames->size(); ++k) {
       if (quantity == model::Quantity::position) out.push_back(model::surface_from(*(*frames)[k]));
-      else if (k < out.size()) model::add_quantity(out[k], *(*frames)[k], quantity);
+      else if (k < out.size()) model::add_quantity(out[k], *(*frames)[k], quantity, sample);
     }
   }
   std::size_t bytes = 0;
   for (const auto& s : out) bytes += s.bytes();
   return &surfaces_.insert(std::move(key), std::move(out), bytes);
+}
+
+std::function<const std::vector<model::FrameSurface>*()> GradeSession::sampled_surfaces(const FormulaSpec& formula,
+                                                                                      const render::RenderRequest& reference,
+                                                                                      const scene::Mesh& mesh, const std::string& mesh_key,
+                                                                                      GeometryKept kept) {
+  if (!has_sample_geometry(formula, reference)) return {};
+  return [this, &formula, reference, &mesh, mesh_key, kept] { return surfaces(formula, reference, mesh, mesh_key, kept, SampleGeometry::each_sample); };
 }
 
 std::optional<Explanation> GradeSession::formula_explanation(const GradeSpec& spec, const render::RenderRequest& reference,
@@ -157,7 +177,9 @@ std::optional<Explanation> GradeSession::formula_explanation(const GradeSpec& sp
   if (!spec.formula) return std::nullopt;
   const auto* geometry = surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references);
   if (!geometry) return std::nullopt;
-  return explain_with_formula({&*spec.formula, reference.uniforms, spec.probes, geometry, &student, &reference_frames}, spec.options);
+  return explain_with_formula({&*spec.formula, reference.uniforms, spec.probes, geometry, &student, &reference_frames,
+                               sampled_surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references)},
+                              spec.options);
 }
 
 // `base` under the homework's light, then under each probe light.

@@ -12,6 +12,7 @@
 
 #include "core/expected.h"
 #include "core/job_phase.h"
+#include "grade/formula_geometry.h"
 #include "grade/grade_spec.h"
 #include "grade/lag_fit.h"
 #include "grade/reference_cache.h"
@@ -106,9 +107,14 @@ class GradeSession {
   // frames' angles, which are theirs alone (108 MB of float frames a set at 512 x 512 on disk).
   enum class GeometryKept { with_references, in_memory };
   // The geometry the formula is evaluated on, per angle of `reference`: from the worker's memory,
-  // else from the store or rendered (grade/formula_geometry.h); null when it does not render.
+  // else from the store or rendered (grade/formula_geometry.h); null when it does not render. Each
+  // sample's flat normal is added to the averaged geometry's copy: four renders more, no reload.
   const std::vector<model::FrameSurface>* surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
-                                                   const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept);
+                                                   const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept,
+                                                   SampleGeometry samples = SampleGeometry::averaged);
+  // The evidence's way to the geometry with each sample's flat normal, where the formula has any.
+  std::function<const std::vector<model::FrameSurface>*()> sampled_surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
+                                                                           const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept);
   // A failing submission's frames read by the checkpoint's formula (grade/formula_explanation.h),
   // on the geometry of `reference` (rendered once per course, kept as references are); none when
   // the spec has no formula or the geometry does not render.
@@ -125,8 +131,10 @@ class GradeSession {
   // Reference and mistake renders depend only on their shaders and the job's parameters: a batch
   // grading a class renders them once per worker, and with a store, once per course.
   ReferenceCache references_;
-  // The formula's geometry, as the object's pixels: ~7 MB a set of 9 frames at 512 x 512.
-  LruCache<std::vector<model::FrameSurface>> surfaces_{8, 32u << 20};
+  // The formula's geometry, as the object's pixels: ~35 MB a set of 9 frames of the bunny at 512 x
+  // 512 (~65 MB with each sample's flat normal): the course's two sets of its own angles, which a
+  // class's code grades share.
+  LruCache<std::vector<model::FrameSurface>> surfaces_{8, 112u << 20};
   std::optional<ReferenceStore> store_;   // the current grade's (its spec names the places)
   std::unique_ptr<store::SharedStore> shared_;
   store::SharedStoreConfig shared_config_;

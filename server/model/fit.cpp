@@ -61,8 +61,10 @@ float alpha_of(const Factors& f, const Parameters& p, Terms terms) {
 struct Design {
   struct Row {
     glm::vec3 diffuse;     // diffuse light x d
-    glm::vec3 specular;    // specular light, where the term is added; 0 elsewhere
-    float log_cosine;      // ln c; -inf where c = 0
+    glm::vec3 specular;    // specular light
+    // ln c at each sample the specular term is averaged over; -inf where c = 0 or the term is not added
+    std::array<float, kMaxSamples> log_cosine;
+    int samples;
     glm::vec3 drawn;
     glm::bvec3 used;
   };
@@ -76,8 +78,11 @@ Design design_of(const std::vector<Sampled>& sample, const std::vector<Factors>&
     const Factors& x = f[i];
     // The alpha before the specular term (which only adds to it): under 1, the canvas divides.
     const bool divided = o.course.colours.alpha[0] + o.course.colours.alpha[1] * x.d < 1;
-    Design::Row r{x.diffuse_light * x.d, x.on ? x.specular_light : glm::vec3(0),
-                  x.c > 0 ? std::log(x.c) : -std::numeric_limits<float>::infinity(), sample[i].drawn, {}};
+    Design::Row r{x.diffuse_light * x.d, x.specular_light, {}, x.samples, sample[i].drawn, {}};
+    for (std::size_t k = 0; k < static_cast<std::size_t>(x.samples); ++k) {
+      const SpecularSample& at = x.specular[k];
+      r.log_cosine[k] = at.on && at.c > 0 ? std::log(at.c) : -std::numeric_limits<float>::infinity();
+    }
     for (int ch = 0; ch < 3; ++ch) r.used[ch] = !divided && !clamped(sample[i].drawn[ch]);
     d.rows.push_back(r);
   }
@@ -99,7 +104,11 @@ Trial least_squares(const Design& design, float alpha, const FitOptions& o) {
   t.parameters.exponent = alpha;
   std::vector<float> s(design.rows.size(), 0.0f);
   if (phong)
-    for (std::size_t i = 0; i < s.size(); ++i) s[i] = std::exp(alpha * design.rows[i].log_cosine);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const auto& r = design.rows[i];
+      for (std::size_t k = 0; k < static_cast<std::size_t>(r.samples); ++k) s[i] += std::exp(alpha * r.log_cosine[k]);
+      if (r.samples > 1) s[i] /= static_cast<float>(r.samples);
+    }
   const double ridge = 1e-4 * static_cast<double>(design.rows.size());
   double residual = 0, used = 0;
   for (int ch = 0; ch < 3; ++ch) {
@@ -265,7 +274,7 @@ std::vector<Fit> sample_fits(const std::vector<DrawnFrame>& frames, const FitOpt
   const double margin = kSampleMargin * most_allowed(frames);
   std::vector<Fit> fits;
   for (const VariantInfo& v : variants()) {
-    if (!applies_to(v, o.terms)) continue;
+    if (!applies_to(v, o.terms) || (o.only && v.variant != *o.only)) continue;
     std::vector<Factors> f;
     f.reserve(sample.size());
     for (const auto& s : sample) f.push_back(factors(v.variant, frames[s.frame].surface->points[s.point], frames[s.frame].light));

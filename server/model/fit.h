@@ -38,7 +38,8 @@ struct DrawnFrame {
   Light light;
   // The share of its interior pixels a fit may draw off: the rule's, plus what the formula itself
   // draws off of the reference's frame at this angle and light (the model shades each pixel once,
-  // from geometry averaged over its samples, where the rasteriser shades each triangle in it).
+  // from geometry averaged over its samples, where the rasteriser shades each triangle in it; only
+  // flat normals are shaded sample by sample).
   double allowed = 0.01;
 };
 
@@ -50,6 +51,8 @@ struct FitOptions {
   // As image::CompareOptions: a pixel the model draws off still matches where the model's colour
   // at a pixel within one of it is close (frames from another rasteriser: a student's saved frames).
   bool spatial_tolerance = false;
+  // One variant alone, where the others are settled (flat normals, on each sample's geometry).
+  std::optional<Variant> only;
 };
 
 struct Fit {

@@ -138,25 +138,57 @@ std::optional<Variant> variant_named(std::string_view id) {
 std::string_view to_string(Parameter parameter) { return name_in(kParameters, parameter); }
 std::optional<Parameter> parameter_named(std::string_view name) { return value_in(kParameters, name); }
 
-Factors factors(Variant v, const SurfacePoint& p, const Light& light) {
-  if (info(v).applies == Applies::normal_colour) return {.colour = colour_of(v, p)};
-  const glm::vec3 n = normal_of(v, p);
+namespace {
+
+struct Shading {
+  float d;
+  SpecularSample specular;
+};
+
+// The diffuse factor and the specular term of `v` at `p` with the normal `n`.
+Shading shading(Variant v, const glm::vec3& n, const SurfacePoint& p, const Light& light) {
   const glm::vec3 l = glm::normalize(v == Variant::light_as_direction ? light.position : light.position - p.position);
   const glm::vec3 e = view_of(v, p);
   const float n_dot_l = glm::dot(n, l);
-  Factors f;
-  f.d = v == Variant::unclamped_diffuse ? n_dot_l : std::max(0.0f, n_dot_l);
+  Shading s{};
+  s.d = v == Variant::unclamped_diffuse ? n_dot_l : std::max(0.0f, n_dot_l);
   if (v == Variant::half_vector)
-    f.c = std::max(0.0f, glm::dot(n, glm::normalize(l + e)));
+    s.specular.c = std::max(0.0f, glm::dot(n, glm::normalize(l + e)));
   else
-    f.c = std::max(0.0f, glm::dot(e, reflect(v == Variant::reflect_sign ? l : -l, n)));
-  f.on = v == Variant::unguarded_specular || n_dot_l > 0;
+    s.specular.c = std::max(0.0f, glm::dot(e, reflect(v == Variant::reflect_sign ? l : -l, n)));
+  s.specular.on = v == Variant::unguarded_specular || n_dot_l > 0;
+  return s;
+}
+
+}  // namespace
+
+Factors factors(Variant v, const SurfacePoint& p, const Light& light) {
+  if (info(v).applies == Applies::normal_colour) return {.colour = colour_of(v, p)};
+  Factors f;
+  if (v == Variant::flat_normal && p.samples > 0) {
+    // Each sample shaded with its own triangle's normal, at the pixel's position.
+    f.samples = p.samples;
+    for (int i = 0; i < p.samples; ++i) {
+      const Shading s = shading(v, glm::normalize(p.sample_flat_normals[static_cast<std::size_t>(i)]), p, light);
+      f.d += s.d / static_cast<float>(p.samples);
+      f.specular[static_cast<std::size_t>(i)] = s.specular;
+    }
+  } else {
+    const Shading s = shading(v, normal_of(v, p), p, light);
+    f.d = s.d;
+    f.specular[0] = s.specular;
+  }
   f.diffuse_light = v == Variant::no_light_colour ? glm::vec3(1) : light.colour;
   f.specular_light = v == Variant::no_light_colour || v == Variant::specular_without_light_colour ? glm::vec3(1) : light.colour;
   f.colour = p.colour;
   return f;
 }
 
-float specular_factor(const Factors& f, float alpha) { return f.on ? std::pow(f.c, alpha) : 0.0f; }
+float specular_factor(const Factors& f, float alpha) {
+  float sum = 0;
+  for (int i = 0; i < f.samples; ++i)
+    if (const SpecularSample& s = f.specular[static_cast<std::size_t>(i)]; s.on) sum += std::pow(s.c, alpha);
+  return f.samples == 1 ? sum : sum / static_cast<float>(f.samples);
+}
 
 }  // namespace shadelab::model

@@ -5,6 +5,7 @@
 // each the formula with one thing changed. Evaluated per pixel from the reference's geometry
 // (model/surface.h), so a failing submission's frames can be matched against every variant
 // without a render of its own.
+#include <array>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -78,20 +79,31 @@ struct Light {
   glm::vec3 colour;
 };
 
-// What the colours multiply at one point (or, for the normal's colour, the colour itself): colour = ambient + diffuse_light ⊙ diffuse · d +
-// specular_light ⊙ specular · (on ? c^α : 0). The colours enter linearly (the fit's least squares),
-// the exponent through the cosine alone.
+// The specular term at one sample of a pixel: the cosine before the exponent (max(R·V, 0) in the
+// formula) and whether the term is added there.
+struct SpecularSample {
+  float c = 0;
+  bool on = false;
+};
+
+// What the colours multiply at one point (or, for the normal's colour, the colour itself): colour =
+// ambient + diffuse_light ⊙ diffuse · d + specular_light ⊙ specular · mean over the samples of
+// (on ? c^α : 0). The colours enter linearly (the fit's least squares), the exponent through the
+// cosines alone. One sample but where the pixel's samples see different triangles' flat normals:
+// the rasteriser shades each triangle once and the resolve averages the shades, which no shade of
+// an averaged normal is once the exponent bends it.
 struct Factors {
-  float d = 0;          // the diffuse factor, max(N·L, 0) in the formula
-  float c = 0;          // the specular cosine before the exponent, max(R·V, 0) in the formula
-  bool on = false;      // whether the specular term is added here
+  float d = 0;  // the diffuse factor, max(N·L, 0) in the formula (averaged over the samples)
+  std::array<SpecularSample, kMaxSamples> specular{};
+  int samples = 1;
   glm::vec3 diffuse_light{1}, specular_light{1};
   glm::vec3 colour{0};  // a normal-colour checkpoint's colour (no light, no colours to fit)
 };
 
 Factors factors(Variant variant, const SurfacePoint& point, const Light& light);
 
-// The specular factor for exponent `alpha`, as GLSL's pow() computes it for a cosine in [0, 1].
+// The specular factor for exponent `alpha`, as GLSL's pow() computes it for a cosine in [0, 1],
+// averaged over the samples.
 float specular_factor(const Factors& f, float alpha);
 
 }  // namespace shadelab::model

@@ -1,5 +1,6 @@
 #include "model/surface.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace shadelab::model {
@@ -40,8 +41,9 @@ FrameSurface surface_from(const image::Image& position) {
 
 namespace {
 
-glm::vec3& quantity_of(SurfacePoint& p, Quantity q) {
+glm::vec3& quantity_of(SurfacePoint& p, Quantity q, int sample) {
   switch (q) {
+    case Quantity::sample_flat_normal: return p.sample_flat_normals[static_cast<std::size_t>(sample)];
     case Quantity::position: return p.position;
     case Quantity::normal: return p.normal;
     case Quantity::flat_normal: return p.flat_normal;
@@ -53,10 +55,17 @@ glm::vec3& quantity_of(SurfacePoint& p, Quantity q) {
 
 }  // namespace
 
-void add_quantity(FrameSurface& s, const image::Image& render, Quantity quantity) {
+void add_quantity(FrameSurface& s, const image::Image& render, Quantity quantity, int sample) {
+  const bool one_sample = quantity == Quantity::sample_flat_normal;
+  if (one_sample && (sample < 0 || sample >= kMaxSamples)) return;
   for (std::size_t i = 0; i < s.pixels.size(); ++i) {
+    SurfacePoint& p = s.points[i];
     const Texel t = texel(render, s.pixels[i]);
-    quantity_of(s.points[i], quantity) = {t.r, t.g, t.b};
+    // A sample of an interior pixel the jittered render leaves uncovered (the rasteriser's rounding
+    // of a silhouette's edge): the pixel's averaged flat normal stands for it.
+    const bool covered = t.a > 1;
+    quantity_of(p, quantity, sample) = one_sample && !covered ? p.flat_normal : glm::vec3{t.r, t.g, t.b};
+    if (one_sample) p.samples = std::max(p.samples, sample + 1);
   }
 }
 

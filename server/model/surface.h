@@ -4,8 +4,10 @@
 // of the reference's vertex shader (grade/formula_geometry.h): the eye-space position, the normal as
 // interpolated (not normalized) and the normal as a `flat` varying gives it, and for a normal-colour
 // checkpoint the colour its vertex shader computes, as interpolated and flat; each resolved over the frame's
-// samples; the position's alpha is 1 + the share of samples the mesh covers. Kept as the object's
-// pixels alone: a tenth of a homework frame.
+// samples; the position's alpha is 1 + the share of samples the mesh covers. For a specular
+// checkpoint, the flat normal at each sample besides (a render without MSAA at each sample's
+// position). Kept as the object's pixels alone: a quarter of a homework frame.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -15,12 +17,19 @@
 
 namespace shadelab::model {
 
+// The most samples of a pixel the surface keeps apart (MSAA 4, the browser's).
+inline constexpr int kMaxSamples = 4;
+
 struct SurfacePoint {
   glm::vec3 position;     // eye space (the eye at the origin)
   glm::vec3 normal;       // interpolated, as the fragment shader receives it before normalize()
-  glm::vec3 flat_normal;  // the provoking vertex's, as a `flat` varying receives it
+  glm::vec3 flat_normal;  // the provoking vertex's, as a `flat` varying receives it (averaged over the samples)
   glm::vec3 colour{0};    // a normal-colour checkpoint's: the reference's per-vertex colour, interpolated
   glm::vec3 flat_colour{0};  // ... and as a `flat` varying gives it (averaged over the pixel's triangles)
+  // A lit checkpoint's flat normal at each of the pixel's samples, each that of the triangle that
+  // covers it; `samples` of them where their renders are kept (0: none, use flat_normal).
+  std::array<glm::vec3, kMaxSamples> sample_flat_normals{};
+  int samples = 0;
 };
 
 // A frame's interior: the pixels every sample of which the mesh covers (an outline pixel is a
@@ -37,7 +46,9 @@ struct FrameSurface {
 // A surface's pixels and positions from the position render (RGBA32F)...
 FrameSurface surface_from(const image::Image& position);
 // ...then each other quantity from its render (the same size).
-enum class Quantity { position, normal, flat_normal, colour, flat_colour };
-void add_quantity(FrameSurface& surface, const image::Image& render, Quantity quantity);
+// A sample's flat normal comes from a render without MSAA at that sample's position (`sample`:
+// which); a sample its render does not cover keeps the pixel's averaged flat normal.
+enum class Quantity { position, normal, flat_normal, colour, flat_colour, sample_flat_normal };
+void add_quantity(FrameSurface& surface, const image::Image& render, Quantity quantity, int sample = 0);
 
 }  // namespace shadelab::model
