@@ -1,5 +1,6 @@
 #include "model/lighting.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -165,13 +166,22 @@ Shading shading(Variant v, const glm::vec3& n, const SurfacePoint& p, const Ligh
 Factors factors(Variant v, const SurfacePoint& p, const Light& light) {
   if (info(v).applies == Applies::normal_colour) return {.colour = colour_of(v, p)};
   Factors f;
-  if (v == Variant::flat_normal && p.samples > 0) {
-    // Each sample shaded with its own triangle's normal, at the pixel's position.
-    f.samples = p.samples;
-    for (int i = 0; i < p.samples; ++i) {
-      const Shading s = shading(v, glm::normalize(p.sample_flat_normals[static_cast<std::size_t>(i)]), p, light);
-      f.d += s.d / static_cast<float>(p.samples);
-      f.specular[static_cast<std::size_t>(i)] = s.specular;
+  if (v == Variant::flat_normal && p.samples > 1) {
+    // Each sample shaded with its own triangle's normal, at the pixel's position; a triangle that
+    // covers several samples (every one, inside it) shaded once.
+    const auto& n = p.sample_flat_normals;
+    const auto count = static_cast<std::size_t>(p.samples);
+    if (std::all_of(n.begin() + 1, n.begin() + static_cast<long>(count), [&](const glm::vec3& m) { return m == n[0]; })) {
+      const Shading s = shading(v, glm::normalize(n[0]), p, light);
+      f.d = s.d;
+      f.specular[0] = s.specular;
+    } else {
+      f.samples = p.samples;
+      for (std::size_t i = 0; i < count; ++i) {
+        const Shading s = shading(v, glm::normalize(n[i]), p, light);
+        f.d += s.d / static_cast<float>(count);
+        f.specular[i] = s.specular;
+      }
     }
   } else {
     const Shading s = shading(v, normal_of(v, p), p, light);
