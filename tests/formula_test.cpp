@@ -55,6 +55,7 @@ model::FrameSurface sphere() {
   constexpr float kSamples[4][2] = {{0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f}};
   model::FrameSurface s;
   s.width = s.height = kSize;
+  s.samples = 4;
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
       const auto p = sphere_at(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, 0.05f);
@@ -62,11 +63,10 @@ model::FrameSurface sphere() {
       const glm::vec3 n = (*p - kCentre) / kRadius;
       const float shorter = 0.9f + 0.1f * std::abs(std::sin(0.4f * static_cast<float>(x)) * std::sin(0.4f * static_cast<float>(y)));
       model::SurfacePoint point{*p, n * shorter, glm::vec3(0)};
-      point.samples = 4;
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < model::kMaxSamples; ++k) {
         const auto at = sphere_at(static_cast<float>(x) + kSamples[k][0], static_cast<float>(y) + kSamples[k][1], 0);
-        point.sample_flat_normals[static_cast<std::size_t>(k)] = facet(at ? (*at - kCentre) / kRadius : n);
-        point.flat_normal += point.sample_flat_normals[static_cast<std::size_t>(k)] / 4.0f;
+        s.sample_flat_normals.push_back(facet(at ? (*at - kCentre) / kRadius : n));
+        point.flat_normal += s.sample_flat_normals.back() / 4.0f;
       }
       // The normal's colour, interpolated between unit colours at the vertices: shorter between them too.
       point.colour = glm::abs(n) * shorter;
@@ -90,7 +90,7 @@ image::Image drawn_by(model::Variant v, const model::Parameters& p, const model:
                      model::Terms terms = model::Terms::phong) {
   image::Image out = image::Image::blank(kSize, kSize, image::PixelType::u8);
   for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const glm::vec3 c = model::as_canvas_stores(model::shade(v, p, terms, s.points[i], light));
+    const glm::vec3 c = model::as_canvas_stores(model::shade(v, p, terms, s.points[i], light, s.samples_of(i)));
     std::uint8_t* px = out.bytes.data() + static_cast<std::size_t>(s.pixels[i]) * 4;
     for (int k = 0; k < 3; ++k) px[k] = static_cast<std::uint8_t>(std::lround(c[k] * 255));
     px[3] = 255;
@@ -172,7 +172,7 @@ TEST(FormulaModelTest, AFlatHighlightIsTheMeanOfItsSamplesShades) {
   sharp.colours.specular = glm::vec3(0.6f, 0.6f, 0.6f);
   const auto d = draw(model::Variant::flat_normal, sharp);
   std::size_t crossed = 0;
-  for (const auto& p : d->surface.points) crossed += p.sample_flat_normals[0] != p.sample_flat_normals[3];
+  for (std::size_t i = 0; i < d->surface.points.size(); ++i) crossed += d->surface.samples_of(i)[0] != d->surface.samples_of(i)[3];
   EXPECT_GT(crossed, d->surface.points.size() / 10);  // edges cross a tenth of the pixels at least
   auto o = options();
   const auto fits = model::fit_variants(d->frames, o);
@@ -181,7 +181,8 @@ TEST(FormulaModelTest, AFlatHighlightIsTheMeanOfItsSamplesShades) {
   EXPECT_NEAR(fits.front().parameters.exponent, 24.0f, 0.05f * 24.0f);
 
   model::FrameSurface averaged = d->surface;
-  for (auto& p : averaged.points) p.samples = 0;
+  averaged.samples = 0;
+  averaged.sample_flat_normals.clear();
   std::vector<model::DrawnFrame> frames = d->frames;
   for (auto& f : frames) f.surface = &averaged;
   for (const auto& f : model::fit_variants(frames, o)) {

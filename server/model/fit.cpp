@@ -212,8 +212,9 @@ double sample_failing(const std::vector<Sampled>& sample, const std::vector<Fact
 
 }  // namespace
 
-glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, const SurfacePoint& point, const Light& light) {
-  return shaded(factors(variant, point, {parameters.light_position.value_or(light.position), light.colour}), parameters, terms);
+glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, const SurfacePoint& point, const Light& light,
+                std::span<const glm::vec3> samples) {
+  return shaded(factors(variant, point, {parameters.light_position.value_or(light.position), light.colour}, samples), parameters, terms);
 }
 
 namespace {
@@ -240,10 +241,10 @@ double failing_share(Variant v, const Parameters& p, const DrawnFrame& frame, co
   std::size_t failing = 0;
   if (!o.spatial_tolerance) {
     for (std::size_t i = 0; i < s.points.size(); ++i)
-      failing += off(shade(v, p, o.terms, s.points[i], frame.light), drawn_colour(*frame.drawn, s.pixels[i]), o.threshold);
+      failing += off(shade(v, p, o.terms, s.points[i], frame.light, s.samples_of(i)), drawn_colour(*frame.drawn, s.pixels[i]), o.threshold);
   } else {
     std::vector<glm::vec4> model(static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height), glm::vec4(-1));
-    for (std::size_t i = 0; i < s.points.size(); ++i) model[s.pixels[i]] = shade(v, p, o.terms, s.points[i], frame.light);
+    for (std::size_t i = 0; i < s.points.size(); ++i) model[s.pixels[i]] = shade(v, p, o.terms, s.points[i], frame.light, s.samples_of(i));
     for (std::size_t i = 0; i < s.points.size(); ++i) {
       const glm::vec3 drawn = drawn_colour(*frame.drawn, s.pixels[i]);
       failing += off(model[s.pixels[i]], drawn, o.threshold) && !near_neighbour(model, s.width, s.height, s.pixels[i], drawn, o.threshold);
@@ -277,7 +278,10 @@ std::vector<Fit> sample_fits(const std::vector<DrawnFrame>& frames, const FitOpt
     if (!applies_to(v, o.terms) || (o.only && v.variant != *o.only)) continue;
     std::vector<Factors> f;
     f.reserve(sample.size());
-    for (const auto& s : sample) f.push_back(factors(v.variant, frames[s.frame].surface->points[s.point], frames[s.frame].light));
+    for (const auto& s : sample) {
+      const FrameSurface& surface = *frames[s.frame].surface;
+      f.push_back(factors(v.variant, surface.points[s.point], frames[s.frame].light, surface.samples_of(s.point)));
+    }
     // The normal's colour has no values to fit: each variant's one fit is what it draws.
     if (o.terms == Terms::normal_colour) {
       fits.push_back(sample_fit(v.variant, o.course, sample, f, o));

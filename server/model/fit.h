@@ -5,6 +5,7 @@
 // fit confirmed on every interior pixel with the rule a correct submission meets against the
 // reference (a frame fails past `max_failing` of its pixels off by more than `threshold`).
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -103,6 +104,8 @@ double failing_share(Variant variant, const Parameters& parameters, const DrawnF
 glm::vec3 as_canvas_stores(const glm::vec4& colour);
 
 // What `variant` with `parameters` draws at `point` (the colour and alpha before the canvas clamps them).
-glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, const SurfacePoint& point, const Light& light);
+// `samples` as model::factors takes them.
+glm::vec4 shade(Variant variant, const Parameters& parameters, Terms terms, const SurfacePoint& point, const Light& light,
+                std::span<const glm::vec3> samples = {});
 
 }  // namespace shadelab::model

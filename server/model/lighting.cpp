@@ -146,8 +146,9 @@ struct Shading {
   SpecularSample specular;
 };
 
-// The diffuse factor and the specular term of `v` at `p` with the normal `n`.
-Shading shading(Variant v, const glm::vec3& n, const SurfacePoint& p, const Light& light) {
+// The diffuse factor and the specular term of `v` at `p` with the normal `n`. Inlined: it runs
+// for every pixel of every frame a fit is checked on.
+[[gnu::always_inline]] inline Shading shading(Variant v, const glm::vec3& n, const SurfacePoint& p, const Light& light) {
   const glm::vec3 l = glm::normalize(v == Variant::light_as_direction ? light.position : light.position - p.position);
   const glm::vec3 e = view_of(v, p);
   const float n_dot_l = glm::dot(n, l);
@@ -161,30 +162,38 @@ Shading shading(Variant v, const glm::vec3& n, const SurfacePoint& p, const Ligh
   return s;
 }
 
+// Flat normals where a pixel's samples see different triangles: each sample shaded with its own
+// triangle's normal, at the pixel's position, the diffuse factor averaged. Apart from factors(), so
+// that the one shading every other pixel and variant takes stays inlined there.
+[[gnu::noinline]] void shade_samples(Factors& f, const SurfacePoint& p, const Light& light, std::span<const glm::vec3> n) {
+  f.samples = static_cast<int>(std::min<std::size_t>(n.size(), kMaxSamples));
+  for (std::size_t i = 0; i < static_cast<std::size_t>(f.samples); ++i) {
+    const Shading s = shading(Variant::flat_normal, glm::normalize(n[i]), p, light);
+    f.d += s.d / static_cast<float>(f.samples);
+    f.specular[i] = s.specular;
+  }
+}
+
+bool differ(std::span<const glm::vec3> n) {
+  return std::any_of(n.begin(), n.end(), [&](const glm::vec3& m) { return m != n[0]; });
+}
+
 }  // namespace
 
-Factors factors(Variant v, const SurfacePoint& p, const Light& light) {
-  if (info(v).applies == Applies::normal_colour) return {.colour = colour_of(v, p)};
+Factors factors(Variant v, const SurfacePoint& p, const Light& light, std::span<const glm::vec3> n) {
+  // One object returned on every path: built in the caller's, not copied there field by field
+  // after (a copy that stalled on its own stores, half of this function's time).
   Factors f;
-  if (v == Variant::flat_normal && p.samples > 1) {
-    // Each sample shaded with its own triangle's normal, at the pixel's position; a triangle that
-    // covers several samples (every one, inside it) shaded once.
-    const auto& n = p.sample_flat_normals;
-    const auto count = static_cast<std::size_t>(p.samples);
-    if (std::all_of(n.begin() + 1, n.begin() + static_cast<long>(count), [&](const glm::vec3& m) { return m == n[0]; })) {
-      const Shading s = shading(v, glm::normalize(n[0]), p, light);
-      f.d = s.d;
-      f.specular[0] = s.specular;
-    } else {
-      f.samples = p.samples;
-      for (std::size_t i = 0; i < count; ++i) {
-        const Shading s = shading(v, glm::normalize(n[i]), p, light);
-        f.d += s.d / static_cast<float>(count);
-        f.specular[i] = s.specular;
-      }
-    }
+  if (info(v).applies == Applies::normal_colour) {
+    f.colour = colour_of(v, p);
+    return f;
+  }
+  const bool sampled = v == Variant::flat_normal && !n.empty();
+  if (sampled && differ(n)) {
+    shade_samples(f, p, light, n);
   } else {
-    const Shading s = shading(v, normal_of(v, p), p, light);
+    // A pixel inside one triangle: its samples' normal is the triangle's.
+    const Shading s = shading(v, sampled ? glm::normalize(n[0]) : normal_of(v, p), p, light);
     f.d = s.d;
     f.specular[0] = s.specular;
   }
@@ -194,11 +203,20 @@ Factors factors(Variant v, const SurfacePoint& p, const Light& light) {
   return f;
 }
 
-float specular_factor(const Factors& f, float alpha) {
+namespace {
+
+float mean_over_samples(const Factors& f, float alpha) {
   float sum = 0;
-  for (int i = 0; i < f.samples; ++i)
-    if (const SpecularSample& s = f.specular[static_cast<std::size_t>(i)]; s.on) sum += std::pow(s.c, alpha);
-  return f.samples == 1 ? sum : sum / static_cast<float>(f.samples);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(f.samples); ++i)
+    if (const SpecularSample& s = f.specular[i]; s.on) sum += std::pow(s.c, alpha);
+  return sum / static_cast<float>(f.samples);
+}
+
+}  // namespace
+
+float specular_factor(const Factors& f, float alpha) {
+  if (f.samples > 1) return mean_over_samples(f, alpha);
+  return f.specular[0].on ? std::pow(f.specular[0].c, alpha) : 0.0f;
 }
 
 }  // namespace shadelab::model

@@ -100,7 +100,9 @@ struct Factors {
   glm::vec3 colour{0};  // a normal-colour checkpoint's colour (no light, no colours to fit)
 };
 
-Factors factors(Variant variant, const SurfacePoint& point, const Light& light);
+// `samples`: the point's flat normal at each of its pixel's samples (FrameSurface::samples_of),
+// which flat normals are shaded with one by one; empty: the averaged flat normal.
+Factors factors(Variant variant, const SurfacePoint& point, const Light& light, std::span<const glm::vec3> samples = {});
 
 // The specular factor for exponent `alpha`, as GLSL's pow() computes it for a cosine in [0, 1],
 // averaged over the samples.

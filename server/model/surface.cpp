@@ -41,9 +41,9 @@ FrameSurface surface_from(const image::Image& position) {
 
 namespace {
 
-glm::vec3& quantity_of(SurfacePoint& p, Quantity q, int sample) {
+glm::vec3& quantity_of(SurfacePoint& p, Quantity q) {
   switch (q) {
-    case Quantity::sample_flat_normal: return p.sample_flat_normals[static_cast<std::size_t>(sample)];
+    case Quantity::sample_flat_normal: break;  // kept apart from the points: add_sample
     case Quantity::position: return p.position;
     case Quantity::normal: return p.normal;
     case Quantity::flat_normal: return p.flat_normal;
@@ -55,17 +55,27 @@ glm::vec3& quantity_of(SurfacePoint& p, Quantity q, int sample) {
 
 }  // namespace
 
-void add_quantity(FrameSurface& s, const image::Image& render, Quantity quantity, int sample) {
-  const bool one_sample = quantity == Quantity::sample_flat_normal;
-  if (one_sample && (sample < 0 || sample >= kMaxSamples)) return;
+namespace {
+
+void add_sample(FrameSurface& s, const image::Image& render, int sample) {
+  if (sample < 0 || sample >= kMaxSamples) return;
+  if (s.sample_flat_normals.empty()) s.sample_flat_normals.resize(s.points.size() * kMaxSamples);
   for (std::size_t i = 0; i < s.pixels.size(); ++i) {
-    SurfacePoint& p = s.points[i];
     const Texel t = texel(render, s.pixels[i]);
-    // A sample of an interior pixel the jittered render leaves uncovered (the rasteriser's rounding
+    // A sample of an interior pixel the shifted render leaves uncovered (the rasteriser's rounding
     // of a silhouette's edge): the pixel's averaged flat normal stands for it.
-    const bool covered = t.a > 1;
-    quantity_of(p, quantity, sample) = one_sample && !covered ? p.flat_normal : glm::vec3{t.r, t.g, t.b};
-    if (one_sample) p.samples = std::max(p.samples, sample + 1);
+    s.sample_flat_normals[i * kMaxSamples + static_cast<std::size_t>(sample)] = t.a > 1 ? glm::vec3{t.r, t.g, t.b} : s.points[i].flat_normal;
+  }
+  s.samples = std::max(s.samples, sample + 1);
+}
+
+}  // namespace
+
+void add_quantity(FrameSurface& s, const image::Image& render, Quantity quantity, int sample) {
+  if (quantity == Quantity::sample_flat_normal) return add_sample(s, render, sample);
+  for (std::size_t i = 0; i < s.pixels.size(); ++i) {
+    const Texel t = texel(render, s.pixels[i]);
+    quantity_of(s.points[i], quantity) = {t.r, t.g, t.b};
   }
 }
 

@@ -7,8 +7,8 @@
 // samples; the position's alpha is 1 + the share of samples the mesh covers. For a specular
 // checkpoint, the flat normal at each sample besides (a render without MSAA at each sample's
 // position). Kept as the object's pixels alone: a quarter of a homework frame.
-#include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -26,10 +26,6 @@ struct SurfacePoint {
   glm::vec3 flat_normal;  // the provoking vertex's, as a `flat` varying receives it (averaged over the samples)
   glm::vec3 colour{0};    // a normal-colour checkpoint's: the reference's per-vertex colour, interpolated
   glm::vec3 flat_colour{0};  // ... and as a `flat` varying gives it (averaged over the pixel's triangles)
-  // A lit checkpoint's flat normal at each of the pixel's samples, each that of the triangle that
-  // covers it; `samples` of them where their renders are kept (0: none, use flat_normal).
-  std::array<glm::vec3, kMaxSamples> sample_flat_normals{};
-  int samples = 0;
 };
 
 // A frame's interior: the pixels every sample of which the mesh covers (an outline pixel is a
@@ -39,8 +35,19 @@ struct FrameSurface {
   std::vector<std::uint32_t> pixels;  // y * width + x, rows top-down as the frames'
   std::vector<SurfacePoint> points;   // one per pixel
   std::vector<std::uint32_t> outline; // the pixels the mesh covers in part
+  // Where kept, the flat normal at each of a pixel's samples, each that of the triangle covering
+  // it: kMaxSamples a point, `samples` of them read. Apart from the points, which every fit scans.
+  std::vector<glm::vec3> sample_flat_normals;
+  int samples = 0;
 
-  std::size_t bytes() const { return pixels.size() * 4 + points.size() * sizeof(SurfacePoint) + outline.size() * 4; }
+  // Point i's flat normal sample by sample; empty where none are kept.
+  std::span<const glm::vec3> samples_of(std::size_t i) const {
+    if (samples == 0) return {};
+    return {sample_flat_normals.data() + i * kMaxSamples, static_cast<std::size_t>(samples)};
+  }
+  std::size_t bytes() const {
+    return pixels.size() * 4 + points.size() * sizeof(SurfacePoint) + outline.size() * 4 + sample_flat_normals.size() * sizeof(glm::vec3);
+  }
 };
 
 // A surface's pixels and positions from the position render (RGBA32F)...
