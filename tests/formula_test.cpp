@@ -21,6 +21,7 @@
 #include "grade/formula_geometry.h"
 #include "image/encode.h"
 #include "model/fit.h"
+#include "render/sample_positions.h"
 #include "support/http_fixture.h"
 #include "support/test_support.h"
 
@@ -52,10 +53,11 @@ std::optional<glm::vec3> sphere_at(float x, float y, float margin) {
 glm::vec3 facet(const glm::vec3& n) { return glm::normalize(glm::round(n * 6.0f) / 6.0f); }
 
 model::FrameSurface sphere() {
-  constexpr float kSamples[4][2] = {{0.375f, 0.125f}, {0.875f, 0.375f}, {0.125f, 0.625f}, {0.625f, 0.875f}};
+  // The 4x pattern (its rows here top-down: the sphere needs only samples apart in the pixel).
+  const auto samples = render::standard_sample_positions(model::kMaxSamples);
   model::FrameSurface s;
   s.width = s.height = kSize;
-  s.samples = 4;
+  s.samples = model::kMaxSamples;
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
       const auto p = sphere_at(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, 0.05f);
@@ -63,10 +65,10 @@ model::FrameSurface sphere() {
       const glm::vec3 n = (*p - kCentre) / kRadius;
       const float shorter = 0.9f + 0.1f * std::abs(std::sin(0.4f * static_cast<float>(x)) * std::sin(0.4f * static_cast<float>(y)));
       model::SurfacePoint point{*p, n * shorter, glm::vec3(0)};
-      for (int k = 0; k < model::kMaxSamples; ++k) {
-        const auto at = sphere_at(static_cast<float>(x) + kSamples[k][0], static_cast<float>(y) + kSamples[k][1], 0);
+      for (const auto& [sx, sy] : samples) {
+        const auto at = sphere_at(static_cast<float>(x + sx), static_cast<float>(y + sy), 0);
         s.sample_flat_normals.push_back(facet(at ? (*at - kCentre) / kRadius : n));
-        point.flat_normal += s.sample_flat_normals.back() / 4.0f;
+        point.flat_normal += s.sample_flat_normals.back() / static_cast<float>(samples.size());
       }
       // The normal's colour, interpolated between unit colours at the vertices: shorter between them too.
       point.colour = glm::abs(n) * shorter;
