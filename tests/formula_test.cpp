@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <future>
@@ -18,6 +19,7 @@
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "grade/edge_placement.h"
 #include "grade/formula_geometry.h"
 #include "image/encode.h"
 #include "model/fit.h"
@@ -168,6 +170,22 @@ TEST(FormulaModelTest, EveryNormalColourVariantIsFoundOnTheFramesItDraws) {
 // A flat-shaded pixel where a facet's edge crosses it is the mean of its samples' shades: with a
 // sharp highlight, the shade of their averaged normal is another colour. The fit finds flat normals
 // from the samples; the same frames read with the averaged normal alone are not reproduced.
+// A flat colour's error grows with the distance its edges move: three reads of a V find its point
+// wherever it lies within the reach, and say the nearer side where it lies beyond.
+TEST(EdgePlacementTest, AVsPointIsFoundFromThreeReads) {
+  constexpr double reach = 0.012;
+  const auto v = [](double point, double slope, double floor) { return [=](double d) { return floor + slope * std::abs(d - point); }; };
+  for (const double point : {-0.012, -0.007, -0.001, 0.0, 0.004, 0.0115}) {
+    const auto e = v(point, 3e5, 40);
+    EXPECT_NEAR(grade::v_point(e(-reach), e(0), e(reach), reach), point, 1e-9) << point;
+  }
+  const auto beyond = v(0.03, 3e5, 40);
+  EXPECT_DOUBLE_EQ(grade::v_point(beyond(-reach), beyond(0), beyond(reach), reach), reach);
+  // No V (the middle highest): the lower side; all alike: where the outlines put it.
+  EXPECT_DOUBLE_EQ(grade::v_point(5, 9, 7, reach), -reach);
+  EXPECT_DOUBLE_EQ(grade::v_point(4, 4, 4, reach), 0.0);
+}
+
 TEST(FormulaModelTest, AFlatHighlightIsTheMeanOfItsSamplesShades) {
   auto sharp = course_values();
   sharp.exponent = 24.0f;
@@ -335,8 +353,9 @@ class FormulaGradeTest : public ::testing::Test {
   }
   // The frames a student's page saves of the edited shaders (drawn `lags` degrees behind each
   // frame's angle, as a 60 Hz page draws them), handed in alone and graded: the frames' report.
+  static constexpr std::array<double, 9> kPageLags = {0, 0.12, 0.21, 0.05, 0.3, 0.17, 0.26, 0.09, 0.23};
   static json grade_saved(const std::string& checkpoint, const std::vector<Edit>& edits,
-                          const std::vector<double>& lags = {0, 0.12, 0.21, 0.05, 0.3, 0.17, 0.26, 0.09, 0.23}) {
+                          const std::vector<double>& lags = {kPageLags.begin(), kPageLags.end()}) {
     const auto p = edited(checkpoint, edits);
     render::RenderRequest request = testkit::preset_request(checkpoint);
     request.vertex = p.vertex;
@@ -359,6 +378,12 @@ class FormulaGradeTest : public ::testing::Test {
       return json::object();
     }
     return json::parse(r->body)["frames"];
+  }
+  // Each frame's lag as the grade describes it, within `within` degrees of the page's.
+  static void expect_lags(const json& r, double within) {
+    ASSERT_EQ(r["frames"].size(), kPageLags.size()) << r.dump().substr(0, 600);
+    for (std::size_t k = 0; k < kPageLags.size(); ++k)
+      EXPECT_NEAR(r["frames"][k]["lagDegrees"].get<double>(), kPageLags[k], within) << "frame " << k << ": " << r["explanation"].dump();
   }
   // Several grades at once: the server's two workers share them.
   static std::vector<json> grade_all(const std::string& checkpoint, const std::vector<std::vector<Edit>>& cases) {
@@ -610,6 +635,8 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
     const json r = grade_saved(checkpoint, c.edits);
     expect_explained(r, c);
     EXPECT_GT(r["graderWork"]["rendered"].get<int>(), 0);  // the geometry at the frames' own angles
+    // Described at the angles their outlines fit, not where the reference's shading fits best.
+    expect_lags(r, 0.02);
   }
   // Noise is not explained, and frames that are right have nothing to explain.
   const json noise = grade_saved("specular", {{"fragColor = color;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);"}});
@@ -620,14 +647,15 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
   ASSERT_TRUE(one.contains("explanation")) << one.dump().substr(0, 600);
   EXPECT_EQ(one["explanation"]["label"], "one colour") << one["explanation"].dump();
   // A flat colour changes at every triangle's edge: the outlines fit a frame's angle to about a
-  // hundredth of a degree, and 0.012 degrees moves its edges by enough to leave 1.1% of a frame
-  // off. At the page's lags the formula's reading just misses, and the catalogue's render of the
-  // mistake says it; drawn at exactly each frame's angle (a page on a fixed clock), the outlines
-  // fit there and the formula reads it.
+  // hundredth of a degree, which moves its edges by enough to leave more than the rule's share off.
+  // The edges place each frame (grade/edge_placement.h): at the page's lags the formula reads it,
+  // the catalogue's mistake is recognised by that reading (no render of its own), and the frames
+  // are described at the angles read, within a few thousandths of a degree of the page's.
   const std::vector<Edit> flat_colour = {{"out vec4 vColor;", "flat out vec4 vColor;", true}, {"in vec4 vColor;", "flat in vec4 vColor;"}};
   const json flat = grade_saved("normals", flat_colour);
-  EXPECT_FALSE(flat["pass"]);
+  expect_explained(flat, {"a flat colour at the page's lags", flat_colour, "flat_colour"});
   EXPECT_EQ(flat["diagnosis"], "flat_shading") << flat.dump().substr(0, 800);
+  expect_lags(flat, 0.006);
   expect_explained(grade_saved("normals", flat_colour, std::vector<double>(9, 0.0)), {"a flat colour, no lag", flat_colour, "flat_colour"});
   const json right = grade_saved("specular", {});
   EXPECT_TRUE(right["pass"]) << right["messages"];

@@ -276,7 +276,7 @@ std::vector<model::Light> formula_lights(const FormulaSpec& f, const std::vector
   return lights;
 }
 
-Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& options) {
+FormulaRead explain_with_formula(const FormulaEvidence& e, const GradeOptions& options) {
   const FormulaSpec& f = *e.formula;
   model::FitOptions o;
   o.terms = f.terms;
@@ -308,7 +308,7 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
                                      percent(options.max_failing_fraction) + " a frame may differ.",
                                  regions());
     out.label = "frames too small to read";
-    return out;
+    return {out, {}};
   }
   const bool lit = f.terms != model::Terms::normal_colour;
   if (const auto colour = one_colour(frames, o.threshold); colour && (!lit || !near(*colour, o.course.colours.ambient))) {
@@ -316,27 +316,39 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
                (lit ? "no term that depends on the light shows, so the grader cannot say which part of the formula is missing."
                     : "the homework's colour follows the normal, normalize(abs(N)), and changes across the surface.");
     out.label = "one colour";
-    return out;
+    return {out, {}};
   }
   std::vector<model::Fit> candidates = model::sample_fits(frames, o);
   std::vector<Reading> readings = reproducing_readings(candidates, frames, o, lights.front(), f);
   const auto one_change = [&] { return std::any_of(readings.begin(), readings.end(), [](const Reading& r) { return r.count == 1; }); };
+  // One variant read again on other geometry, every frame moved to it (the averaged set may leave
+  // the worker's memory as the other comes in): its readings join the rest.
+  const auto read_again_on = [&](const std::vector<model::FrameSurface>& on, model::Variant only, std::vector<model::Fit>& fits) {
+    geometry = &on;
+    for (std::size_t i = 0; i < frames.size(); ++i) frames[i].surface = &on[i % n];
+    model::FitOptions one = o;
+    one.only = only;
+    fits = model::sample_fits(frames, one);
+    auto more = reproducing_readings(fits, frames, one, lights.front(), f);
+    readings.insert(readings.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+    std::stable_sort(readings.begin(), readings.end(), before);
+  };
   // Flat normals shade a pixel's samples apart, and its highlight is the mean of their shades: read
   // on each sample's flat normal, four renders more, fetched only when no one change of the
-  // averaged geometry explains the frames. Every frame moves to that geometry (the averaged set may
-  // leave the worker's memory as it comes in).
+  // averaged geometry explains the frames.
   std::vector<model::Fit> flat;
   if (!one_change() && e.sampled)
-    if (const auto* sampled = e.sampled(); sampled && sampled->size() == n) {
-      geometry = sampled;
-      for (std::size_t i = 0; i < frames.size(); ++i) frames[i].surface = &(*sampled)[i % n];
-      model::FitOptions flat_options = o;
-      flat_options.only = model::Variant::flat_normal;
-      flat = model::sample_fits(frames, flat_options);
-      auto more = reproducing_readings(flat, frames, flat_options, lights.front(), f);
-      readings.insert(readings.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
-      std::stable_sort(readings.begin(), readings.end(), before);
-    }
+    if (const auto* sampled = e.sampled(); sampled && sampled->size() == n) read_again_on(*sampled, model::Variant::flat_normal, flat);
+  // A flat colour in saved frames, close but off by more than the rule allows: read again with
+  // each frame's angle placed by the triangles' edges, three renders of the flat colour.
+  std::optional<EdgePlacement> placed;
+  std::vector<model::Fit> placed_fits;
+  if (!one_change() && e.moved_flat_colour)
+    if (const auto close = std::find_if(candidates.begin(), candidates.end(), [&](const model::Fit& c) {
+          return c.variant == model::Variant::flat_colour && !c.reproduces && model::worth_checking(c, frames);
+        });
+        close != candidates.end())
+      if ((placed = placed_by_edges(*close, frames, n, o, e.moved_flat_colour))) read_again_on(placed->surfaces, model::Variant::flat_colour, placed_fits);
   // A light the student moved (written into the shader) is looked for only when no single change
   // of the rest explains the frames: its search costs more than every variant's together. The
   // normal's colour has no light.
@@ -356,7 +368,7 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
                                  "frames (the closest leaves " + percent(closest.worst_failing, 1) + " of a frame's pixels off).",
                                  regions());
     out.label = "not explained";
-    return out;
+    return {out, {}};
   }
   const Reading& best = readings.front();
   out.explained = true;
@@ -371,7 +383,8 @@ Explanation explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
       out.also_fits.push_back(std::string(model::info(readings[i].fit->variant).id));
       out.text += " It fits as well: " + joined(readings[i].changes) + ".";
     }
-  return out;
+  const bool on_placed = placed && !placed_fits.empty() && best.fit >= placed_fits.data() && best.fit < placed_fits.data() + placed_fits.size();
+  return {out, on_placed ? placed->offsets : std::vector<double>{}};
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <vector>
 
+#include "grade/edge_placement.h"
 #include "grade/grade_spec.h"
 #include "grade/report.h"
 #include "model/fit.h"
@@ -26,9 +27,19 @@ struct FormulaEvidence {
   // no one change explains the frames on `surfaces`: flat shading's highlights are read on it. None
   // where the formula has no such geometry.
   std::function<const std::vector<model::FrameSurface>*()> sampled;
+  // Saved frames only: the flat colour drawn again at angles moved from the outlines' fit, which
+  // misses a flat colour's edges by more than the rule allows (grade/edge_placement.h). Called only
+  // where the flat colour is close and does not reproduce the frames; none for code, drawn at exact angles.
+  MovedFlatColour moved_flat_colour;
 };
 
-Explanation explain_with_formula(const FormulaEvidence& evidence, const GradeOptions& options);
+// What the formula read, and where: each angle's move in degrees where the reading is of frames
+// placed by their edges (grade/edge_placement.h), empty where it is of the angles given.
+struct FormulaRead {
+  Explanation explanation;
+  std::vector<double> angle_moves;
+};
+FormulaRead explain_with_formula(const FormulaEvidence& evidence, const GradeOptions& options);
 
 // Whether an explanation is `reading`: it explains, by the reading's variant (or by one that fits
 // as well, where the reading changes no value), with the same values changed, each within what the

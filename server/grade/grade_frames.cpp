@@ -218,7 +218,7 @@ void say_if_another_shape(Report& r, const SharedFrames& frames, const SharedFra
 
 }  // namespace
 
-std::optional<Explanation> GradeSession::saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options,
+std::optional<GradeSession::SavedFramesReading> GradeSession::saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options,
                                                                   const render::RenderRequest& grid_request,
                                                                   const scene::Mesh& mesh, const std::string& mesh_key, const SharedFrames& saved,
                                                                   const SharedFrames& grid_frames, const LagGrid& grid) {
@@ -229,16 +229,37 @@ std::optional<Explanation> GradeSession::saved_frames_explanation(const GradeSpe
   // the geometry rendered there (one render more than the grid's frames at their nearest step):
   // shading that changes sharply with the angle (flat normals, an exponent under 1) moves by more
   // than the threshold in the twentieth of a degree between them.
+  std::vector<LagFit> fits = fit_outline_lags(images, grid_frames, grid);
   render::RenderRequest at = grid_request;
-  at.angles = fitted_angles(fit_outline_lags(images, grid_frames, grid), grid);
+  at.angles = fitted_angles(fits, grid);
   at.frames = static_cast<int>(at.angles.size());
   auto reference = at_angles(grid_request, mesh, at.angles);
   if (!reference) return std::nullopt;
   const auto* geometry = surfaces(*spec.formula, at, mesh, mesh_key, GeometryKept::in_memory);
   if (!geometry) return std::nullopt;
-  return explain_with_formula(
-      {&*spec.formula, at.uniforms, {}, geometry, &saved, &*reference, sampled_surfaces(*spec.formula, at, mesh, mesh_key, GeometryKept::in_memory)},
-      options);
+  FormulaRead read = explain_with_formula({&*spec.formula, at.uniforms, {}, geometry, &saved, &*reference,
+                                           sampled_surfaces(*spec.formula, at, mesh, mesh_key, GeometryKept::in_memory),
+                                           moved_flat_colour(*spec.formula, at, mesh)},
+                                          options);
+  // A page draws at or behind a frame's angle: an edge's move past it (frame 0's, by a few ten-
+  // thousandths of a degree) is the placement's scatter.
+  for (std::size_t k = 0; k < fits.size() && k < at.angles.size(); ++k)
+    fits[k].lag_degrees = std::max(0.0, grid.nominal(fits[k].frame) - at.angles[k] - (k < read.angle_moves.size() ? read.angle_moves[k] : 0.0));
+  return SavedFramesReading{std::move(read.explanation), std::move(fits)};
+}
+
+MovedFlatColour GradeSession::moved_flat_colour(const FormulaSpec& formula, const render::RenderRequest& at, const scene::Mesh& mesh) {
+  auto requests = geometry_requests(formula, at);
+  if (!requests) return {};
+  const auto flat = std::find_if(requests->begin(), requests->end(), [](const GeometryRender& g) { return g.quantity == model::Quantity::flat_colour; });
+  if (flat == requests->end()) return {};
+  return [this, request = flat->request, &mesh](const std::vector<double>& offsets) -> Expected<SharedFrames> {
+    render::RenderRequest moved = request;
+    for (std::size_t k = 0; k < moved.angles.size() && k < offsets.size(); ++k) moved.angles[k] += offsets[k];
+    auto frames = frames_of(moved, mesh);
+    if (frames) ++work_.rendered;
+    return frames;
+  };
 }
 
 Expected<SharedFrames> GradeSession::at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles) {
@@ -332,8 +353,13 @@ Expected<FramesGradeOutput> GradeSession::grade_frames(const GradeSpec& spec, co
     // The formula first (a known mistake it reads needs no render), for frames of the mesh's
     // shape in their own order: it reads shading, not rotations or outlines.
     const bool in_order = std::none_of(fits.begin(), fits.end(), [](const LagFit& f) { return f.looks_like.has_value(); });
+    // Frames the formula reads are described at the angles it read them at: the reference's fit
+    // follows their shading, which is not the reference's.
     if (in_order && worst_outline_overlap(*frames, *reference) >= options.same_outline)
-      explanation = saved_frames_explanation(spec, options, ref, **mesh, mesh_key, *frames, *grid_frames, grid);
+      if (auto read = saved_frames_explanation(spec, options, ref, **mesh, mesh_key, *frames, *grid_frames, grid)) {
+        if (read->explanation.explained) diagnosed_fits = std::move(read->fits);
+        explanation = std::move(read->explanation);
+      }
     const CatalogueWork catalogue = catalogue_work(spec.mistakes, explanation);
     const auto recognised = recognised_mistake(catalogue);
     MistakesAtLags mistakes = mistakes_at_lags(catalogue.to_render, ref, **mesh, mesh_key, saved_images, fits, grid);

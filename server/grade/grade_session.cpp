@@ -179,7 +179,8 @@ std::optional<Explanation> GradeSession::formula_explanation(const GradeSpec& sp
   if (!geometry) return std::nullopt;
   return explain_with_formula({&*spec.formula, reference.uniforms, spec.probes, geometry, &student, &reference_frames,
                                sampled_surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references)},
-                              spec.options);
+                              spec.options)
+      .explanation;
 }
 
 // `base` under the homework's light, then under each probe light.

@@ -12,6 +12,7 @@
 
 #include "core/expected.h"
 #include "core/job_phase.h"
+#include "grade/edge_placement.h"
 #include "grade/formula_geometry.h"
 #include "grade/grade_spec.h"
 #include "grade/lag_fit.h"
@@ -115,6 +116,9 @@ class GradeSession {
   // The evidence's way to the geometry with each sample's flat normal, where the formula has any.
   std::function<const std::vector<model::FrameSurface>*()> sampled_surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
                                                                            const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept);
+  // Saved frames' flat colour drawn again at moved angles (grade/edge_placement.h), where the
+  // formula has one; each render counted as the grader's work.
+  MovedFlatColour moved_flat_colour(const FormulaSpec& formula, const render::RenderRequest& at, const scene::Mesh& mesh);
   // A failing submission's frames read by the checkpoint's formula (grade/formula_explanation.h),
   // on the geometry of `reference` (rendered once per course, kept as references are); none when
   // the spec has no formula or the geometry does not render.
@@ -123,7 +127,12 @@ class GradeSession {
   // Failing saved frames read by the formula: on the geometry at the angles their outlines fit
   // (grade/lag_fit.h's fit_outline_lags: shading of another kind misleads the reference's fit),
   // against the reference rendered at the same angles, under the saved frames' `options`.
-  std::optional<Explanation> saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options, const render::RenderRequest& grid_request,
+  struct SavedFramesReading {
+    Explanation explanation;
+    // The angles it read the frames at: their outlines' fit, moved where placed by their edges.
+    std::vector<LagFit> fits;
+  };
+  std::optional<SavedFramesReading> saved_frames_explanation(const GradeSpec& spec, const GradeOptions& options, const render::RenderRequest& grid_request,
                                                       const scene::Mesh& mesh, const std::string& mesh_key, const SharedFrames& saved,
                                                       const SharedFrames& grid_frames, const LagGrid& grid);
 

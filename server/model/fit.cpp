@@ -253,6 +253,16 @@ double failing_share(Variant v, const Parameters& p, const DrawnFrame& frame, co
   return static_cast<double>(failing) / static_cast<double>(s.points.size());
 }
 
+double squared_error(Variant v, const Parameters& p, const DrawnFrame& frame, const FitOptions& o) {
+  const auto& s = *frame.surface;
+  double sum = 0;
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const glm::vec3 d = as_canvas_stores(shade(v, p, o.terms, s.points[i], frame.light, s.samples_of(i))) - drawn_colour(*frame.drawn, s.pixels[i]);
+    sum += static_cast<double>(glm::dot(d, d));
+  }
+  return sum;
+}
+
 namespace {
 
 double most_allowed(const std::vector<DrawnFrame>& frames) {

@@ -99,6 +99,11 @@ Fit fit_light_position(const std::vector<DrawnFrame>& frames, const FitOptions& 
 // the threshold.
 double failing_share(Variant variant, const Parameters& parameters, const DrawnFrame& frame, const FitOptions& options);
 
+// The sum over `frame`'s interior pixels of the squared difference, over the three channels, of
+// what `variant` with `parameters` draws (as the canvas stores it) and what the student drew: a
+// measure that moves by every pixel's share, where failing_share moves only past the threshold.
+double squared_error(Variant variant, const Parameters& parameters, const DrawnFrame& frame, const FitOptions& options);
+
 // A colour and alpha as the canvas stores them: clamped to 8 bits, then (as
 // image/canvas_readback.h) the colour divided by an alpha under 1.
 glm::vec3 as_canvas_stores(const glm::vec4& colour);
