@@ -168,11 +168,12 @@ failing = [written[k] for k in (0, 12, 16, 29)]  # light as a direction, ambient
 catalogued = [written[k] for k in (14, 17)]  # specular missing, exponent 0.6: the catalogue's, read by the formula
 normals = [written[k] for k in (31, 35)]  # abs() missing (the catalogue's), red and blue swapped
 flat_normals = written[6]  # specular flat normals (the catalogue's): read on each sample's flat normal, fetched for it
+flat_colour = written[[c[0] for c in cases].index("flat colour")]  # the normals' (the catalogue's): saved frames placed by their edges
 passing = write(99, "specular", [])
 passing_saved = saved_frames(99, passing, "specular")
 samples = {k: [] for k in ("with", "without", "catalogued with", "catalogued without", "normals with", "normals without", "flat with", "flat without",
                            "passing with", "passing without", "saved with", "saved without", "saved flat with", "saved flat without",
-                           "saved passing with", "saved passing without", "render")}
+                           "saved passing with", "saved passing without", "saved normals with", "saved normals without", "saved flat colour with", "saved flat colour without", "render")}
 for rep in range(repeats):
     order = [("with", None), ("without", no_formula)] if rep % 2 == 0 else [("without", no_formula), ("with", None)]
     for label, course in order:
@@ -181,10 +182,12 @@ for rep in range(repeats):
             samples["saved " + label].append(grade_saved(folder, checkpoint, course)[0])
         for paths, checkpoint, _ in catalogued:
             samples["catalogued " + label].append(grade(paths, checkpoint, course)[0])
-        for paths, checkpoint, _ in normals:
+        for paths, checkpoint, folder in normals:
             samples["normals " + label].append(grade(paths, checkpoint, course)[0])
+            samples["saved normals " + label].append(grade_saved(folder, checkpoint, course)[0])
         samples["flat " + label].append(grade(flat_normals[0], flat_normals[1], course)[0])
         samples["saved flat " + label].append(grade_saved(flat_normals[2], flat_normals[1], course)[0])
+        samples["saved flat colour " + label].append(grade_saved(flat_colour[2], flat_colour[1], course)[0])
         samples["passing " + label].append(grade(passing, "specular", course)[0])
         samples["saved passing " + label].append(grade_saved(passing_saved, "specular", course)[0])
     start = time.monotonic()
@@ -197,7 +200,8 @@ for label, values in samples.items():
     print("| %s | %.2f | %.2f-%.2f |" % (label, statistics.median(values), min(values), max(values)))
 m = lambda k: statistics.median(samples[k])
 print("explaining a failing grade costs %.2f s (median; a catalogued mistake the formula reads %.2f s; the normals' %.2f s; specular flat normals %.2f s), "
-      "failing saved frames %.2f s (flat normals %.2f s); one render of the job %.2f s" % (
+      "failing saved frames %.2f s (flat normals %.2f s; the normals' %.2f s, their flat colour %.2f s); one render of the job %.2f s" % (
           m("with") - m("without"), m("catalogued with") - m("catalogued without"), m("normals with") - m("normals without"),
-          m("flat with") - m("flat without"), m("saved with") - m("saved without"), m("saved flat with") - m("saved flat without"), m("render")))
+          m("flat with") - m("flat without"), m("saved with") - m("saved without"), m("saved flat with") - m("saved flat without"),
+          m("saved normals with") - m("saved normals without"), m("saved flat colour with") - m("saved flat colour without"), m("render")))
 PY

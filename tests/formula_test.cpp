@@ -545,9 +545,9 @@ TEST_F(FormulaGradeTest, TheCatalogueIsDiagnosedByItsReadings) {
     const auto* c = found->checkpoint;
     ASSERT_TRUE(c->formula);
     const int lights = 1 + static_cast<int>(c->probes.size());
-    // The geometry: the position and the normal, interpolated and flat; the normal's colour, both
-    // ways; a specular's flat normal at each of the 4 samples.
-    const int geometry = c->formula->terms == model::Terms::normal_colour ? 5 : c->formula->terms == model::Terms::phong ? 7 : 3;
+    // The geometry: the position and the normal as interpolated; a lit checkpoint's flat normal
+    // (a specular's also at each of the 4 samples); the normal's colour, interpolated and flat.
+    const int geometry = c->formula->terms == model::Terms::normal_colour ? 4 : c->formula->terms == model::Terms::phong ? 7 : 3;
     int unread = 0;
     for (const auto& m : c->mistakes) unread += !m.shaders.reading;
     std::vector<std::future<json>> pending;
@@ -650,12 +650,13 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
   // hundredth of a degree, which moves its edges by enough to leave more than the rule's share off.
   // The edges place each frame (grade/edge_placement.h): at the page's lags the formula reads it,
   // the catalogue's mistake is recognised by that reading (no render of its own), and the frames
-  // are described at the angles read, within a few thousandths of a degree of the page's.
+  // are described at the angles read: the frames placed within a few thousandths of a degree of
+  // the page's, the rest where their outlines fit (0.012 degrees off at worst here, unplaced).
   const std::vector<Edit> flat_colour = {{"out vec4 vColor;", "flat out vec4 vColor;", true}, {"in vec4 vColor;", "flat in vec4 vColor;"}};
   const json flat = grade_saved("normals", flat_colour);
   expect_explained(flat, {"a flat colour at the page's lags", flat_colour, "flat_colour"});
   EXPECT_EQ(flat["diagnosis"], "flat_shading") << flat.dump().substr(0, 800);
-  expect_lags(flat, 0.006);
+  expect_lags(flat, 0.01);
   expect_explained(grade_saved("normals", flat_colour, std::vector<double>(9, 0.0)), {"a flat colour, no lag", flat_colour, "flat_colour"});
   const json right = grade_saved("specular", {});
   EXPECT_TRUE(right["pass"]) << right["messages"];

@@ -6,8 +6,9 @@
 // themselves tell the angle more closely: the flat colour's squared error grows with the distance
 // they move from where the student's frame has them (each sample an edge crosses is one step of
 // it), a V in the angle's offset with its point at the frame's own angle. Read at the fitted angle
-// and `kEdgeReach` either side (two renders of the flat colour), the V's point is where its sides
-// meet; a third render there is the geometry the formula reads the frames on.
+// and `kEdgeReach` either side (one render of the flat colour), the V's point is where its sides
+// meet; a second render there is the geometry the formula reads the frames on. Only the frames
+// the outlines' angles leave near or past the rule are placed: the renders are of them alone.
 #include <functional>
 #include <optional>
 #include <vector>
@@ -23,17 +24,18 @@ namespace shadelab::grade {
 // step with the distance (0.012 degrees moves the bunny's edges by 0.04 of a pixel at 512 x 512).
 inline constexpr double kEdgeReach = 0.012;
 
-// The geometry's flat colour (model::Quantity::flat_colour) rendered with each frame's angle moved
-// by its offset in degrees: one render of the frames.
-using MovedFlatColour = std::function<Expected<SharedFrames>(const std::vector<double>& offsets)>;
+// The geometry's flat colour (model::Quantity::flat_colour) rendered at angle `angle[i]` of the
+// frames moved by `offset[i]` degrees, for each i: one render, a frame each.
+using MovedFlatColour = std::function<Expected<SharedFrames>(const std::vector<std::size_t>& angle, const std::vector<double>& offset)>;
 
 struct EdgePlacement {
-  std::vector<double> offsets;                // each angle's, in degrees
+  std::vector<double> offsets;                // each angle's, in degrees (0 where it was not placed)
   std::vector<model::FrameSurface> surfaces;  // the geometry with the flat colour there, one per angle
 };
 
 // The angles of `frames` (light after light, `angles` frames a light, each on its angle's surface)
-// placed by the edges of what `fit` draws; none where a render fails.
+// at which `fit` draws some frame off on more than half the share it allows, placed by the edges
+// of what it draws; none where there is none or a render fails.
 std::optional<EdgePlacement> placed_by_edges(const model::Fit& fit, const std::vector<model::DrawnFrame>& frames, std::size_t angles,
                                              const model::FitOptions& options, const MovedFlatColour& moved);
 

@@ -340,7 +340,7 @@ FormulaRead explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
   if (!one_change() && e.sampled)
     if (const auto* sampled = e.sampled(); sampled && sampled->size() == n) read_again_on(*sampled, model::Variant::flat_normal, flat);
   // A flat colour in saved frames, close but off by more than the rule allows: read again with
-  // each frame's angle placed by the triangles' edges, three renders of the flat colour.
+  // the angles of the frames it leaves off placed by the triangles' edges, two renders of them.
   std::optional<EdgePlacement> placed;
   std::vector<model::Fit> placed_fits;
   if (!one_change() && e.moved_flat_colour)

@@ -62,7 +62,8 @@ Expected<std::vector<GeometryRender>> geometry_requests(const FormulaSpec& formu
   base.uniforms.clear();  // the geometry reads no colour, and one key serves every submission's values
   std::vector<GeometryRender> out = {{writing(base, text, formula.position_varying, "vec3"), model::Quantity::position},
                                      {writing(base, text, formula.normal_varying, "vec3"), model::Quantity::normal}};
-  out.push_back({as_flat(base, text, formula.normal_varying, "vec3"), model::Quantity::flat_normal});
+  // The normal's colour reads no flat normal: its flat variant is the flat colour's own render.
+  if (formula.terms != model::Terms::normal_colour) out.push_back({as_flat(base, text, formula.normal_varying, "vec3"), model::Quantity::flat_normal});
   if (samples == SampleGeometry::each_sample && has_sample_geometry(formula, reference)) {
     const auto positions = render::standard_sample_positions(reference.msaa);
     for (std::size_t i = 0; i < positions.size() && i < static_cast<std::size_t>(model::kMaxSamples); ++i) {

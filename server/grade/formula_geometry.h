@@ -1,11 +1,11 @@
 #pragma once
 // The geometry the formula (model/lighting.h) is evaluated on, rendered as the reference is: a
 // vertex shader of the course's with a fragment shader that writes, to a float target, the
-// eye-space position, the normal as interpolated, the normal as a `flat` varying receives it, and
-// for a normal-colour checkpoint the colour the reference's vertex shader computes (model/surface.h
-// reads them), and for a specular one, where it is asked for, the flat normal sample by sample. A
-// few renders per set of angles, kept with the references (memory, disk, Redis) like any
-// reference render: one course's geometry is rendered once.
+// eye-space position, the normal as interpolated, for a lit checkpoint the normal as a `flat`
+// varying receives it, and for a normal-colour checkpoint the colour the reference's vertex shader
+// computes, interpolated and flat (model/surface.h reads them), and for a specular one, where it
+// is asked for, the flat normal sample by sample. A few renders per set of angles, kept with the
+// references (memory, disk, Redis) like any reference render: one course's geometry is rendered once.
 #include <optional>
 #include <string>
 #include <vector>

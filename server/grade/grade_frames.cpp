@@ -253,9 +253,12 @@ MovedFlatColour GradeSession::moved_flat_colour(const FormulaSpec& formula, cons
   if (!requests) return {};
   const auto flat = std::find_if(requests->begin(), requests->end(), [](const GeometryRender& g) { return g.quantity == model::Quantity::flat_colour; });
   if (flat == requests->end()) return {};
-  return [this, request = flat->request, &mesh](const std::vector<double>& offsets) -> Expected<SharedFrames> {
+  return [this, request = flat->request, &mesh](const std::vector<std::size_t>& angle, const std::vector<double>& offset) -> Expected<SharedFrames> {
     render::RenderRequest moved = request;
-    for (std::size_t k = 0; k < moved.angles.size() && k < offsets.size(); ++k) moved.angles[k] += offsets[k];
+    moved.angles.clear();
+    for (std::size_t i = 0; i < angle.size() && i < offset.size(); ++i)
+      if (angle[i] < request.angles.size()) moved.angles.push_back(request.angles[angle[i]] + offset[i]);
+    moved.frames = static_cast<int>(moved.angles.size());
     auto frames = frames_of(moved, mesh);
     if (frames) ++work_.rendered;
     return frames;
