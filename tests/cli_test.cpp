@@ -119,6 +119,27 @@ TEST_F(CliTest, InfoNamesTheRenderer) {
   EXPECT_NE(run.output.find("OpenGL ES 3"), std::string::npos);
 }
 
+// A worker that dies before it is ready (server/worker/fault_injection.h's start phase): the
+// command fails with not_ready, saying how the worker ended, which the operator needs to tell a
+// crash from a kill (the out-of-memory killer) or an exit.
+TEST_F(CliTest, AWorkerThatDiesStartingSaysHowItEnded) {
+  const std::string shaders = std::string(SHADELAB_SOURCE_DIR) + "/shaders/";
+  const std::vector<std::pair<std::string, std::string>> faults = {
+      {"crash", "signal Segmentation fault"}, {"kill", "signal Killed"}, {"truncate", "exit status 3"}};
+  for (const auto& [action, how] : faults) {
+    const auto run = shadelab::testkit::run_command("SHADELAB_FAULT_INJECTION=" + path("faults.log") + " SHADELAB_FAULT_AT_START=" + action +
+                                                    " " + SHADELAB_CLI + " grade --vert " + shaders + "specular_vert.js --frag " + shaders +
+                                                    "specular_frag.js --reference specular");
+    EXPECT_EQ(run.status, 1) << action << ": " << run.output;
+    EXPECT_NE(run.output.find("a render worker could not start: it exited while starting (" + how + ") [not_ready]"), std::string::npos)
+        << action << ": " << run.output;
+  }
+  // Without the fault-injection log the variable is ignored: nothing a deployment sets by mistake.
+  const auto run = shadelab::testkit::run_command("SHADELAB_FAULT_AT_START=crash " + std::string(SHADELAB_CLI) + " grade --vert " + shaders +
+                                                  "specular_vert.js --frag " + shaders + "specular_frag.js --reference specular");
+  EXPECT_EQ(run.status, 0) << run.output;
+}
+
 TEST_F(CliTest, ExrOutputIsFloat) {
   const auto run = run_cli("render --preset smooth --size 32x24 --frames 1 --format exr --grid " + path("g.exr"));
   ASSERT_EQ(run.status, 0) << run.output;

@@ -28,6 +28,7 @@ std::string_view name_of(FaultPhase phase) {
     case FaultPhase::encode: return "encode";
     case FaultPhase::mesh: return "mesh";
     case FaultPhase::grader: return "grader";
+    case FaultPhase::start: return "start";
   }
   return "?";
 }
@@ -70,6 +71,12 @@ FaultPlan fault_plan(std::string_view text) {
   for (auto p : {FaultPhase::compile, FaultPhase::render, FaultPhase::readback, FaultPhase::encode, FaultPhase::mesh, FaultPhase::grader})
     if (name_of(p) == phase) return plan.phase = p, plan;
   return {};
+}
+
+FaultPlan start_fault_plan() {
+  const char* action = std::getenv("SHADELAB_FAULT_AT_START");
+  if (!log_path() || !action || !*action) return {};
+  return {true, FaultPhase::start, action};
 }
 
 void inject_fault(const FaultPlan& plan, FaultPhase phase, int socket) {

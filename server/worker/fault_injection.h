@@ -16,6 +16,8 @@
 // | encode   | every frame rendered, the output not yet encoded                       |
 // | mesh     | an uploaded mesh's bytes received, not yet parsed (its check job)      |
 // | grader   | a grade's own work begun: its references not yet rendered              |
+// | start    | a worker started, its ready message not yet sent: named by the         |
+// |          | environment, SHADELAB_FAULT_AT_START=<action>, for every worker        |
 //
 // | action   | what the worker does                                                   |
 // |----------|------------------------------------------------------------------------|
@@ -35,7 +37,7 @@
 
 namespace shadelab::worker {
 
-enum class FaultPhase { compile, render, readback, encode, mesh, grader };
+enum class FaultPhase { compile, render, readback, encode, mesh, grader, start };
 
 struct FaultPlan {
   bool active = false;
@@ -46,6 +48,10 @@ struct FaultPlan {
 // The fault a job's fragment source (or a mesh file) asks for; inactive without
 // SHADELAB_FAULT_INJECTION.
 FaultPlan fault_plan(std::string_view text);
+
+// The fault every worker injects as it starts (SHADELAB_FAULT_AT_START); inactive without
+// SHADELAB_FAULT_INJECTION.
+FaultPlan start_fault_plan();
 
 // Injects the plan's fault if `phase` is its phase; `socket` is the worker's end of its socket.
 void inject_fault(const FaultPlan& plan, FaultPhase phase, int socket);

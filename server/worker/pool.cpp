@@ -198,6 +198,11 @@ struct WorkerPool::Slot {
     fd = -1;
   }
 
+  // A wait status in words: "exit status 3", "signal Segmentation fault".
+  static std::string how_it_ended(int status) {
+    return WIFSIGNALED(status) ? std::string("signal ") + ::strsignal(WTERMSIG(status)) : "exit status " + std::to_string(WEXITSTATUS(status));
+  }
+
   Status spawn() {
     int sv[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0)
@@ -221,7 +226,12 @@ struct WorkerPool::Slot {
     if (status != ReadStatus::ok || text_field(ready.header, "event") != "ready" || !flag_field(ready.header, "ok")) {
       std::string why = status == ReadStatus::timeout ? "it did not start in time" : "it exited while starting";
       if (status == ReadStatus::ok && ready.header.is_object() && ready.header.contains("error")) why = ready.header["error"].get<Error>().message;
-      reap(true);
+      // A worker that closed its socket before its ready message says how it ended, for the operator.
+      if (status == ReadStatus::closed) {
+        if (const auto ended = reap_after_close(std::chrono::milliseconds(200))) why += " (" + how_it_ended(*ended) + ")";
+      } else {
+        reap(true);
+      }
       return worker_error(ErrorCode::not_ready, "a render worker could not start: " + why);
     }
     {
@@ -238,8 +248,7 @@ struct WorkerPool::Slot {
     // Under a cgroup cap the kernel's OOM killer ends the worker with SIGKILL (we only send
     // SIGKILL after reaping, so a SIGKILL we did not send is the cap's).
     const bool cgroup_oom = cgroup_capped && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
-    std::string how = WIFSIGNALED(status) ? std::string("signal ") + ::strsignal(WTERMSIG(status))
-                                          : "exit status " + std::to_string(WEXITSTATUS(status));
+    std::string how = how_it_ended(status);
     if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) how = "its CPU time limit";
     if (phase == JobPhase::grader) {
       (over_memory || cgroup_oom ? pool.out_of_memory_ : pool.crashes_)++;

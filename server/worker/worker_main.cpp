@@ -385,6 +385,7 @@ int run_worker(int fd, const egl::ContextOptions& options, WarmUp warm_up) {
       return 1;
     }
   }
+  inject_fault(start_fault_plan(), FaultPhase::start, fd);  // inactive outside fault-injection runs
   if (!write_message(fd, {{{"event", "ready"}, {"ok", true}, {"renderer", info.gl_renderer}, {"version", info.gl_version},
                            {"software", info.software}}, {}}))
     return 1;
