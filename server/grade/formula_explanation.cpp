@@ -259,6 +259,46 @@ const model::Fit& closest_fit(std::vector<model::Fit>& candidates, const std::ve
   return *closest;
 }
 
+// The frames as the fit sees them, light after light, each allowed the rule's share plus what the
+// formula itself leaves off of the reference's frame there (the model's, not the student's); and
+// the worst of the latter.
+struct Framed {
+  std::vector<model::DrawnFrame> frames;
+  double worst_model_error = 0;
+};
+Framed drawn_frames(const FormulaEvidence& e, const std::vector<model::Light>& lights, const model::FitOptions& o, const GradeOptions& options) {
+  const std::vector<model::FrameSurface>& averaged = *e.surfaces;
+  const std::size_t n = averaged.size();
+  Framed out;
+  for (std::size_t l = 0; l < lights.size(); ++l)
+    for (std::size_t k = 0; k < n && l * n + k < e.student->size() && l * n + k < e.reference->size(); ++k) {
+      const model::DrawnFrame reference{&averaged[k], (*e.reference)[l * n + k].get(), lights[l]};
+      const double model_error = model::failing_share(model::Variant::formula, o.course, reference, o);
+      out.worst_model_error = std::max(out.worst_model_error, model_error);
+      out.frames.push_back({&averaged[k], (*e.student)[l * n + k].get(), lights[l], options.max_failing_fraction + model_error});
+    }
+  return out;
+}
+
+// The explanation the best reading gives (readings in the order offered), and those that fit as well.
+Explanation explained_by(const std::vector<Reading>& readings) {
+  const Reading& best = readings.front();
+  Explanation out;
+  out.explained = true;
+  out.variant = std::string(model::info(best.fit->variant).id);
+  out.parameters = best.parameters;
+  out.residual = best.fit->worst_failing;
+  for (const auto& l : best.labels) out.label += (out.label.empty() ? "" : " + ") + l;
+  out.text = "Your frames are the homework's formula with " + std::string(best.count == 1 ? "one change" : "two changes") + ": " +
+             joined(best.changes) + ". (This reproduces every frame but " + percent(best.fit->worst_failing, 1) + " of its pixels at most.)";
+  for (std::size_t i = 1; i < readings.size(); ++i)
+    if (as_well(readings[i], best)) {
+      out.also_fits.push_back(std::string(model::info(readings[i].fit->variant).id));
+      out.text += " It fits as well: " + joined(readings[i].changes) + ".";
+    }
+  return out;
+}
+
 }  // namespace
 
 model::Parameters course_parameters(const FormulaSpec& f, const std::vector<render::UniformSetting>& values) {
@@ -285,18 +325,10 @@ FormulaRead explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
   o.spatial_tolerance = options.compare.spatial_tolerance;
   const auto lights = formula_lights(f, e.values, e.probes);
   const std::vector<model::FrameSurface>* geometry = e.surfaces;
-  const std::vector<model::FrameSurface>& averaged = *geometry;
-  const std::size_t n = averaged.size();
-  std::vector<model::DrawnFrame> frames;
-  double worst_model_error = 0;
-  for (std::size_t l = 0; l < lights.size(); ++l)
-    for (std::size_t k = 0; k < n && l * n + k < e.student->size() && l * n + k < e.reference->size(); ++k) {
-      // What the formula itself leaves off of the reference's frame is the model's, not the student's.
-      const model::DrawnFrame reference{&averaged[k], (*e.reference)[l * n + k].get(), lights[l]};
-      const double model_error = model::failing_share(model::Variant::formula, o.course, reference, o);
-      worst_model_error = std::max(worst_model_error, model_error);
-      frames.push_back({&averaged[k], (*e.student)[l * n + k].get(), lights[l], options.max_failing_fraction + model_error});
-    }
+  const std::size_t n = geometry->size();
+  Framed framed = drawn_frames(e, lights, o, options);
+  std::vector<model::DrawnFrame>& frames = framed.frames;
+  const double worst_model_error = framed.worst_model_error;
 
   Explanation out;
   const auto regions = [&] { return difference_regions(*geometry, *e.student, *e.reference, lights.front(), o); };
@@ -371,20 +403,8 @@ FormulaRead explain_with_formula(const FormulaEvidence& e, const GradeOptions& o
     return {out, {}};
   }
   const Reading& best = readings.front();
-  out.explained = true;
-  out.variant = std::string(model::info(best.fit->variant).id);
-  out.parameters = best.parameters;
-  out.residual = best.fit->worst_failing;
-  for (const auto& l : best.labels) out.label += (out.label.empty() ? "" : " + ") + l;
-  out.text = "Your frames are the homework's formula with " + std::string(best.count == 1 ? "one change" : "two changes") + ": " +
-             joined(best.changes) + ". (This reproduces every frame but " + percent(best.fit->worst_failing, 1) + " of its pixels at most.)";
-  for (std::size_t i = 1; i < readings.size(); ++i)
-    if (as_well(readings[i], best)) {
-      out.also_fits.push_back(std::string(model::info(readings[i].fit->variant).id));
-      out.text += " It fits as well: " + joined(readings[i].changes) + ".";
-    }
   const bool on_placed = placed && !placed_fits.empty() && best.fit >= placed_fits.data() && best.fit < placed_fits.data() + placed_fits.size();
-  return {out, on_placed ? placed->offsets : std::vector<double>{}};
+  return {explained_by(readings), on_placed ? placed->offsets : std::vector<double>{}};
 }
 
 namespace {
