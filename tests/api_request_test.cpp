@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "http/api_request.h"
+#include "http/code_grade_request.h"
+#include "road/code_request.h"
 #include "course/course_reader.h"
 
 using namespace shadelab;
@@ -113,18 +115,27 @@ TEST(ApiRequestTest, AParsedJobSurvivesTheWorkerWire) {
   EXPECT_EQ(back->request.uniforms[0].values[1], 0.2);
 }
 
+// A grade's fields read over HTTP (parse_code_grade), made a job by the road (road::code_submission).
 TEST(ApiRequestTest, AGradeNamesACheckpointOrACustomReferenceAndItsTolerances) {
-  const auto grade = [](json fields) {
+  struct Built {
+    std::string result_format;
+    grade::GradeSpec spec;
+  };
+  const auto grade = [](json fields) -> Expected<Built> {
     fields["vertex"] = kVertex;
     fields["fragment"] = kFragment;
-    return http::parse_grade_job(*http::from_json_body(fields.dump()), http::Limits{}, course::builtin_course());
+    auto parsed = http::parse_code_grade(*http::from_json_body(fields.dump()), http::Limits{});
+    if (!parsed) return parsed.take_error();
+    auto built = road::code_submission(course::builtin_course(), std::move(parsed->request), course::Viewer{}, render::RenderLimits{});
+    if (!built) return built.take_error();
+    return Built{parsed->result_format, std::move(built->submission.spec)};
   };
   auto specular = grade({{"reference", "specular"}, {"threshold", 0.05}, {"format", "gradescope"}});
   ASSERT_TRUE(specular) << specular.error().message;
   EXPECT_EQ(specular->result_format, "gradescope");
-  EXPECT_EQ(specular->parsed.job.grade.reference_name, "specular");
-  EXPECT_FALSE(specular->parsed.job.grade.mistakes.empty());
-  EXPECT_EQ(specular->parsed.job.grade.options.compare.threshold, 0.05);
+  EXPECT_EQ(specular->spec.reference_name, "specular");
+  EXPECT_FALSE(specular->spec.mistakes.empty());
+  EXPECT_EQ(specular->spec.options.compare.threshold, 0.05);
   EXPECT_FALSE(grade(json::object()));
   EXPECT_FALSE(grade({{"reference", "specular"}, {"referenceVertex", kVertex}}));
   EXPECT_EQ(grade({{"reference", "shiny"}}).error().code, ErrorCode::unknown_preset);
@@ -136,6 +147,6 @@ TEST(ApiRequestTest, AGradeNamesACheckpointOrACustomReferenceAndItsTolerances) {
   EXPECT_EQ(grade({{"reference", "normals"}, {"spatialTolerance", "yes"}}).error().message, "'spatialTolerance' must be true or false");
   auto custom = grade({{"referenceVertex", kVertex}, {"referenceFragment", kFragment}});
   ASSERT_TRUE(custom) << custom.error().message;
-  EXPECT_EQ(custom->parsed.job.grade.reference_name, "custom");
-  EXPECT_EQ(custom->parsed.job.grade.reference_fragment.text, kFragment);
+  EXPECT_EQ(custom->spec.reference_name, "custom");
+  EXPECT_EQ(custom->spec.reference_fragment.text, kFragment);
 }

@@ -205,9 +205,9 @@ TEST(WireTest, AnAnswerWithFieldsOfTheWrongTypeIsAProtocolErrorNotAnException) {
     ASSERT_FALSE(result) << header.dump();
     EXPECT_EQ(result.error().code, ErrorCode::worker_protocol) << header.dump();
   }
-  EXPECT_EQ(text_field(json{{"event", 3}}, "event", "none"), "none");
-  EXPECT_FALSE(flag_field(json{{"ok", 1}}, "ok"));
-  EXPECT_TRUE(flag_field(json{{"ok", true}}, "ok"));
+  EXPECT_EQ(header_text(json{{"event", 3}}, "event", "none"), "none");
+  EXPECT_FALSE(header_flag(json{{"ok", 1}}, "ok"));
+  EXPECT_TRUE(header_flag(json{{"ok", true}}, "ok"));
 }
 
 }  // namespace

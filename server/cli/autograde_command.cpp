@@ -21,7 +21,7 @@
 #include "cli/course_option.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
-#include "grade/hand_in_checks.h"
+#include "road/hand_in_checks.h"
 #include "cli/gradescope_tests.h"
 #include "cli/submission_files.h"
 #include "course/course_reader.h"
@@ -90,7 +90,7 @@ void grade_all(worker::WorkerPool& pool, const course::Course& course, const Aut
 Expected<std::vector<grade::ImageCheck>> check_images(worker::WorkerPool& pool, const course::Course& course, const fs::path& root,
                                                       const std::vector<fs::path>& files) {
   std::map<std::string, std::string> read;
-  return grade::check_hand_in_images(pool, course, [&](const std::string& name) -> const std::string* {
+  return road::check_hand_in_images(pool, course, [&](const std::string& name) -> const std::string* {
     const fs::path* found = course::file_at(files, name);
     return found ? &(read[name] = read_text(root / *found)) : nullptr;
   });

@@ -91,7 +91,7 @@ std::optional<StudentGrade> without_pair(const course::Course& c, const course::
   if (pair) return std::nullopt;
   const std::string why = "no shader pair found for " + checkpoint.name + ": expected " + course::wanted_files(c, checkpoint) +
                           " in one folder, or a single *_vert.js and *_frag.js";
-  return StudentGrade{grade::not_handed_in(why, checkpoint.name, f.max_score), 0, {}};
+  return StudentGrade{road::not_handed_in(why, checkpoint.name, f.max_score), 0, {}};
 }
 
 Expected<StudentGrade> grade_student_on_server(const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f,

@@ -39,17 +39,17 @@ grade::GradeOptions options_of(const course::Course& c, const course::Checkpoint
 }
 
 // The course's submission of the pair, as the flags draw it.
-Expected<grade::CodeSubmission> submission_of(const course::Course& c, const GradeFlags& f, shader::ShaderFile vert, shader::ShaderFile frag) {
+Expected<road::CodeSubmission> submission_of(const course::Course& c, const GradeFlags& f, shader::ShaderFile vert, shader::ShaderFile frag) {
   auto checkpoint = c.checkpoint(f.reference.empty() ? c.default_checkpoint : f.reference);
   if (!checkpoint) return checkpoint.take_error();
-  grade::CourseRender render{f.mesh, std::nullopt, std::nullopt, f.frames};
+  road::CourseRender render{f.mesh, std::nullopt, std::nullopt, f.frames};
   if (!f.size.empty()) {
     int width = 0, height = 0;
     if (auto s = parse_size(f.size, "--size", width, height); !s) return s.take_error();
     render.width = width;
     render.height = height;
   }
-  auto submission = grade::course_code(c, *checkpoint->checkpoint, options_of(c, *checkpoint->checkpoint, f), render, std::move(vert),
+  auto submission = road::course_code(c, *checkpoint->checkpoint, options_of(c, *checkpoint->checkpoint, f), render, std::move(vert),
                                        std::move(frag));
   if (!submission) return submission.take_error();
   submission->spec.reference_store.folder = f.cache_dir;
@@ -68,25 +68,25 @@ Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, c
                             shader::ShaderFile frag) {
   auto submission = submission_of(c, f, std::move(vert), std::move(frag));
   if (!submission) return submission.take_error();
-  return grade::grade_code(pool, std::move(*submission));
+  return road::grade_code(pool, std::move(*submission));
 }
 
 namespace {
 
-grade::FramesSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps}; }
+road::FramesSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps}; }
 
 }  // namespace
 
 Expected<GradedFrames> grade_frame_set(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
                                        const course::Checkpoint& checkpoint, std::vector<grade::SavedFrame> saved,
                                        const std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>>& code) {
-  return grade::grade_frames(pool, c, checkpoint, {std::move(saved), {}, {}, code}, frames_settings(f));
+  return road::grade_saved_frames(pool, c, checkpoint, {std::move(saved), {}, {}, code}, frames_settings(f));
 }
 
 Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
                                           const course::Checkpoint& checkpoint, const fs::path& root, const course::SavedFrameFiles& files,
                                           const std::optional<std::pair<fs::path, fs::path>>& code) {
-  grade::FramesSubmission submission{{}, files.missing(c, checkpoint), {}, std::nullopt};
+  road::FramesSubmission submission{{}, files.missing(c, checkpoint), {}, std::nullopt};
   if (code)
     submission.code = std::pair{shader::ShaderFile{code->first.filename().string(), read_text(root / code->first)},
                                 shader::ShaderFile{code->second.filename().string(), read_text(root / code->second)}};
@@ -100,7 +100,7 @@ Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course
     }
     submission.saved.push_back({frame->filename().string(), read_text(root / *frame)});
   }
-  return grade::grade_frames(pool, c, checkpoint, std::move(submission), frames_settings(f));
+  return road::grade_saved_frames(pool, c, checkpoint, std::move(submission), frames_settings(f));
 }
 
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {

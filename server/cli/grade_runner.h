@@ -13,7 +13,7 @@
 #include "course/course.h"
 #include "course/submission_files.h"
 #include "grade/reference_store.h"
-#include "grade/submission.h"
+#include "road/submission.h"
 
 namespace shadelab::cli {
 
@@ -45,10 +45,10 @@ inline constexpr std::uintmax_t kMaxFrameBytes = 32u << 20;
 std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair(const course::Course& course, const std::filesystem::path& dir,
                                                                                    const course::Checkpoint& checkpoint);
 
-// One submission's grade, by the grading road (grade/submission.h): whatever the submission
+// One submission's grade, by the grading road (road/submission.h): whatever the submission
 // causes (it does not compile, hangs, crashes the driver) is its grade, 0 with the reason; what it
 // does not cause (the grader's own work failed, no worker could start, a bad flag) is an error.
-using Graded = grade::CodeGrade;
+using Graded = road::CodeGrade;
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
                  const std::filesystem::path& frag);
 // The same for shaders already in memory.
@@ -58,7 +58,7 @@ Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& cour
 // A deliverable's saved frames (`files`, relative to `root`) graded against `checkpoint`'s
 // reference and, with `code` (vertex, fragment; relative to `root`), against what that code
 // renders. A frame missing, unreadable or too large is the frames' grade, 0 with the file named.
-using GradedFrames = grade::FramesGrade;
+using GradedFrames = road::FramesGrade;
 Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f,
                                           const course::Checkpoint& checkpoint, const std::filesystem::path& root,
                                           const course::SavedFrameFiles& files,

@@ -4,7 +4,7 @@
 
 #include "cli/file_output.h"
 #include "core/base64.h"
-#include "grade/deliverable_score.h"
+#include "road/deliverable_score.h"
 #include "grade/report.h"
 #include "image/encode.h"
 #include "image/png_decode.h"
@@ -92,8 +92,8 @@ std::string pngs_in(const std::vector<fs::path>& files) {
   return course::listing(pngs);
 }
 
-// The test's part of the deliverable's score (grade/deliverable_score.h), when it was graded.
-const grade::TestScore* scored(const grade::DeliverableScore& score, DeliverableTest test) {
+// The test's part of the deliverable's score (road/deliverable_score.h), when it was graded.
+const road::TestScore* scored(const road::DeliverableScore& score, DeliverableTest test) {
   for (const auto& t : score.tests)
     if (t.test == test && t.report) return &t;
   return nullptr;
@@ -101,7 +101,7 @@ const grade::TestScore* scored(const grade::DeliverableScore& score, Deliverable
 
 std::string test_name(const course::Checkpoint& k, DeliverableTest test) { return k.title + ": " + std::string(to_string(test)); }
 
-json frames_test(const course::Course& c, const DeliverableGrades& d, const grade::DeliverableScore& score, const std::vector<fs::path>& files,
+json frames_test(const course::Course& c, const DeliverableGrades& d, const road::DeliverableScore& score, const std::vector<fs::path>& files,
                  const HeatmapOutput& heatmaps) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::frames, d.points);
@@ -120,7 +120,7 @@ json frames_test(const course::Course& c, const DeliverableGrades& d, const grad
 
 std::string code_files(const DeliverableGrades& d) { return d.code->first.string() + ", " + d.code->second.filename().string(); }
 
-json code_test(const course::Course& c, const DeliverableGrades& d, const grade::DeliverableScore& score, const std::vector<fs::path>& files,
+json code_test(const course::Course& c, const DeliverableGrades& d, const road::DeliverableScore& score, const std::vector<fs::path>& files,
                const HeatmapOutput& heatmaps) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::code, d.points);
@@ -135,7 +135,7 @@ json code_test(const course::Course& c, const DeliverableGrades& d, const grade:
   return test;
 }
 
-json probe_test(const DeliverableGrades& d, const grade::DeliverableScore& score) {
+json probe_test(const DeliverableGrades& d, const road::DeliverableScore& score) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::probe, d.points);
   std::string rules;
@@ -146,14 +146,14 @@ json probe_test(const DeliverableGrades& d, const grade::DeliverableScore& score
   return graded(name, *scored(score, DeliverableTest::probe)->report, max, rules);
 }
 
-json match_test(const DeliverableGrades& d, const grade::DeliverableScore& score) {
+json match_test(const DeliverableGrades& d, const road::DeliverableScore& score) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::match, d.points);
   const std::string name = test_name(k, DeliverableTest::match);
   if (!d.code) return absent(name, max, "not compared: no shaders for this deliverable");
   if (!d.frames.any() || !d.frames_grade) return absent(name, max, "not compared: no saved frames");
   if (!*d.frames_grade) return ungraded(name, max, d.frames_grade->error());
-  const grade::TestScore* match = scored(score, DeliverableTest::match);
+  const road::TestScore* match = scored(score, DeliverableTest::match);
   if (!match) return absent(name, max, "not compared: the code was not sent with the frames");
   return graded(name, *match->report, max);
 }
@@ -185,7 +185,7 @@ std::vector<json> deliverable_tests(const course::Course& c, const DeliverableGr
   const course::Checkpoint& k = *d.checkpoint;
   const auto* code = d.code_grade && *d.code_grade ? &(**d.code_grade).result.report : nullptr;
   const auto* frames = d.frames_grade && *d.frames_grade ? &(**d.frames_grade).result : nullptr;
-  const grade::DeliverableScore score = grade::score_deliverable(
+  const road::DeliverableScore score = road::score_deliverable(
       k, d.points, {code, frames ? &frames->frames : nullptr, frames && frames->code ? &*frames->code : nullptr});
   std::vector<json> tests = {frames_test(c, d, score, files, heatmaps)};
   if (k.applies(DeliverableTest::code) || d.code) tests.push_back(code_test(c, d, score, files, heatmaps));

@@ -1,5 +1,5 @@
 #pragma once
-// The files of a student's submission on disk, for the CLI: grade/submission_files.h says which
+// The files of a student's submission on disk, for the CLI: course/submission_files.h says which
 // are which checkpoint's.
 #include <filesystem>
 #include <vector>

@@ -22,7 +22,9 @@ json form_value(const std::string& text) {
   return text;
 }
 
-Expected<std::vector<render::UniformSetting>> uniforms(const json& fields) {
+}  // namespace
+
+Expected<std::vector<render::UniformSetting>> read_uniforms(const json& fields) {
   std::vector<render::UniformSetting> out;
   if (!fields.contains("uniforms")) return out;
   const json& u = fields["uniforms"];
@@ -45,6 +47,8 @@ Expected<std::vector<render::UniformSetting>> uniforms(const json& fields) {
   }
   return out;
 }
+
+namespace {
 
 const std::set<std::string> kKnownFields = {"course", "vertex",  "fragment", "vertexName", "fragmentName", "preset",
                                             "mesh",    "fit",      "width",      "height",       "frames",
@@ -87,9 +91,9 @@ std::string prefix_of(const course::Course& c, const course::Preset& p) {
   return p.name;
 }
 
-// Shaders: uploaded files, inline sources, or a preset of the course (which also names the frames).
-Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& limits, const course::Course& course, ParsedJob& out) {
-  worker::Job& job = out.job;
+}  // namespace
+
+Expected<RequestShaders> read_shaders(const RawRequest& raw, const Limits& limits) {
   const json& f = raw.fields;
   auto preset = text_field(f, "preset", "");
   if (!preset) return preset.take_error();
@@ -108,9 +112,26 @@ Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& l
   if (!fragment) return fragment.take_error();
   const bool has_sources = !vertex->text.empty() || !fragment->text.empty() || raw.files.count("vertex") ||
                            raw.files.count("fragment") || f.contains("vertex") || f.contains("fragment");
-  if (!preset->empty()) {
-    if (has_sources) return bad_request("give either 'preset' or 'vertex' and 'fragment', not both");
-    auto found = course.find_preset(*preset);
+  if (!preset->empty() && has_sources) return bad_request("give either 'preset' or 'vertex' and 'fragment', not both");
+  RequestShaders out{std::move(*preset), std::nullopt};
+  if (!has_sources) return out;
+  for (const auto* s : {&*vertex, &*fragment})
+    if (s->text.size() > limits.render.max_source_bytes)
+      return make_error(ErrorCode::payload_too_large, "shader '" + s->name + "' is " + std::to_string(s->text.size()) +
+                                                          " bytes; the limit is " + std::to_string(limits.render.max_source_bytes));
+  out.code = road::ShaderPair{std::move(*vertex), std::move(*fragment)};
+  return out;
+}
+
+namespace {
+
+// Shaders: uploaded files, inline sources, or a preset of the course (which also names the frames).
+Status read_job_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& limits, const course::Course& course, ParsedJob& out) {
+  worker::Job& job = out.job;
+  auto shaders = read_shaders(raw, limits);
+  if (!shaders) return shaders.take_error();
+  if (!shaders->preset.empty()) {
+    auto found = course.find_preset(shaders->preset);
     if (!found) return found.take_error();
     if (found->alias) out.warnings.push_back(found->alias->note);
     job.request.vertex = found->preset->vertex;
@@ -120,13 +141,9 @@ Status read_shaders(const RawRequest& raw, worker::JobKind kind, const Limits& l
     return Ok{};
   }
   if (kind == worker::JobKind::mesh_check) return Ok{};
-  if (!has_sources) return bad_request("give 'vertex' and 'fragment' shader sources, or a 'preset'");
-  job.request.vertex = std::move(*vertex);
-  job.request.fragment = std::move(*fragment);
-  for (const auto* s : {&job.request.vertex, &job.request.fragment})
-    if (s->text.size() > limits.render.max_source_bytes)
-      return make_error(ErrorCode::payload_too_large, "shader '" + s->name + "' is " + std::to_string(s->text.size()) +
-                                                          " bytes; the limit is " + std::to_string(limits.render.max_source_bytes));
+  if (!shaders->code) return bad_request("give 'vertex' and 'fragment' shader sources, or a 'preset'");
+  job.request.vertex = std::move(shaders->code->vertex);
+  job.request.fragment = std::move(shaders->code->fragment);
   return Ok{};
 }
 
@@ -145,7 +162,7 @@ Status read_render_settings(const json& f, render::RenderRequest& r) {
   r.frames = *frames;
   r.msaa = *msaa;
   r.degrees_per_frame = *degrees;
-  auto u = uniforms(f);
+  auto u = read_uniforms(f);
   if (!u) return u.take_error();
   r.uniforms = std::move(*u);
   return Ok{};
@@ -207,7 +224,7 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
   out.job = worker::course_job(course, kind);
   for (const auto& [k, v] : raw.fields.items())
     if (!kKnownFields.count(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
-  if (auto s = read_shaders(raw, kind, limits, course, out); !s) return s.take_error();
+  if (auto s = read_job_shaders(raw, kind, limits, course, out); !s) return s.take_error();
   if (auto s = read_render_settings(raw.fields, out.job.request); !s) return s.take_error();
   if (auto s = read_output(raw.fields, course, out.job); !s) return s.take_error();
   if (auto s = read_mesh(raw, limits, course, out); !s) return s.take_error();
@@ -215,70 +232,6 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
     if (auto valid = render::validate(out.job.request, limits.render); !valid) return valid.take_error();
     if (auto sources = render::check_sources(out.job.request, limits.render); !sources) return sources.take_error();
   }
-  return out;
-}
-
-}  // namespace shadelab::http
-
-namespace shadelab::http {
-
-Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, const course::Course& course) {
-  ParsedGrade out;
-  auto format = text_field(raw.fields, "format", "json");
-  if (!format) return format.take_error();
-  if (*format != "json" && *format != "gradescope") return bad_request("'format' must be json or gradescope");
-  out.result_format = *format;
-  raw.fields.erase("format");
-  const json f = raw.fields;
-  auto parsed = parse_job(raw, worker::JobKind::grade, limits, course);
-  if (!parsed) return parsed.take_error();
-  out.parsed = std::move(*parsed);
-  auto& spec = out.parsed.job.grade;
-
-  auto reference = text_field(f, "reference", "");
-  if (!reference) return reference.take_error();
-  const bool custom = raw.files.count("referenceVertex") || f.contains("referenceVertex");
-  if (!reference->empty() == custom) {
-    std::string names;
-    for (const auto& n : course.checkpoint_names()) names += (names.empty() ? "" : ", ") + n;
-    return bad_request("give either 'reference' (a checkpoint: " + names + ") or 'referenceVertex' and 'referenceFragment'");
-  }
-  if (custom) {
-    const auto source = [&](const char* field) -> Expected<shader::ShaderFile> {
-      if (auto it = raw.files.find(field); it != raw.files.end()) return shader::ShaderFile{it->second.filename, it->second.content};
-      auto t = text_field(f, field, "");
-      if (!t) return t.take_error();
-      return shader::ShaderFile{field, *t};
-    };
-    auto v = source("referenceVertex");
-    if (!v) return v.take_error();
-    auto fr = source("referenceFragment");
-    if (!fr) return fr.take_error();
-    spec.reference_name = "custom";
-    spec.reference_vertex = std::move(*v);
-    spec.reference_fragment = std::move(*fr);
-    spec.light_position_uniforms = course.light_position_names();
-    spec.light_color_uniform = course.light_color_uniform();
-    spec.options = course.tolerance;
-    spec.options.max_score = 1;
-  } else {
-    auto found = course.checkpoint(*reference);
-    if (!found) return found.take_error();
-    if (found->alias) out.parsed.warnings.push_back(found->alias->note);
-    spec = course.grade_spec(*found->checkpoint, course.grade_options(*found->checkpoint));
-  }
-  auto threshold = number_field(f, "threshold", spec.options.compare.threshold);
-  auto failing = number_field(f, "maxFailingFraction", spec.options.max_failing_fraction);
-  auto max_score = number_field(f, "maxScore", spec.options.max_score);
-  for (const Error* e : {threshold ? nullptr : &threshold.error(), failing ? nullptr : &failing.error(), max_score ? nullptr : &max_score.error()})
-    if (e) return *e;
-  if (*threshold < 0 || *threshold > 1 || *failing < 0 || *failing > 1 || *max_score < 0)
-    return bad_request("'threshold' and 'maxFailingFraction' must be in [0, 1], 'maxScore' not negative");
-  if (f.contains("spatialTolerance") && !f["spatialTolerance"].is_boolean()) return bad_request("'spatialTolerance' must be true or false");
-  spec.options.compare.threshold = *threshold;
-  spec.options.max_failing_fraction = *failing;
-  spec.options.max_score = *max_score;
-  spec.options.compare.spatial_tolerance = f.value("spatialTolerance", false);
   return out;
 }
 

@@ -2,6 +2,7 @@
 // Turns what a client sent (a JSON body, multipart/form-data, or a GET query) into a validated
 // worker job. Every field is type-checked here; nothing invalid reaches a worker.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "core/expected.h"
 #include "course/course_set.h"
 #include "http/limits.h"
+#include "road/code_request.h"
 #include "worker/job.h"
 
 namespace shadelab::http {
@@ -46,15 +48,16 @@ Expected<const course::Course*> course_of(const RawRequest& raw, const course::C
 // The job of `course` the request asks for: every fact it leaves out is the course's.
 Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const Limits& limits, const course::Course& course);
 
-// A grade request: a render request for the submission, plus `reference` (a checkpoint of the
-// course, or an alias of one) or `referenceVertex` + `referenceFragment`, and the tolerance
-// (`threshold`, `maxFailingFraction`, `spatialTolerance`, `maxScore`). `format` here is the result's:
-// json or gradescope, returned in `result_format`.
-struct ParsedGrade {
-  ParsedJob parsed;
-  std::string result_format = "json";
+// The shaders a request names: its own (uploaded files or inline sources, each within the
+// server's size limit) or a preset's name; a 400 for both.
+struct RequestShaders {
+  std::string preset;
+  std::optional<road::ShaderPair> code;
 };
-Expected<ParsedGrade> parse_grade_job(RawRequest raw, const Limits& limits, const course::Course& course);
+Expected<RequestShaders> read_shaders(const RawRequest& raw, const Limits& limits);
+
+// The `uniforms` object: GLSL name -> number, boolean or array of numbers.
+Expected<std::vector<render::UniformSetting>> read_uniforms(const nlohmann::json& fields);
 
 // A mesh id: content-addressed ("m" + 16 hex digits of a 64-bit FNV-1a of the bytes).
 std::string mesh_id(const std::string& bytes);

@@ -43,9 +43,9 @@ Expected<std::optional<shader::ShaderFile>> shader_of(const RawRequest& raw, con
   return std::optional(shader::ShaderFile{name->empty() ? stage : *name, std::move(*source)});
 }
 
-// The code's size and sources are checked where it is graded (grade/submission.h): a shader
+// The code's size and sources are checked where it is graded (road/submission.h): a shader
 // that cannot be sent is the code's grade, and the frames are still graded.
-Status read_code(const RawRequest& raw, grade::FramesSubmission& out) {
+Status read_code(const RawRequest& raw, road::FramesSubmission& out) {
   auto vertex = shader_of(raw, "vertex");
   if (!vertex) return vertex.take_error();
   auto fragment = shader_of(raw, "fragment");

@@ -11,7 +11,7 @@
 #include "core/expected.h"
 #include "course/course.h"
 #include "http/api_request.h"
-#include "grade/submission.h"
+#include "road/submission.h"
 
 namespace shadelab::http {
 
@@ -20,8 +20,8 @@ bool has_saved_frames(const RawRequest& raw);
 
 struct ParsedFramesGrade {
   const course::Checkpoint* checkpoint = nullptr;
-  grade::FramesSubmission submission;
-  grade::FramesSettings settings;
+  road::FramesSubmission submission;
+  road::FramesSettings settings;
   std::vector<std::string> warnings;
 };
 Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw, const course::Course& course);

@@ -1,9 +1,11 @@
 // POST /api/grade: a submission against a checkpoint or a custom reference, through the grading
-// road (grade/submission.h). This file parses the request and formats the report; the road
+// road (road/submission.h). This file parses the request and formats the report; the road
 // decides.
 #include "core/base64.h"
-#include "grade/submission.h"
+#include "road/submission.h"
+#include "http/code_grade_request.h"
 #include "http/frames_request.h"
+#include "road/code_request.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -27,7 +29,7 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
   auto parsed = parse_frames_grade(raw, course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
   parsed->settings.reference_store = c.config.reference_places();
-  auto graded = grade::grade_frames(c.pool, course, *parsed->checkpoint, std::move(parsed->submission), parsed->settings);
+  auto graded = road::grade_saved_frames(c.pool, course, *parsed->checkpoint, std::move(parsed->submission), parsed->settings);
   if (!graded) return send_problem(res, graded.error(), req.path);
   auto& result = graded->result;
   result.frames.warnings.insert(result.frames.warnings.end(), parsed->warnings.begin(), parsed->warnings.end());
@@ -37,23 +39,27 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
   send_json(res, 200, body);
 }
 
-// The code's grade: the road's answer for what parsed, or for what the student's source made
-// unparseable (with the checkpoint and points the request named, read leniently: a source problem
-// is the student's grade even beside a mistyped field).
-Expected<grade::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, const course::Course& course, const httplib::Request& req) {
-  auto parsed = parse_grade_job(raw, c.config.limits, course);
-  if (!parsed)
-    return grade::grade_unreadable(parsed.error(), field_or<std::string>(raw.fields, "reference", "custom"),
-                                   field_or<double>(raw.fields, "maxScore", 1.0));
-  if (auto visible = c.may_draw(parsed->parsed, course, req); !visible) return visible.take_error();
-  auto mesh = c.mesh_bytes(parsed->parsed);
-  if (!mesh) return mesh.take_error();
-  grade::GradeSpec spec = std::move(parsed->parsed.job.grade);
-  spec.reference_store = c.config.reference_places();
-  auto graded = grade::grade_code(c.pool, {std::move(parsed->parsed.job), std::move(*mesh), std::move(spec)});
+// The code's grade: the road's answer for what parsed, or, when a field could not be read, the
+// student's source when that is what is wrong (labelled with the checkpoint and points the request
+// named, read leniently: a source problem is the student's grade even beside a mistyped field).
+Expected<road::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, const course::Course& course, const httplib::Request& req) {
+  const render::RenderLimits& limits = c.config.limits.render;
+  auto parsed = parse_code_grade(raw, c.config.limits);
+  if (parsed)
+    if (auto s = c.find_uploaded_mesh(parsed->request.mesh, course); !s) parsed = s.take_error();
+  if (!parsed) {
+    auto shaders = read_shaders(raw, c.config.limits);
+    return road::grade_misread(parsed.error(), shaders ? shaders->code : std::nullopt, field_or<std::string>(raw.fields, "reference", "custom"),
+                               field_or<double>(raw.fields, "maxScore", 1.0), limits);
+  }
+  auto built = road::code_submission(course, std::move(parsed->request), c.viewer(req), limits);
+  if (!built) return built.take_error();
+  built->submission.spec.reference_store = c.config.reference_places();
+  auto graded = road::grade_code(c.pool, std::move(built->submission));
   if (graded) {
     auto& warnings = graded->result.report.warnings;
-    warnings.insert(warnings.end(), parsed->parsed.warnings.begin(), parsed->parsed.warnings.end());
+    warnings.insert(warnings.end(), parsed->warnings.begin(), parsed->warnings.end());
+    warnings.insert(warnings.end(), built->warnings.begin(), built->warnings.end());
   }
   return graded;
 }

@@ -18,7 +18,7 @@ std::optional<StoredMesh> decode(const std::string& id, const std::string& value
   auto message = worker::decode_message(value);
   if (!message || mesh_id(message->payload) != id) return std::nullopt;
   const auto& h = message->header;
-  const std::string filename = worker::text_field(h, "filename"), format = worker::text_field(h, "format");
+  const std::string filename = worker::header_text(h, "filename"), format = worker::header_text(h, "format");
   if (filename.empty() || format.empty()) return std::nullopt;
   return StoredMesh{id, filename, format, std::move(message->payload), h.contains("info") ? h["info"] : nlohmann::json::object()};
 }

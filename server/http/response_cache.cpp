@@ -17,7 +17,7 @@ std::optional<CachedResponse> decode(const std::string& etag, const std::string&
   auto message = worker::decode_message(value);
   if (!message) return std::nullopt;
   const auto& h = message->header;
-  if (worker::text_field(h, "etag") != etag || !h.contains("contentType") || !h["contentType"].is_string()) return std::nullopt;
+  if (worker::header_text(h, "etag") != etag || !h.contains("contentType") || !h["contentType"].is_string()) return std::nullopt;
   CachedResponse r{h["contentType"], std::move(message->payload), {}};
   if (const auto& headers = h.contains("headers") ? h["headers"] : nlohmann::json(); headers.is_object())
     for (const auto& [k, v] : headers.items())

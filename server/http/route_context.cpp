@@ -34,6 +34,17 @@ Expected<std::string> RouteContext::mesh_bytes(ParsedJob& parsed) const {
   return (*stored)->bytes;
 }
 
+Status RouteContext::find_uploaded_mesh(road::MeshChoice& mesh, const course::Course& course) const {
+  if (mesh.upload || mesh.name.empty() || course.mesh(mesh.name)) return Ok{};
+  auto stored = meshes.get(mesh.name);
+  if (!stored) return stored.take_error();
+  if (!*stored)
+    return make_error(ErrorCode::mesh_not_found, "no mesh '" + mesh.name +
+                                                     "': use one of the course's meshes (GET /api/course), or the id POST /api/meshes returned");
+  mesh.upload = road::MeshChoice::Upload{mesh.name, (*stored)->format, (*stored)->bytes};
+  return Ok{};
+}
+
 course::Viewer RouteContext::viewer(const httplib::Request& req) const {
   return {tenants.role_of(req.get_header_value("Authorization")), config.open_references};
 }

@@ -17,6 +17,7 @@
 #include "http/metrics.h"
 #include "http/response_cache.h"
 #include "http/service.h"
+#include "road/code_request.h"
 #include "worker/client.h"
 
 namespace shadelab::http {
@@ -48,6 +49,10 @@ struct RouteContext {
   // The bytes of the job's mesh: a file in this request, a course's own mesh, an uploaded id (its
   // format set on the job), or none for a mesh compiled into the binary.
   Expected<std::string> mesh_bytes(ParsedJob& parsed) const;
+
+  // A mesh named by an id POST /api/meshes returned (not one of the course's meshes): set as the
+  // choice's upload; mesh_not_found when there is no such upload.
+  Status find_uploaded_mesh(road::MeshChoice& mesh, const course::Course& course) const;
 
   // Who is asking (course/access.h): the role of the request's key, and the server's openness.
   course::Viewer viewer(const httplib::Request& req) const;

@@ -6,15 +6,15 @@
 #include <optional>
 
 #include "course/submission_files.h"
-#include "grade/deliverable_score.h"
-#include "grade/hand_in_checks.h"
+#include "road/deliverable_score.h"
+#include "road/hand_in_checks.h"
 #include "image/png_info.h"
 #include "render/render_request.h"
 #include "sheet/notebook.h"
 #include "sheet/notebook_reading.h"
 #include "sheet/saved_grid.h"
 #include "scene/scene_description.h"
-#include "grade/submission.h"
+#include "road/submission.h"
 #include "worker/client.h"
 #include "worker/course_job.h"
 
@@ -57,12 +57,12 @@ Expected<std::string> grid(worker::WorkerPool& pool, CourseJob job) {
 // The code's grade by the grading road, as Gradescope's: the checkpoint's points, the course's mesh.
 Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, const SheetInput& input,
                                const std::pair<fs::path, fs::path>& pair, const grade::ReferenceStorePlaces& reference_store) {
-  auto submission = grade::course_code(course, checkpoint, course.grade_options(checkpoint), {},
+  auto submission = road::course_code(course, checkpoint, course.grade_options(checkpoint), {},
                                        {pair.first.filename().string(), text_of(input, pair.first)},
                                        {pair.second.filename().string(), text_of(input, pair.second)});
   if (!submission) return submission.take_error();
   submission->spec.reference_store = reference_store;
-  auto answered = grade::grade_code(pool, std::move(*submission));
+  auto answered = road::grade_code(pool, std::move(*submission));
   if (!answered) return answered.take_error();
   return std::move(answered->result.report);
 }
@@ -105,7 +105,7 @@ CheckpointSection from_saved_frames(const course::Course& course, const course::
 // section has some (`pair`), and shown beside the code's grid; nothing when none were saved.
 Status add_saved_frames(worker::WorkerPool& pool, const course::Course& course, const SheetInput& input, const course::Checkpoint& checkpoint,
                         const std::optional<std::pair<fs::path, fs::path>>& pair, const grade::ReferenceStorePlaces& reference_store, CheckpointSection& s) {
-  grade::FramesSubmission submission;
+  road::FramesSubmission submission;
   std::vector<std::pair<std::string, std::string>> shown;
   for (int k = 0; k < course.frames; ++k) {
     const std::string name = course.frame_file(checkpoint.prefix, k, "png");
@@ -123,7 +123,7 @@ Status add_saved_frames(worker::WorkerPool& pool, const course::Course& course, 
                                 shader::ShaderFile{pair->second.filename().string(), text_of(input, pair->second)}};
   }
   // The sheet shows no heat map.
-  auto graded = grade::grade_frames(pool, course, checkpoint, std::move(submission), {course.default_mesh, checkpoint.points, reference_store, grade::HeatMap::never});
+  auto graded = road::grade_saved_frames(pool, course, checkpoint, std::move(submission), {course.default_mesh, checkpoint.points, reference_store, grade::HeatMap::never});
   if (!graded) return graded.take_error();
   s.frames_report = std::move(graded->result.frames);
   s.match_report = std::move(graded->result.code);
@@ -156,7 +156,7 @@ Expected<CheckpointSection> section(worker::WorkerPool& pool, const course::Cour
                                        : Expected<CheckpointSection>(from_saved_frames(course, checkpoint, input));
   if (!s) return s;
   if (auto added = add_saved_frames(pool, course, input, checkpoint, pair, reference_store, *s); !added) return added.take_error();
-  s->score = grade::score_deliverable(checkpoint, checkpoint.points,
+  s->score = road::score_deliverable(checkpoint, checkpoint.points,
                                       {s->graded ? &s->report : nullptr, s->frames_report ? &*s->frames_report : nullptr,
                                        s->match_report ? &*s->match_report : nullptr});
   return s;
@@ -289,7 +289,7 @@ Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course,
   sheet.questions = quoted_questions(course);
   sheet.images = images(course, input);
   auto checks = std::async(std::launch::async, [&pool, &course, &input] {
-    return grade::check_hand_in_images(pool, course, [&input](const std::string& file) -> const std::string* {
+    return road::check_hand_in_images(pool, course, [&input](const std::string& file) -> const std::string* {
       const SubmittedFile* f = image_named(input, file);
       return f ? &f->text : nullptr;
     });

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "grade/image_check.h"
-#include "grade/deliverable_score.h"
+#include "road/deliverable_score.h"
 #include "grade/report.h"
 #include "scene/scene_description.h"
 #include "scene_render/framing.h"
@@ -46,7 +46,7 @@ struct CheckpointSection {
   std::string saved_grid_png;                  // set when there is code to show them beside
   std::optional<grade::Report> frames_report;  // against the reference, at their lags
   std::optional<grade::Report> match_report;   // against what the code renders
-  grade::DeliverableScore score;               // the three above as Gradescope scores them
+  road::DeliverableScore score;               // the three above as Gradescope scores them
 };
 
 // An image the course asks for beside the frames, as the student handed it in.
@@ -92,7 +92,7 @@ struct Sheet {
 
 // The grader's verdict in one line: "1 / 1: matches the reference exactly".
 std::string verdict(const grade::Report& report);
-// A section's line: its score as Gradescope gives it, and why (grade/deliverable_score.h).
+// A section's line: its score as Gradescope gives it, and why (road/deliverable_score.h).
 std::string section_verdict(const CheckpointSection& section);
 // The line's colour: "pass" (every point), "fail" (something graded fell short) or "note".
 std::string_view section_class(const CheckpointSection& section);

@@ -1,6 +1,6 @@
 #pragma once
 // Typed jobs through the pool: send a job, wait for the worker, read its typed answer. Transport
-// only: what an answer or an error means for a grade is grade/submission.h's to say.
+// only: what an answer or an error means for a grade is road/submission.h's to say.
 #include <string>
 
 #include "core/expected.h"

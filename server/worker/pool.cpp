@@ -223,7 +223,7 @@ struct WorkerPool::Slot {
 
     Message ready;
     const auto status = read_message(fd, ready, Clock::now() + c.start_deadline);
-    if (status != ReadStatus::ok || text_field(ready.header, "event") != "ready" || !flag_field(ready.header, "ok")) {
+    if (status != ReadStatus::ok || header_text(ready.header, "event") != "ready" || !header_flag(ready.header, "ok")) {
       std::string why = status == ReadStatus::timeout ? "it did not start in time" : "it exited while starting";
       if (status == ReadStatus::ok && ready.header.is_object() && ready.header.contains("error")) why = ready.header["error"].get<Error>().message;
       // A worker that closed its socket before its ready message says how it ended, for the operator.
@@ -236,7 +236,7 @@ struct WorkerPool::Slot {
     }
     {
       std::lock_guard lock(pool.mutex_);
-      pool.renderer_ = text_field(ready.header, "renderer");
+      pool.renderer_ = header_text(ready.header, "renderer");
     }
     reported_ready = true;
     started_once = true;
@@ -286,7 +286,7 @@ struct WorkerPool::Slot {
 
   JobResult run_job(const Message& job) {
     JobResult result;
-    const std::string kind = text_field(job.header, "kind");
+    const std::string kind = header_text(job.header, "kind");
     if (!write_message(fd, job)) {
       // The worker died while idle (killed from outside; nothing of this job's doing): a fresh
       // one takes the job.
@@ -309,17 +309,17 @@ struct WorkerPool::Slot {
       // Short slices: the memory watchdog and the CPU clock are read while the worker is busy.
       const auto status = read_message(fd, in, Clock::now() + std::chrono::milliseconds(50));
       if (status == ReadStatus::ok) {
-        const std::string event = text_field(in.header, "event");
+        const std::string event = header_text(in.header, "event");
         if (event == "phase") {
-          const JobPhase phase = job_phase_named(text_field(in.header, "phase")).value_or(JobPhase::render);
+          const JobPhase phase = job_phase_named(header_text(in.header, "phase")).value_or(JobPhase::render);
           budget = PhaseBudget(phase, phase == JobPhase::grader ? c.grader_deadline : c.render_deadline, pid, c.wall_clock_factor);
           continue;
         }
         const auto& caches = in.header.is_object() && in.header.contains("caches") ? in.header["caches"] : nlohmann::json();
-        reference_cache_bytes = count_field(caches, "referenceBytes");
-        cached_programs = count_field(caches, "programs");
-        cached_meshes = count_field(caches, "meshes");
-        cached_mesh_bytes = count_field(caches, "meshBytes");
+        reference_cache_bytes = header_count(caches, "referenceBytes");
+        cached_programs = header_count(caches, "programs");
+        cached_meshes = header_count(caches, "meshes");
+        cached_mesh_bytes = header_count(caches, "meshBytes");
         peak.observe(resident_bytes(pid));
         result.answered = true;
         result.answer = std::move(in);

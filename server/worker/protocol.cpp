@@ -178,19 +178,19 @@ Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, con
   }
 }
 
-std::string text_field(const nlohmann::json& header, const char* key, std::string fallback) {
+std::string header_text(const nlohmann::json& header, const char* key, std::string fallback) {
   if (!header.is_object()) return fallback;
   const auto it = header.find(key);
   return it != header.end() && it->is_string() ? it->get<std::string>() : fallback;
 }
 
-bool flag_field(const nlohmann::json& header, const char* key) {
+bool header_flag(const nlohmann::json& header, const char* key) {
   if (!header.is_object()) return false;
   const auto it = header.find(key);
   return it != header.end() && it->is_boolean() && it->get<bool>();
 }
 
-std::uint64_t count_field(const nlohmann::json& header, const char* key) {
+std::uint64_t header_count(const nlohmann::json& header, const char* key) {
   if (!header.is_object()) return 0;
   const auto it = header.find(key);
   return it != header.end() && it->is_number_unsigned() ? it->get<std::uint64_t>() : 0;

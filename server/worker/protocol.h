@@ -48,10 +48,10 @@ Expected<std::vector<PayloadPart>> unpack_parts(const nlohmann::json& index, con
 // Header fields read from the untrusted side (a worker runs student code; a stored value may be
 // anyone's): the fallback when the header is not an object, lacks the key or holds another type
 // there, where json::value() would throw.
-std::string text_field(const nlohmann::json& header, const char* key, std::string fallback = {});
-bool flag_field(const nlohmann::json& header, const char* key);
+std::string header_text(const nlohmann::json& header, const char* key, std::string fallback = {});
+bool header_flag(const nlohmann::json& header, const char* key);
 // A count: 0 unless the key holds a non-negative integer.
-std::uint64_t count_field(const nlohmann::json& header, const char* key);
+std::uint64_t header_count(const nlohmann::json& header, const char* key);
 
 inline constexpr size_t kMaxHeaderBytes = 16u << 20;
 inline constexpr size_t kMaxPayloadBytes = 512u << 20;

@@ -14,7 +14,7 @@ void to_json(json& j, const Error& e) {
 void from_json(const json& j, Error& e) {
   e = {ErrorCode::worker_protocol, "a render worker reported an error it did not name", {}, {}};
   if (!j.is_object()) return;
-  const auto code = error_code_named(worker::text_field(j, "code"));
+  const auto code = error_code_named(worker::header_text(j, "code"));
   if (!code) {
     e.message = "a render worker reported an unknown error code " + (j.contains("code") ? j["code"] : json("")).dump();
     return;
@@ -285,7 +285,7 @@ Message answer(const Error& e) { return {{{"ok", false}, {"error", e}}, {}}; }
 template <class Result>
 Expected<Result> result_from(const Message& m) {
   if (!m.header.is_object()) return make_error(ErrorCode::worker_protocol, "a render worker's answer is not an object");
-  if (!flag_field(m.header, "ok")) return (m.header.contains("error") ? m.header["error"] : json::object()).get<Error>();
+  if (!header_flag(m.header, "ok")) return (m.header.contains("error") ? m.header["error"] : json::object()).get<Error>();
   try {
     auto files = unpack_parts(m.header.at("files"), m.payload);
     if (!files) return files.take_error();

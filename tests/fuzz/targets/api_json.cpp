@@ -10,6 +10,7 @@
 #include "wire_round_trip.h"
 #include "course/course_reader.h"
 #include "http/api_request.h"
+#include "http/code_grade_request.h"
 #include "http/frames_request.h"
 
 namespace {
@@ -50,9 +51,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
     return 0;
   }
   if (selector % 4 == 2) {
-    auto grade = http::parse_grade_job(std::move(*raw), limits, course::builtin_course());
-    if (grade) check_job(grade->parsed.job, limits);
-    else FUZZ_CHECK(!grade.error().message.empty());
+    auto grade = http::parse_code_grade(*raw, limits);
+    if (!grade) {
+      FUZZ_CHECK(!grade.error().message.empty());
+      return 0;
+    }
+    auto built = road::code_submission(course::builtin_course(), std::move(grade->request), course::Viewer{}, limits.render);
+    if (!built) FUZZ_CHECK(!built.error().message.empty());
+    else if (render::check_sources(built->submission.render.request, limits.render)) check_job(built->submission.render, limits);  // as grade_code sends it
     return 0;
   }
   auto parsed = http::parse_job(*raw, selector % 4 == 0 ? worker::JobKind::render : worker::JobKind::compile, limits, course::builtin_course());

@@ -13,6 +13,7 @@
 #include "http/memory_stream.h"
 #include "http/request_framing.h"
 #include "http/request_reader.h"
+#include "http/code_grade_request.h"
 #include "course/course_reader.h"
 
 namespace {
@@ -53,9 +54,12 @@ class ParsingServer : public httplib::Server {
     auto raw = http::read_request(req);
     if (!raw) return raw.take_error();
     if (kind == worker::JobKind::grade) {
-      auto grade = http::parse_grade_job(std::move(*raw), limits_, course::builtin_course());
+      auto grade = http::parse_code_grade(*raw, limits_);
       if (!grade) return grade.take_error();
-      fuzz::check_job_crosses_the_wire(grade->parsed.job);
+      auto built = road::code_submission(course::builtin_course(), std::move(grade->request), course::Viewer{}, limits_.render);
+      if (!built) return built.take_error();
+      if (auto sources = render::check_sources(built->submission.render.request, limits_.render); !sources) return sources;  // as grade_code sends it
+      fuzz::check_job_crosses_the_wire(built->submission.render);
       return Ok{};
     }
     auto parsed = http::parse_job(*raw, kind, limits_, course::builtin_course());

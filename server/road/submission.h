@@ -3,7 +3,7 @@
 // `autograde` (Gradescope), the class batch, the sheet and `course warm` each parse their input
 // into a submission, call one function here, and format the report it returns:
 //
-//   adapter ──► grade_code / grade_frames ──► worker pool ──► worker: GradeSession ──► renderer
+//   adapter ──► grade_code / grade_saved_frames ──► worker pool ──► worker: GradeSession ──► renderer
 //   (parses,     (builds the jobs, the        (queue, dead-    (grade_session.h;
 //    formats)     rule below, the retry)       lines, kills)    grader.h's verdict)
 //
@@ -24,14 +24,19 @@
 #include "worker/pool.h"
 #include "worker/result.h"
 
-namespace shadelab::grade {
+namespace shadelab::road {
+
+struct ShaderPair {
+  shader::ShaderFile vertex, fragment;
+};
 
 // Code to grade: what to draw (the course's job with the student's shaders, or a render a client
 // shaped: its size, uniforms, mesh) and what it is graded against (`spec`, its options included).
 struct CodeSubmission {
   worker::Job render;      // the request and the mesh; the kind and the spec are set on the road
   std::string mesh_bytes;  // the mesh's bytes, when they travel with the job
-  GradeSpec spec;
+  grade::GradeSpec spec;
+  render::RenderLimits limits;  // the caller's: its sources are checked against them, once, on the road
 };
 
 struct CodeGrade {
@@ -45,25 +50,32 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
 // request was parsed): its grade by the same rule, labelled with the checkpoint and points.
 Expected<CodeGrade> grade_unreadable(const Error& error, const std::string& checkpoint, double max_score);
 
+// A request whose other fields could not be read (`field_error`): when the student's own sources
+// are refused, that is their grade (0 with the reason, labelled `checkpoint` and `max_score` as the
+// request named them as far as it could be read); otherwise the field's error.
+Expected<CodeGrade> grade_misread(const Error& field_error, const std::optional<ShaderPair>& code, const std::string& checkpoint,
+                                  double max_score, const render::RenderLimits& limits);
+
 // A deliverable not handed in at all (no shader pair in a student's folder): 0, saying what was
 // looked for.
-Report not_handed_in(const std::string& looked_for, const std::string& checkpoint, double max_score);
+grade::Report not_handed_in(const std::string& looked_for, const std::string& checkpoint, double max_score);
 
 // How the course draws a checkpoint's code: one of its meshes (empty: its default), its canvas and
 // frames unless a run sets others.
 struct CourseRender {
   std::string mesh;
   std::optional<int> width, height, frames;
+  render::RenderLimits limits;  // the caller's (the server's over HTTP)
 };
 
 // The course's submission for a pair of shaders: its job (canvas, frames, page setup), its mesh,
 // the checkpoint's spec with `options`. An Error for a mesh or a size the course cannot draw.
-Expected<CodeSubmission> course_code(const course::Course& course, const course::Checkpoint& checkpoint, const GradeOptions& options,
+Expected<CodeSubmission> course_code(const course::Course& course, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
                                      const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment);
 
 // A deliverable's saved frames, and the code handed in beside them.
 struct FramesSubmission {
-  std::vector<SavedFrame> saved;      // in frame order
+  std::vector<grade::SavedFrame> saved;      // in frame order
   std::vector<std::string> missing;   // the deliverable's frames not handed in, by file name
   std::string unreadable;  // a file that could not be read, in words ("hw2_specular_3.png cannot be read"); empty when none
   std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>> code;  // vertex, fragment
@@ -73,8 +85,9 @@ struct FramesSubmission {
 struct FramesSettings {
   std::string mesh;
   double max_score = 1;
-  ReferenceStorePlaces reference_store;  // grade/reference_store.h; empty: the worker's memory only
-  HeatMap heatmap = HeatMap::always;
+  grade::ReferenceStorePlaces reference_store;  // grade/reference_store.h; empty: the worker's memory only
+  grade::HeatMap heatmap = grade::HeatMap::always;
+  render::RenderLimits limits;  // the code's, the caller's (the server's over HTTP)
 };
 
 struct FramesGrade {
@@ -85,7 +98,7 @@ struct FramesGrade {
 // Against the checkpoint's reference at the frames' lags and, with code, against what that code
 // renders. Code that cannot be sent, hangs or crashes is the code's grade; the frames are graded
 // without it.
-Expected<FramesGrade> grade_frames(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint,
+Expected<FramesGrade> grade_saved_frames(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint,
                                    FramesSubmission submission, const FramesSettings& settings);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::road

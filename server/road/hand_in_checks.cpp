@@ -1,14 +1,14 @@
-#include "grade/hand_in_checks.h"
+#include "road/hand_in_checks.h"
 
 #include "worker/client.h"
 #include "worker/job.h"
 #include "worker/result.h"
 
-namespace shadelab::grade {
+namespace shadelab::road {
 
-Expected<std::vector<ImageCheck>> check_hand_in_images(worker::WorkerPool& pool, const course::Course& course, const FindFile& find) {
+Expected<std::vector<grade::ImageCheck>> check_hand_in_images(worker::WorkerPool& pool, const course::Course& course, const FindFile& find) {
   worker::ImagesJob job;
-  std::vector<ImageCheck> checks;
+  std::vector<grade::ImageCheck> checks;
   for (const auto& wanted : course.images) {
     if (!wanted.checked()) continue;
     const std::string* png = find(wanted.file);
@@ -26,4 +26,4 @@ Expected<std::vector<ImageCheck>> check_hand_in_images(worker::WorkerPool& pool,
   return checks;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::road

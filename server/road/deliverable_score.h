@@ -11,19 +11,19 @@
 #include "course/course.h"
 #include "grade/report.h"
 
-namespace shadelab::grade {
+namespace shadelab::road {
 
 // What was graded; null where there was nothing of that kind to grade, or the grader could not.
 struct DeliverableReports {
-  const Report* code = nullptr;    // the code against the reference (the page's light and the probes)
-  const Report* frames = nullptr;  // the saved frames against the reference, at their lags
-  const Report* match = nullptr;   // the saved frames against what the code renders
+  const grade::Report* code = nullptr;    // the code against the reference (the page's light and the probes)
+  const grade::Report* frames = nullptr;  // the saved frames against the reference, at their lags
+  const grade::Report* match = nullptr;   // the saved frames against what the code renders
 };
 
 struct TestScore {
   course::DeliverableTest test;
   double score = 0, max_score = 0;
-  std::optional<Report> report;  // the part of a report this test reads; empty: nothing graded
+  std::optional<grade::Report> report;  // the part of a report this test reads; empty: nothing graded
 };
 
 struct DeliverableScore {
@@ -36,4 +36,4 @@ struct DeliverableScore {
 
 DeliverableScore score_deliverable(const course::Checkpoint& checkpoint, double points, const DeliverableReports& graded);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::road

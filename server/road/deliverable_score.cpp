@@ -1,17 +1,17 @@
-#include "grade/deliverable_score.h"
+#include "road/deliverable_score.h"
 
 #include <cmath>
 #include <cstdio>
 
-namespace shadelab::grade {
+namespace shadelab::road {
 
 namespace {
 
 using course::DeliverableTest;
 
 // A whole report as a test worth `max`: its pass, not its own scale, decides the score.
-Report worth(const Report& r, double max) {
-  Report out = r;
+grade::Report worth(const grade::Report& r, double max) {
+  grade::Report out = r;
   out.max_score = max;
   out.score = r.pass ? max : 0;
   return out;
@@ -48,7 +48,7 @@ std::string DeliverableScore::verdict() const {
 
 DeliverableScore score_deliverable(const course::Checkpoint& k, double points, const DeliverableReports& g) {
   DeliverableScore out;
-  const auto add = [&](DeliverableTest test, std::optional<Report> report) {
+  const auto add = [&](DeliverableTest test, std::optional<grade::Report> report) {
     const double max = k.max_score(test, points);
     if (!k.applies(test) && !report) return;
     TestScore t{test, 0, max, std::move(report)};
@@ -65,4 +65,4 @@ DeliverableScore score_deliverable(const course::Checkpoint& k, double points, c
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::road

@@ -12,13 +12,13 @@
 #include "grade/image_check.h"
 #include "worker/pool.h"
 
-namespace shadelab::grade {
+namespace shadelab::road {
 
 // The student's file at a path of their folder (images/camera_25.png), or null.
 using FindFile = std::function<const std::string*(const std::string& path)>;
 
 // One check per checked image of the course, in its order; none when it checks none. An Error is
 // the service's (the pool full, no worker): what the student handed in is its verdict.
-Expected<std::vector<ImageCheck>> check_hand_in_images(worker::WorkerPool& pool, const course::Course& course, const FindFile& find);
+Expected<std::vector<grade::ImageCheck>> check_hand_in_images(worker::WorkerPool& pool, const course::Course& course, const FindFile& find);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::road

@@ -1,4 +1,4 @@
-#include "grade/submission.h"
+#include "road/submission.h"
 
 #include <chrono>
 
@@ -7,7 +7,7 @@
 #include "worker/client.h"
 #include "worker/course_job.h"
 
-namespace shadelab::grade {
+namespace shadelab::road {
 
 namespace {
 
@@ -17,7 +17,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void note_attempts(Report& report, int attempts, const std::string& retried) {
+void note_attempts(grade::Report& report, int attempts, const std::string& retried) {
   report.attempts = attempts;
   if (attempts == 2) report.messages.push_back(retried);
 }
@@ -26,10 +26,10 @@ void note_attempts(Report& report, int attempts, const std::string& retried) {
 FramesGrade unsendable(const course::Course& c, const course::Checkpoint& checkpoint, const FramesSettings& s, const std::string& why,
                        bool with_code) {
   const Error e = make_error(ErrorCode::frames_invalid, why);
-  FramesGrade out{{failed_submission(e, checkpoint.name, s.max_score), std::nullopt, {}}, 0};
+  FramesGrade out{{grade::failed_submission(e, checkpoint.name, s.max_score), std::nullopt, {}}, 0};
   out.result.frames.messages.push_back("the deliverable is " + c.frame_file(checkpoint.prefix, 0, "png") + " to " +
                                        c.frame_file(checkpoint.prefix, c.frames - 1, "png") + ", as the page saves them");
-  if (with_code) out.result.code = failed_submission(make_error(ErrorCode::frames_invalid, "not compared: " + why), checkpoint.name, s.max_score);
+  if (with_code) out.result.code = grade::failed_submission(make_error(ErrorCode::frames_invalid, "not compared: " + why), checkpoint.name, s.max_score);
   return out;
 }
 
@@ -38,7 +38,7 @@ Expected<worker::Job> frames_job(const course::Course& c, const course::Checkpoi
                                  const FramesSubmission& submission, std::string& mesh_bytes) {
   worker::Job job = worker::course_job(c, worker::JobKind::grade_frames);
   if (auto a = worker::attach_course_mesh(c, s.mesh.empty() ? c.default_mesh : s.mesh, job, mesh_bytes); !a) return a.take_error();
-  GradeOptions options = c.grade_options(checkpoint);
+  grade::GradeOptions options = c.grade_options(checkpoint);
   options.max_score = s.max_score;
   job.grade = c.frames_grade_spec(checkpoint, options);
   job.grade.reference_store = s.reference_store;
@@ -51,19 +51,31 @@ Expected<worker::Job> frames_job(const course::Course& c, const course::Checkpoi
 
 Expected<CodeGrade> grade_unreadable(const Error& error, const std::string& checkpoint, double max_score) {
   if (!info(error.code).submission_caused) return error;
-  return CodeGrade{{failed_submission(error, checkpoint, max_score), {}}, 0};
+  return CodeGrade{{grade::failed_submission(error, checkpoint, max_score), {}}, 0};
 }
 
-Report not_handed_in(const std::string& looked_for, const std::string& checkpoint, double max_score) {
-  return failed_submission(make_error(ErrorCode::invalid_argument, looked_for), checkpoint, max_score);
+Expected<CodeGrade> grade_misread(const Error& field_error, const std::optional<ShaderPair>& code, const std::string& checkpoint,
+                                  double max_score, const render::RenderLimits& limits) {
+  if (info(field_error.code).submission_caused) return grade_unreadable(field_error, checkpoint, max_score);
+  if (!code) return field_error;
+  render::RenderRequest sources;
+  sources.vertex = code->vertex;
+  sources.fragment = code->fragment;
+  if (auto checked = render::check_sources(sources, limits); !checked && info(checked.error().code).submission_caused)
+    return grade_unreadable(checked.error(), checkpoint, max_score);
+  return field_error;
+}
+
+grade::Report not_handed_in(const std::string& looked_for, const std::string& checkpoint, double max_score) {
+  return grade::failed_submission(make_error(ErrorCode::invalid_argument, looked_for), checkpoint, max_score);
 }
 
 Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submission) {
   worker::Job& job = submission.render;
   job.kind = worker::JobKind::grade;
   job.grade = std::move(submission.spec);
-  const GradeSpec& spec = job.grade;
-  if (auto sources = render::check_sources(job.request, render::RenderLimits{}); !sources)
+  const grade::GradeSpec& spec = job.grade;
+  if (auto sources = render::check_sources(job.request, submission.limits); !sources)
     return grade_unreadable(sources.error(), spec.reference_name, spec.options.max_score);
   const auto start = std::chrono::steady_clock::now();
   auto a = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(job, std::move(submission.mesh_bytes)));
@@ -79,9 +91,9 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   return failed;
 }
 
-Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const GradeOptions& options,
+Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
                                      const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
-  CodeSubmission out{worker::course_job(c, worker::JobKind::grade), {}, c.grade_spec(checkpoint, options)};
+  CodeSubmission out{worker::course_job(c, worker::JobKind::grade), {}, c.grade_spec(checkpoint, options), render.limits};
   if (auto s = worker::attach_course_mesh(c, render.mesh.empty() ? c.default_mesh : render.mesh, out.render, out.mesh_bytes); !s)
     return s.take_error();
   auto& r = out.render.request;
@@ -89,11 +101,11 @@ Expected<CodeSubmission> course_code(const course::Course& c, const course::Chec
   r.width = render.width.value_or(r.width);
   r.height = render.height.value_or(r.height);
   r.frames = render.frames.value_or(r.frames);
-  if (auto valid = render::validate(r, render::RenderLimits{}); !valid) return valid.take_error();
+  if (auto valid = render::validate(r, render.limits); !valid) return valid.take_error();
   return out;
 }
 
-Expected<FramesGrade> grade_frames(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint,
+Expected<FramesGrade> grade_saved_frames(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint,
                                    FramesSubmission submission, const FramesSettings& s) {
   const bool with_code = submission.code.has_value();
   if (!submission.missing.empty())
@@ -104,11 +116,11 @@ Expected<FramesGrade> grade_frames(worker::WorkerPool& pool, const course::Cours
   auto job = frames_job(c, checkpoint, s, submission, payload.mesh);
   if (!job) return job.take_error();
   if (with_code)
-    if (auto sources = render::check_sources(job->request, render::RenderLimits{}); !sources) {
+    if (auto sources = render::check_sources(job->request, s.limits); !sources) {
       if (!info(sources.error().code).submission_caused) return sources.take_error();
       // Code that cannot be sent is the code's grade; the frames are graded without it.
-      auto without = grade_frames(pool, c, checkpoint, {std::move(payload.saved), {}, {}, std::nullopt}, s);
-      if (without) without->result.code = failed_submission(sources.error(), checkpoint.name, s.max_score);
+      auto without = grade_saved_frames(pool, c, checkpoint, {std::move(payload.saved), {}, {}, std::nullopt}, s);
+      if (without) without->result.code = grade::failed_submission(sources.error(), checkpoint.name, s.max_score);
       return without;
     }
   auto a = worker::run_twice_if_stopped<worker::FramesGradeResult>(pool, worker::to_message(*job, payload));
@@ -129,9 +141,9 @@ Expected<FramesGrade> grade_frames(worker::WorkerPool& pool, const course::Cours
     if (!info(again.error().code).submission_caused) return again.take_error();
     return unsendable(c, checkpoint, s, again.error().message, with_code);
   }
-  again->result.code = failed_submission(e, checkpoint.name, s.max_score);
+  again->result.code = grade::failed_submission(e, checkpoint.name, s.max_score);
   note_attempts(*again->result.code, a.attempts(), a.retried());
   return FramesGrade{std::move(again->result), seconds_of(again->queue_ms, again->worker_ms)};
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::road
