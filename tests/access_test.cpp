@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 
 #include "core/base64.h"
 #include "image/png_decode.h"
+#include "support/files.h"
 #include "support/http_fixture.h"
 #include "support/openapi_check.h"
 #include "support/test_support.h"
@@ -308,6 +310,22 @@ TEST(AccessWithoutKeysTest, EveryCallerIsAStudent) {
   auto forged = c.Get("/api/render?preset=specular", bearer(kStaff));  // a key this server does not have
   ASSERT_TRUE(forged);
   EXPECT_EQ(forged->status, 403);
+}
+
+// Every route is registered through add_route (http/route_context.h), which hands its handler the
+// viewer: a handler registered on the server directly would decide what it reveals without
+// asking who asks. The registrations in the sources are counted against the routes' own file.
+TEST(AccessRegistrationTest, EveryRouteIsGivenItsViewerWhereItIsRegistered) {
+  const std::regex direct(R"(\b(server|svr|srv)\s*(\.|->)\s*(Get|Post|Put|Patch|Delete|Options)\s*\()");
+  size_t added = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(SHADELAB_SOURCE_DIR) / "server/http")) {
+    const std::string text = read_text(entry.path());
+    if (entry.path().filename() != "route_context.cpp") {
+      EXPECT_FALSE(std::regex_search(text, direct)) << entry.path() << " registers a route without add_route";
+    }
+    for (size_t at = text.find("add_route(server"); at != std::string::npos; at = text.find("add_route(server", at + 1)) ++added;
+  }
+  EXPECT_GE(added, 19u) << "the routes of the OpenAPI document, the health checks and the metrics";
 }
 
 }  // namespace

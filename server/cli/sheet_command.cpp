@@ -52,6 +52,7 @@ int run_sheet(const SheetFlags& f) {
   auto loaded = load_course(f.grade.course);
   if (!loaded) return fail(loaded.error());
   sheet::SheetInput input{f.title, "", "", {}};
+  input.viewer.role = course::Role::staff;  // the command line is a TA's machine: the answer in the reference's shading
   if (!f.answers.empty()) {
     if (!fs::is_regular_file(f.answers)) {
       std::cerr << "error: cannot read the answers file '" << f.answers << "'\n";

@@ -42,7 +42,7 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
 // The code's grade: the road's answer for what parsed, or, when a field could not be read, the
 // student's source when that is what is wrong (labelled with the checkpoint and points the request
 // named, read leniently: a source problem is the student's grade even beside a mistyped field).
-Expected<road::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, const course::Course& course, const httplib::Request& req) {
+Expected<road::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, const course::Course& course, const course::Viewer& viewer) {
   const render::RenderLimits& limits = c.config.limits.render;
   auto parsed = parse_code_grade(raw, c.config.limits);
   if (parsed)
@@ -52,7 +52,7 @@ Expected<road::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, co
     return road::grade_misread(parsed.error(), shaders ? shaders->code : std::nullopt, field_or<std::string>(raw.fields, "reference", "custom"),
                                field_or<double>(raw.fields, "maxScore", 1.0), limits);
   }
-  auto built = road::code_submission(course, std::move(parsed->request), c.viewer(req), limits);
+  auto built = road::code_submission(course, std::move(parsed->request), viewer, limits);
   if (!built) return built.take_error();
   built->submission.spec.reference_store = c.config.reference_places();
   auto graded = road::grade_code(c.pool, std::move(built->submission));
@@ -64,13 +64,13 @@ Expected<road::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, co
   return graded;
 }
 
-void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void grade(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
   auto course = course_of(*raw, c.courses);
   if (!course) return send_problem(res, course.error(), req.path);
   if (has_saved_frames(*raw)) return grade_saved(c, *raw, **course, req, res);
-  auto graded = graded_code(c, *raw, **course, req);
+  auto graded = graded_code(c, *raw, **course, viewer);
   if (!graded) return send_problem(res, graded.error(), req.path);
   if (field_or<std::string>(raw->fields, "format", "json") == "gradescope")
     return send_json(res, 200, grade::to_gradescope(graded->result.report, graded->seconds));
@@ -82,7 +82,7 @@ void grade(RouteContext& c, const httplib::Request& req, httplib::Response& res)
 }  // namespace
 
 void add_grade_routes(httplib::Server& server, RouteContext& c) {
-  server.Post("/api/grade", [&c](const httplib::Request& req, httplib::Response& res) { grade(c, req, res); });
+  add_route(server, c, Method::post, "/api/grade", grade);
 }
 
 }  // namespace shadelab::http

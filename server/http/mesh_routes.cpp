@@ -28,7 +28,7 @@ Expected<UploadedFile> read_mesh_upload(const httplib::Request& req, const Limit
   return file;
 }
 
-void upload(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void upload(RouteContext& c, const course::Viewer&, const httplib::Request& req, httplib::Response& res) {
   auto file = read_mesh_upload(req, c.config.limits);
   if (!file) return send_problem(res, file.error(), req.path);
   worker::Job job;
@@ -42,7 +42,7 @@ void upload(RouteContext& c, const httplib::Request& req, httplib::Response& res
   send_json(res, 201, {{"id", job.mesh}, {"filename", file->filename}, {"format", job.mesh_format}, {"info", info}});
 }
 
-void list(const RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void list(RouteContext& c, const course::Viewer&, const httplib::Request& req, httplib::Response& res) {
   const course::Course* course = c.course_param(req, res);
   if (!course) return;
   json builtin = json::array(), scene_builtin = json::array();
@@ -53,7 +53,7 @@ void list(const RouteContext& c, const httplib::Request& req, httplib::Response&
 }
 
 // A course's mesh as the page loads it: the OBJ file's bytes, as the course hands them out.
-void course_obj(const RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void course_obj(RouteContext& c, const course::Viewer&, const httplib::Request& req, httplib::Response& res) {
   const course::Course* course = c.course_param(req, res);
   if (!course) return;
   const std::string name = req.matches[1];
@@ -66,9 +66,9 @@ void course_obj(const RouteContext& c, const httplib::Request& req, httplib::Res
 }  // namespace
 
 void add_mesh_routes(httplib::Server& server, RouteContext& c) {
-  server.Post("/api/meshes", [&c](const httplib::Request& req, httplib::Response& res) { upload(c, req, res); });
-  server.Get("/api/meshes", [&c](const httplib::Request& req, httplib::Response& res) { list(c, req, res); });
-  server.Get(R"(/api/meshes/([a-z0-9_-]+)\.obj)", [&c](const httplib::Request& req, httplib::Response& res) { course_obj(c, req, res); });
+  add_route(server, c, Method::post, "/api/meshes", upload);
+  add_route(server, c, Method::get, "/api/meshes", list);
+  add_route(server, c, Method::get, R"(/api/meshes/([a-z0-9_-]+)\.obj)", course_obj);
 }
 
 }  // namespace shadelab::http

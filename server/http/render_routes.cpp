@@ -49,14 +49,14 @@ std::string json_body(const worker::RenderResult& r, const std::vector<std::stri
                    -1);
 }
 
-void render(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void render(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
   auto course = course_of(*raw, c.courses);
   if (!course) return send_problem(res, course.error(), req.path);
   auto parsed = parse_job(*raw, worker::JobKind::render, c.config.limits, **course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
-  if (auto visible = c.may_draw(*parsed, **course, req); !visible) return send_problem(res, visible.error(), req.path);
+  if (auto visible = c.may_draw(*parsed, **course, viewer); !visible) return send_problem(res, visible.error(), req.path);
   if (parsed->job.output == worker::Output::frames) parsed->job.notice = (**course).frames_download_notice();
   auto mesh = c.mesh_bytes(*parsed);
   if (!mesh) return send_problem(res, mesh.error(), req.path);
@@ -91,14 +91,14 @@ void render(RouteContext& c, const httplib::Request& req, httplib::Response& res
   c.send_and_cache(res, etag, std::move(response));
 }
 
-void compile(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void compile(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
   auto course = course_of(*raw, c.courses);
   if (!course) return send_problem(res, course.error(), req.path);
   auto parsed = parse_job(*raw, worker::JobKind::compile, c.config.limits, **course);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
-  if (auto visible = c.may_draw(*parsed, **course, req); !visible) return send_problem(res, visible.error(), req.path);
+  if (auto visible = c.may_draw(*parsed, **course, viewer); !visible) return send_problem(res, visible.error(), req.path);
   auto answered = c.run<worker::CompileResult>(worker::to_message(parsed->job));
   if (!answered) return send_problem(res, answered.error(), req.path);
   const auto& r = answered->result;
@@ -114,9 +114,9 @@ void compile(RouteContext& c, const httplib::Request& req, httplib::Response& re
 }  // namespace
 
 void add_render_routes(httplib::Server& server, RouteContext& c) {
-  server.Post("/api/render", [&c](const httplib::Request& req, httplib::Response& res) { render(c, req, res); });
-  server.Get("/api/render", [&c](const httplib::Request& req, httplib::Response& res) { render(c, req, res); });
-  server.Post("/api/compile", [&c](const httplib::Request& req, httplib::Response& res) { compile(c, req, res); });
+  add_route(server, c, Method::post, "/api/render", render);
+  add_route(server, c, Method::get, "/api/render", render);
+  add_route(server, c, Method::post, "/api/compile", compile);
 }
 
 }  // namespace shadelab::http

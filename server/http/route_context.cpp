@@ -10,6 +10,15 @@ using nlohmann::json;
 
 std::string json_text(const json& body, int indent) { return body.dump(indent, ' ', false, json::error_handler_t::replace); }
 
+void add_route(httplib::Server& server, RouteContext& c, Method method, const std::string& pattern, RouteHandler handler) {
+  auto with_viewer = [&c, handler = std::move(handler)](const httplib::Request& req, httplib::Response& res) {
+    const course::Viewer viewer{c.tenants.role_of(req.get_header_value("Authorization")), c.config.open_references};
+    handler(c, viewer, req, res);
+  };
+  if (method == Method::get) server.Get(pattern, std::move(with_viewer));
+  else server.Post(pattern, std::move(with_viewer));
+}
+
 void send_problem(httplib::Response& res, const Error& e, const std::string& instance) {
   res.status = http_status(e.code);
   if (info(e.code).retry_later) res.set_header("Retry-After", "1");
@@ -45,13 +54,9 @@ Status RouteContext::find_uploaded_mesh(road::MeshChoice& mesh, const course::Co
   return Ok{};
 }
 
-course::Viewer RouteContext::viewer(const httplib::Request& req) const {
-  return {tenants.role_of(req.get_header_value("Authorization")), config.open_references};
-}
-
-Status RouteContext::may_draw(const ParsedJob& parsed, const course::Course& course, const httplib::Request& req) const {
+Status RouteContext::may_draw(const ParsedJob& parsed, const course::Course& course, const course::Viewer& viewer) const {
   if (!parsed.preset) return Ok{};
-  auto found = course::find_visible_preset(course, parsed.preset->name, viewer(req));
+  auto found = course::find_visible_preset(course, parsed.preset->name, viewer);
   if (!found) return found.take_error();
   return Ok{};
 }

@@ -5,6 +5,7 @@
 // mesh_routes, service_routes) and register themselves on the server.
 #include <httplib.h>
 
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -54,10 +55,8 @@ struct RouteContext {
   // choice's upload; mesh_not_found when there is no such upload.
   Status find_uploaded_mesh(road::MeshChoice& mesh, const course::Course& course) const;
 
-  // Who is asking (course/access.h): the role of the request's key, and the server's openness.
-  course::Viewer viewer(const httplib::Request& req) const;
-  // Whether the caller may have what `parsed` draws: a reference preset only with a staff key.
-  Status may_draw(const ParsedJob& parsed, const course::Course& course, const httplib::Request& req) const;
+  // Whether `viewer` may have what `parsed` draws: a reference preset only with a staff key.
+  Status may_draw(const ParsedJob& parsed, const course::Course& course, const course::Viewer& viewer) const;
 
   // The course `?course=ID` names, or the default one; null, with the problem answered, otherwise.
   const course::Course* course_param(const httplib::Request& req, httplib::Response& res) const;
@@ -70,6 +69,13 @@ struct RouteContext {
   // Sends `response` and keeps it under `etag`.
   void send_and_cache(httplib::Response& res, const std::string& etag, CachedResponse response);
 };
+
+// Every route's handler is given who asks (course/access.h) where it is registered: the role of the
+// request's key, and the server's openness. No route is staff-only; what a response holds follows
+// the viewer, and a handler cannot forget to ask: a request without a staff key is a student's.
+using RouteHandler = std::function<void(RouteContext&, const course::Viewer&, const httplib::Request&, httplib::Response&)>;
+enum class Method { get, post };
+void add_route(httplib::Server& server, RouteContext& context, Method method, const std::string& pattern, RouteHandler handler);
 
 void send_problem(httplib::Response& res, const Error& e, const std::string& instance);
 void send_json(httplib::Response& res, int status, const nlohmann::json& body);

@@ -87,7 +87,7 @@ bool wants_json(const httplib::Request& req) {
          (accept.find("application/json") != std::string::npos && accept.find("image/png") == std::string::npos);
 }
 
-void render_scene(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void render_scene(RouteContext& c, const course::Viewer&, const httplib::Request& req, httplib::Response& res) {
   auto upload = read_scene(req);
   if (!upload) return send_problem(res, upload.error(), req.path);
   auto description = scene::parse_scene(upload->scene, c.config.limits.scene);
@@ -125,7 +125,7 @@ void render_scene(RouteContext& c, const httplib::Request& req, httplib::Respons
 }
 
 // GET /api/dolly?subject=0,0,0&from=0,-4,0&lens=25&lenses=25,50,100
-void dolly(const httplib::Request& req, httplib::Response& res) {
+void dolly(RouteContext&, const course::Viewer&, const httplib::Request& req, httplib::Response& res) {
   const auto numbers = [&](const char* name, std::vector<double> fallback, size_t count) -> Expected<std::vector<double>> {
     if (!req.has_param(name)) return fallback;
     return parse_number_list(req.get_param_value(name), name, {.count = count});
@@ -147,7 +147,7 @@ void dolly(const httplib::Request& req, httplib::Response& res) {
 }
 
 // The example scenes (assets/scenes/), ready to POST back to /api/scene.
-void list_scenes(const httplib::Request&, httplib::Response& res) {
+void list_scenes(RouteContext&, const course::Viewer&, const httplib::Request&, httplib::Response& res) {
   json out = json::array();
   constexpr std::string_view prefix = "assets/scenes/", suffix = ".json";
   for (const auto& f : embedded_files())
@@ -155,7 +155,7 @@ void list_scenes(const httplib::Request&, httplib::Response& res) {
   send_json(res, 200, {{"scenes", out}});
 }
 
-void example_scene(const httplib::Request& req, httplib::Response& res) {
+void example_scene(RouteContext&, const course::Viewer&, const httplib::Request& req, httplib::Response& res) {
   const std::string name = req.matches[1];
   const auto text = embedded_file("assets/scenes/" + name + ".json");
   if (!text) return send_problem(res, make_error(ErrorCode::not_found, "no example scene '" + name + "'"), req.path);
@@ -165,10 +165,10 @@ void example_scene(const httplib::Request& req, httplib::Response& res) {
 }  // namespace
 
 void add_scene_routes(httplib::Server& server, RouteContext& c) {
-  server.Post("/api/scene", [&c](const httplib::Request& req, httplib::Response& res) { render_scene(c, req, res); });
-  server.Get("/api/dolly", dolly);
-  server.Get("/api/scenes", list_scenes);
-  server.Get(R"(/api/scenes/([a-z0-9_]+))", example_scene);
+  add_route(server, c, Method::post, "/api/scene", render_scene);
+  add_route(server, c, Method::get, "/api/dolly", dolly);
+  add_route(server, c, Method::get, "/api/scenes", list_scenes);
+  add_route(server, c, Method::get, R"(/api/scenes/([a-z0-9_]+))", example_scene);
 }
 
 }  // namespace shadelab::http

@@ -125,7 +125,7 @@ Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& lim
   return input;
 }
 
-void sheet(RouteContext& c, const httplib::Request& req, httplib::Response& res) {
+void sheet(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
   auto format = text_field(raw->fields, "format", "pdf", 8);
@@ -136,7 +136,7 @@ void sheet(RouteContext& c, const httplib::Request& req, httplib::Response& res)
   if (!course) return send_problem(res, course.error(), req.path);
   auto input = parse_sheet(*raw, c.config.limits);
   if (!input) return send_problem(res, input.error(), req.path);
-  input->viewer = c.viewer(req);
+  input->viewer = viewer;
   auto assembled = sheet::assemble(c.pool, **course, std::move(*input), c.config.reference_places());
   if (!assembled) return send_problem(res, assembled.error(), req.path);
   if (*format == "html") return res.set_content(sheet::render_html(*assembled), "text/html; charset=utf-8");
@@ -149,7 +149,7 @@ void sheet(RouteContext& c, const httplib::Request& req, httplib::Response& res)
 }  // namespace
 
 void add_sheet_routes(httplib::Server& server, RouteContext& c) {
-  server.Post("/api/sheet", [&c](const httplib::Request& req, httplib::Response& res) { sheet(c, req, res); });
+  add_route(server, c, Method::post, "/api/sheet", sheet);
 }
 
 }  // namespace shadelab::http

@@ -40,8 +40,9 @@ struct SheetInput {
   std::vector<SubmittedFile> images;  // the PNG files: saved frames, the Blender half's renders
   std::vector<SceneInput> scenes;
   // Who the sheet is for: a TA's (the command line, a staff key) shows the purple-bunny answer in
-  // the reference's shading; a student's in their own code's, the reference being the staff's.
-  course::Viewer viewer{course::Role::staff};
+  // the reference's shading; a student's in their own code's, the reference being the staff's. A
+  // student unless the caller says otherwise: forgetting to ask never shows a reference.
+  course::Viewer viewer;
 };
 
 // Errors: only what the service could not do (the pool full, no worker): whatever the shaders
