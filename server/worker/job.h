@@ -20,6 +20,7 @@
 
 #include "core/expected.h"
 #include "grade/grade_spec.h"
+#include "grade/hand_in_images.h"
 #include "render/render_request.h"
 #include "scene/mesh.h"
 #include "scene/scene_description.h"
@@ -69,16 +70,8 @@ struct SceneJob {
   std::vector<SceneMeshBytes> meshes;
 };
 
-// The Blender half's images a student handed in, each checked as the course asks: against a scene
-// (the dolly zoom's cameras, grade/camera_check.h: the first such image's subject is the set's),
-// or for the objects in it (grade/render_check.h). A stranger's PNG is decoded in the worker.
-struct CheckedImage {
-  std::string file;                             // images/camera_25.png
-  std::optional<scene::SceneDescription> scene;  // the course's, validated when the profile was read
-  int objects = 0;                              // without a scene: how many objects it must show
-  std::string png;                              // empty: `problem` says why
-  std::string problem;                          // "not in the submission"
-};
+// The Blender half's images a student handed in, to be judged (grade/hand_in_images.h).
+using CheckedImage = grade::HandInImage;
 
 struct ImagesJob {
   std::vector<CheckedImage> images;

@@ -6,9 +6,8 @@
 #include <optional>
 
 #include "core/lru_cache.h"
-#include "grade/camera_check.h"
-#include "grade/render_check.h"
 #include "grade/grade_session.h"
+#include "grade/hand_in_images.h"
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/grid_png_encoder.h"
@@ -296,59 +295,21 @@ class Worker {
     return SceneResult{std::move(rendered->report), ms_since(encode_start), as_string(*png)};
   }
 
-  // The student's images decoded here (a stranger's PNG) and each checked as the course asks: the
-  // dolly zoom's against the subject of the first one's scene from every camera of the set
-  // (grade/camera_check.h), the rest for what a render alone shows (grade/render_check.h).
+  // The student's images judged as the course asks (grade/hand_in_images.h): the worker decodes
+  // them (a stranger's PNG) and draws the views the judgement asks for.
   Expected<ImagesResult> check_images(const Message& in) {
     if (auto s = enter_render_phase(); !s) return s.take_error();
     auto job = images_job_from_message(in);
     if (!job) return job.take_error();
-    ImagesResult out;
-    out.verdicts.resize(job->images.size());
-    std::vector<grade::HandedInCamera> cameras;
-    std::vector<size_t> camera_at;
-    const scene::SceneDescription* subject = nullptr;
-    for (size_t i = 0; i < job->images.size(); ++i) {
-      CheckedImage& image = job->images[i];
-      std::optional<image::Image> decoded;
-      std::string problem = image.problem;
-      if (problem.empty()) {
-        auto d = image::decode_png(image.png, course::kMaxHandInSide);
-        if (d) decoded = std::move(*d);
-        else problem = image.file + " cannot be read: " + d.error().message;
-      }
-      if (image.scene) {
-        if (!subject) subject = &*image.scene;
-        cameras.push_back({image.file, {image.scene->camera.lens_mm, image.scene->camera.location}, std::move(decoded), problem});
-        camera_at.push_back(i);
-      } else if (!decoded) {
-        out.verdicts[i] = {false, problem, ""};
-      } else {
-        const grade::RenderCheck r = grade::check_render(*decoded);
-        out.verdicts[i] = {r.pass, r.facts_line(), grade::render_check_leaves_out(image.objects)};
-      }
-    }
-    if (cameras.empty()) return out;
-    if (auto s = make_scene_renderer(); !s) return s.take_error();
-    const grade::CameraCheckOptions options;
-    const auto render_view = [&](const grade::CameraView& view, int width, int height) -> Expected<grade::Outline> {
-      scene::SceneDescription s = *subject;
-      s.camera.lens_mm = view.lens_mm;
-      s.camera.location = view.location;
-      s.render.width = width, s.render.height = height, s.render.percentage = 100;
-      s.render.engine = scene::Engine::workbench;  // the outline is all that is compared: the cheapest engine
-      auto rendered = scene_renderer_->render(s, scene_render::resolve_builtin_mesh);
+    const auto render = [&](const scene::SceneDescription& scene) -> Expected<image::Image> {
+      if (auto s = make_scene_renderer(); !s) return s.take_error();
+      auto rendered = scene_renderer_->render(scene, scene_render::resolve_builtin_mesh);
       if (!rendered) return rendered.take_error();
-      return grade::outline_of(rendered->image, options.background_tolerance);
+      return std::move(rendered->image);
     };
-    auto verdicts = grade::judge_cameras(cameras, render_view, options);
+    auto verdicts = grade::judge_hand_in_images(std::move(job->images), course::kMaxHandInSide, render);
     if (!verdicts) return verdicts.take_error();
-    for (size_t k = 0; k < cameras.size(); ++k) {
-      const grade::CameraVerdict& v = (*verdicts)[k];
-      const bool checked = cameras[k].image.has_value();
-      out.verdicts[camera_at[k]] = {v.pass, v.message, checked ? grade::kCameraCheckLeavesOut : ""};
-    }
-    return out;
+    return ImagesResult{std::move(*verdicts)};
   }
 
   int fd_;
