@@ -96,7 +96,8 @@ TEST(NotebookReadingTest, TheNotebookAsHandedOutAnswersNothing) {
     EXPECT_EQ(a.found, AnswerFound::placeholder_left) << a.question;
     EXPECT_TRUE(a.text.empty()) << a.text;
   }
-  EXPECT_EQ(sheet::words_for(AnswerFound::placeholder_left), "(unanswered: the placeholder is as handed out)");
+  EXPECT_EQ(sheet::words_for(AnswerFound::placeholder_left, "HW2.ipynb"), "(unanswered: the placeholder is as handed out)");
+  EXPECT_EQ(sheet::words_for(AnswerFound::not_found, course::builtin_course().notebook_name()), "(no answer under this question in HW2.ipynb)");
 }
 
 // The real student's notebook of the course's offering, in kind: the first answer in place of its

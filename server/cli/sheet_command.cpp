@@ -29,7 +29,7 @@ namespace fs = std::filesystem;
 
 struct SheetFlags {
   GradeFlags grade;
-  std::string folder, pdf, html, answers, title = "HW2 submission";
+  std::string folder, pdf, html, answers, title;  // empty title: the course's hand-in title
   std::vector<std::string> scenes;
 };
 
@@ -98,7 +98,7 @@ Command add_sheet_command(CLI::App& app) {
   cmd->add_option("--answers", f->answers, "A text file with the short answers");
   cmd->add_option("--scene", f->scenes, "A Blender-half scene (JSON, docs/scenes.md) to render with its framing report; repeat for more")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--title", f->title, "The sheet's title (e.g. the student's name)")->capture_default_str();
+  cmd->add_option("--title", f->title, "The sheet's title (e.g. the student's name; default: the course's hand-in title, \"HW2 submission\" in the built-in course)");
   add_grader_options(cmd, f->grade.course, f->grade.cache_dir, f->grade.software);
   return [f] { return run_sheet(*f); };
 }

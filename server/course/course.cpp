@@ -107,6 +107,10 @@ render::PageSetup Course::page() const {
   return setup;
 }
 
+std::string Course::hand_in_name() const { return hand_in_title.empty() ? title + " submission" : hand_in_title; }
+
+std::string Course::notebook_name() const { return notebook_file.empty() ? "the notebook" : notebook_file; }
+
 render::RenderRequest Course::render_request(shader::ShaderFile vertex, shader::ShaderFile fragment) const {
   render::RenderRequest r;
   r.vertex = std::move(vertex);

@@ -204,6 +204,10 @@ struct Course {
   std::vector<Question> questions;    // the notebook's, in its order
   std::optional<HandedOutNotebook> handed_out;  // the notebook the answers are read against; none: read by the cells under each question
   std::vector<HandInImage> images;    // handed in after the questions, in the notebook's order
+  // What the course calls a student's hand-in and their notebook, in the words they read (the
+  // sheet's title, "HW2.ipynb: ..."): the profile's `handIn` and `notebook.file`.
+  std::string hand_in_title;  // "HW2 submission"; empty: "<title> submission"
+  std::string notebook_file;  // "HW2.ipynb"; empty: "the notebook"
   std::string origin;  // where it was read from: a path, or "built-in" (not part of the format)
 
   const Preset* preset(std::string_view name) const;
@@ -249,6 +253,9 @@ struct Course {
   // What a download of ShadeLab's own frames says where the course wants frames saved from the
   // page: they are for checking, not for handing in. Empty where ShadeLab's frames may be handed in.
   std::string frames_download_notice() const;
+  // The hand-in's title and the notebook's name as the course says them, or their plain words.
+  std::string hand_in_name() const;
+  std::string notebook_name() const;
   // The starter's specular exponent (the CPU reference's alpha); 0 when the profile sets none.
   double specular_exponent() const;
 };

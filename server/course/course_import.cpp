@@ -133,10 +133,10 @@ class Importer {
   void found(std::string what) { out_.found.push_back(std::move(what)); }
   void assumed(std::string what) { out_.assumed.push_back(std::move(what)); }
 
-  // The folder's notebook (HW2.ipynb, else the shallowest .ipynb) kept as the handed-out one.
+  // The folder's notebook (the built-in course's notebook.file, else the shallowest .ipynb) kept as the handed-out one.
   void notebook() {
     const std::string kept = fs::path(o_.output).stem().string() + ".handed_out.ipynb";
-    auto imported = import_notebook(folder_notebook(folder_.root, folder_.files), p_["notebook"], kept);
+    auto imported = import_notebook(folder_notebook(folder_.root, folder_.files, p_["notebook"].value("file", "")), p_["notebook"], kept);
     p_["notebook"] = std::move(imported.section);
     if (imported.kept) out_.derived_files.push_back(std::move(*imported.kept));
     for (auto& f : imported.found) found(std::move(f));

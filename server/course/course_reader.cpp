@@ -51,7 +51,7 @@ class Parser {
   Expected<Course> parse(const json& j) {
     JsonReader root(j, "", &error_, "a course profile");
     root.only({"format", "id", "title", "source", "canvas", "frames", "msaa", "camera", "uniforms", "specularExponent", "meshes",
-               "defaultMesh", "presets", "defaultPreset", "checkpoints", "defaultCheckpoint", "aliases", "notebook", "tolerance"});
+               "defaultMesh", "presets", "defaultPreset", "checkpoints", "defaultCheckpoint", "aliases", "notebook", "tolerance", "handIn"});
     if (root.require("format") && root.text("format", "") != kCourseFormat)
       root.fail_at("format", std::string("expected \"") + kCourseFormat + "\" (this ShadeLab reads that version of the format)");
     header(root);
@@ -73,6 +73,7 @@ class Parser {
     if (r.has("id") && !is_name(course_.id)) r.fail_at("id", "expected lower-case letters, digits, '_' or '-' (at most 32)");
     course_.title = r.text("title", "");
     course_.source = r.text("source", "");
+    course_.hand_in_title = r.text("handIn", "");
   }
 
   void page(const JsonReader& r) {
@@ -422,7 +423,10 @@ class Parser {
   void notebook(const JsonReader& r) {
     if (!r.has("notebook")) return;
     const JsonReader n = r.object("notebook");
-    n.only({"questions", "images", "handedOut", "placeholder"});
+    n.only({"file", "questions", "images", "handedOut", "placeholder"});
+    course_.notebook_file = n.text("file", "");
+    if (!course_.notebook_file.empty() && (!course_.notebook_file.ends_with(".ipynb") || course_.notebook_file.find('/') != std::string::npos))
+      n.fail_at(n.at("file"), "expected the notebook's file name, ending in .ipynb");
     if (n.has("handedOut")) course_.handed_out = handed_out(n);
     for (const JsonReader& q : n.objects("questions")) {
       q.only({"id", "text", "cell", "renderColours"});

@@ -124,8 +124,9 @@ json to_json(const Course& c, bool portable) {
               {"defaultCheckpoint", c.default_checkpoint},
               {"aliases", aliases}};
   if (!c.source.empty()) out["source"] = c.source;
+  if (!c.hand_in_title.empty()) out["handIn"] = c.hand_in_title;
   if (json tolerance = tolerance_json(c.tolerance); !tolerance.empty()) out["tolerance"] = std::move(tolerance);
-  if (!c.questions.empty() || !c.images.empty()) {
+  if (!c.questions.empty() || !c.images.empty() || !c.notebook_file.empty()) {
     json questions = json::array(), images = json::array();
     for (const auto& q : c.questions) {
       json one = {{"id", q.id}, {"text", q.text}};
@@ -141,6 +142,7 @@ json to_json(const Course& c, bool portable) {
       images.push_back(std::move(image));
     }
     out["notebook"] = {{"questions", questions}, {"images", images}};
+    if (!c.notebook_file.empty()) out["notebook"]["file"] = c.notebook_file;
     if (c.handed_out) {
       out["notebook"]["handedOut"] = portable ? c.handed_out->source : c.handed_out->file;
       if (c.handed_out->placeholder != HandedOutNotebook{}.placeholder) out["notebook"]["placeholder"] = c.handed_out->placeholder;

@@ -38,10 +38,11 @@ json questions_from(const std::vector<NotebookLine>& lines, const std::vector<Pl
 
 }  // namespace
 
-std::optional<FolderNotebook> folder_notebook(const std::filesystem::path& root, const std::vector<std::filesystem::path>& files) {
+std::optional<FolderNotebook> folder_notebook(const std::filesystem::path& root, const std::vector<std::filesystem::path>& files,
+                                             const std::string& preferred) {
   const std::filesystem::path* found = nullptr;
   for (const auto& f : files)
-    if (f.filename() == "HW2.ipynb" && !found) found = &f;
+    if (!preferred.empty() && f.filename() == preferred && !found) found = &f;
   for (const auto& f : files)
     if (!found && f.extension() == ".ipynb" && f.generic_string().find(".ipynb_checkpoints") == std::string::npos) found = &f;
   if (!found) return std::nullopt;
@@ -65,6 +66,7 @@ ImportedNotebook import_notebook(const std::optional<FolderNotebook>& notebook, 
     return out;
   }
   out.section["handedOut"] = kept_name;
+  out.section["file"] = std::filesystem::path(notebook->path).filename().string();  // as students hand it in
   out.section["questions"] = questions_from(lines, *placed, builtin);
   out.kept = {kept_name, notebook->text};
   out.found.push_back(std::to_string(placed->size()) + " questions, each before a '" + placeholder + "' (" + notebook->path +

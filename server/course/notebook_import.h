@@ -1,5 +1,5 @@
 #pragma once
-// `course import`'s notebook: the folder's HW2.ipynb kept beside the profile as the handed-out
+// `course import`'s notebook: the folder's notebook (the built-in course's name for it first) kept beside the profile as the handed-out
 // notebook, and the questions read from it (each placeholder's question). A question the built-in
 // profile also asks keeps its id and what it renders; the others are q1, q2, ... in the
 // notebook's order.
@@ -17,9 +17,11 @@ struct FolderNotebook {
   std::string text;
 };
 
-// The folder's notebook: HW2.ipynb, else the first .ipynb of `files` (relative to `root`, the
-// shallowest first), Jupyter's checkpoint copies aside; none when it has no notebook.
-std::optional<FolderNotebook> folder_notebook(const std::filesystem::path& root, const std::vector<std::filesystem::path>& files);
+// The folder's notebook: the one named `preferred` (the built-in course's notebook.file), else the
+// first .ipynb of `files` (relative to `root`, the shallowest first), Jupyter's checkpoint copies
+// aside; none when it has no notebook.
+std::optional<FolderNotebook> folder_notebook(const std::filesystem::path& root, const std::vector<std::filesystem::path>& files,
+                                             const std::string& preferred);
 
 struct ImportedNotebook {
   nlohmann::json section;                                  // the profile's "notebook"

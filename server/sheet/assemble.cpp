@@ -258,7 +258,7 @@ Status add_answers(worker::WorkerPool& pool, const course::Course& course, const
   for (size_t i = 0; i < course.questions.size(); ++i) {
     const course::Question& q = course.questions[i];
     const NotebookAnswer& read = reading->answers[i];
-    AnswerSection a{read.question, read.text, std::string(words_for(read.found)), {}, {}};
+    AnswerSection a{read.question, read.text, words_for(read.found, course.notebook_name()), {}, {}};
     if (!q.render_colours.empty() && !a.answer.empty()) {
       const auto shaders = colour_shaders(course, input, q.render_colours);
       if (const auto colours = colours_in(a.answer); colours && shaders) {
@@ -284,7 +284,8 @@ Status add_answers(worker::WorkerPool& pool, const course::Course& course, const
 // are collected in the sheet's order, so the result does not depend on which finishes first.
 Expected<Sheet> assemble(worker::WorkerPool& pool, const course::Course& course, SheetInput input, const grade::ReferenceStorePlaces& reference_store) {
   Sheet sheet;
-  sheet.title = input.title;
+  sheet.title = input.title.empty() ? course.hand_in_name() : input.title;
+  sheet.notebook_name = course.notebook_name();
   sheet.answers = input.answers;
   sheet.questions = quoted_questions(course);
   sheet.images = images(course, input);

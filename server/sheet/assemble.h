@@ -33,7 +33,7 @@ struct SceneInput {
 };
 
 struct SheetInput {
-  std::string title = "HW2 submission";
+  std::string title;  // empty: the course's hand-in title (Course::hand_in_name)
   std::string answers;
   std::string notebook;               // HW2.ipynb's text; empty when not handed in
   std::vector<SubmittedFile> files;   // the shader modules (text)

@@ -28,8 +28,8 @@ constexpr std::array<std::pair<AnswerFound, std::string_view>, 6> kAnswerWords{{
     {AnswerFound::under_question, ""},
     {AnswerFound::placeholder_left, "(unanswered: the placeholder is as handed out)"},
     {AnswerFound::none_written, "(unanswered: nothing written in the question's place)"},
-    {AnswerFound::question_removed, "(the question is not in HW2.ipynb: its text was removed, and nothing was written in its place)"},
-    {AnswerFound::not_found, "(no answer under this question in HW2.ipynb)"},
+    {AnswerFound::question_removed, "(the question is not in {notebook}: its text was removed, and nothing was written in its place)"},
+    {AnswerFound::not_found, "(no answer under this question in {notebook})"},
 }};
 
 // Where each line of the student's notebook came from: the handed-out line it is (the diff's
@@ -108,9 +108,13 @@ Expected<NotebookReading> under_questions(const std::string& ipynb, const course
 
 }  // namespace
 
-std::string_view words_for(AnswerFound found) {
-  for (const auto& [f, words] : kAnswerWords)
-    if (f == found) return words;
+std::string words_for(AnswerFound found, std::string_view notebook) {
+  for (const auto& [f, words] : kAnswerWords) {
+    if (f != found) continue;
+    std::string out(words);
+    if (const auto at = out.find("{notebook}"); at != std::string::npos) out.replace(at, 10, notebook);
+    return out;
+  }
   return {};
 }
 
@@ -141,7 +145,7 @@ Expected<NotebookReading> read_notebook(const std::string& ipynb, const course::
   const Alignment a = align(handed_out, student);
   if (const double kept = share_kept(handed_out, *placed, a); kept < kFollowsHandedOut)
     return under_questions(ipynb, course,
-                           "HW2.ipynb keeps " + percent(kept) + " of the handed-out notebook's text, so what the student added cannot be told " +
+                           course.notebook_name() + " keeps " + percent(kept) + " of the handed-out notebook's text, so what the student added cannot be told " +
                                "from it: each answer below is the cells under its question, and may include the question's own words");
   const std::vector<std::string> added = added_per_place(student, a, *placed);
   const std::vector<int> at = course::match_questions(course.questions, *placed);

@@ -1,5 +1,5 @@
 #pragma once
-// A student's HW2.ipynb read for what they wrote: compared line by line with the notebook the
+// A student's notebook (the course's notebook.file: HW2.ipynb) read for what they wrote: compared line by line with the notebook the
 // course handed out, each line they added is theirs, and belongs to the question whose place it
 // was added in (after its text, where its placeholder was, or in a cell after it). So an answer
 // written in the question's own cell is found, a question's own words are never an answer, and a
@@ -24,8 +24,9 @@ enum class AnswerFound {
   question_removed, // the question's text is not in the student's notebook
   not_found,        // read without the handed-out notebook: no cell asks it, or nothing under it
 };
-// What the sheet says in place of an answer that is not there; empty for the two that are.
-std::string_view words_for(AnswerFound found);
+// What the sheet says in place of an answer that is not there, naming the course's notebook
+// (Course::notebook_name); empty for the two that are.
+std::string words_for(AnswerFound found, std::string_view notebook);
 
 struct NotebookAnswer {
   std::string question;  // quoted from the handed-out notebook; else the profile's words

@@ -79,7 +79,8 @@ struct AnswerSection {
 };
 
 struct Sheet {
-  std::string title = "HW2 submission";
+  std::string title;          // the course's hand-in title ("HW2 submission") unless the caller gave one
+  std::string notebook_name;  // the course's notebook ("HW2.ipynb"), as its problems are named
   std::vector<CheckpointSection> checkpoints;  // in the course's (the notebook's) order
   std::vector<std::string> questions;          // the notebook's
   std::vector<AnswerSection> answered;         // from the student's notebook; empty when none was handed in

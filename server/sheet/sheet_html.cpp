@@ -126,7 +126,7 @@ std::string render_html(const Sheet& sheet) {
     answered(out, sheet);
   } else if (!sheet.questions.empty() || !sheet.answers.empty()) {
     out << "<section id=\"questions\">\n<h2>Questions</h2>\n";
-    if (!sheet.notebook_problem.empty()) out << "<p class=\"fail\">HW2.ipynb: " << escape(sheet.notebook_problem) << "</p>\n";
+    if (!sheet.notebook_problem.empty()) out << "<p class=\"fail\">" << escape(sheet.notebook_name) << ": " << escape(sheet.notebook_problem) << "</p>\n";
     out << "<ol>\n";
     for (const auto& q : sheet.questions) out << "<li>" << escape(q) << "</li>\n";
     out << "</ol>\n<h3>Answers</h3>\n";

@@ -284,7 +284,7 @@ void questions(PageWriter& w, const Sheet& sheet) {
   w.text("Questions", kSans, 13, kInk, true);
   w.gap(4);
   if (!sheet.answered.empty()) return answered(w, sheet);
-  if (!sheet.notebook_problem.empty()) w.paragraph("HW2.ipynb: " + printable(sheet.notebook_problem), 9.5, kFail);
+  if (!sheet.notebook_problem.empty()) w.paragraph(sheet.notebook_name + ": " + printable(sheet.notebook_problem), 9.5, kFail);
   for (size_t i = 0; i < sheet.questions.size(); ++i) w.paragraph(std::to_string(i + 1) + ". " + printable(sheet.questions[i]), 9.5, kGrey);
   w.gap(6);
   w.text("Answers", kSans, 11, kInk, true);
