@@ -4,10 +4,12 @@
 // The work, for a deliverable of 9 frames: the reference at the lag grid's angles (65 frames,
 // once per course: the store and the worker's memory keep it), the lags fitted against it, then
 // the reference rendered once at the fitted angles (one render of the job) and compared. Only a
-// failing set pays for more: each known mistake rendered at the same angles, for the diagnosis,
-// and the formula's geometry at the angles the frames' outlines fit, for the explanation (three
-// float renders, five for the normal's colour, kept in memory only: no other student's frames are
-// drawn at those angles).
+// failing set pays for more: the formula's geometry at the angles the frames' outlines fit, for
+// the explanation (three float renders for a lit checkpoint, and four more, one a sample, where a
+// specular one's flat shading could be what the frames show; four for the normal's colour: the
+// position, the normal, the colour interpolated and flat), kept in memory only: no other student's
+// frames are drawn at those angles; and a known mistake the formula does not read, rendered at the
+// same angles, for the diagnosis.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

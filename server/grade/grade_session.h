@@ -2,8 +2,10 @@
 // Grading one submission on a renderer: the orchestration between the worker's dispatch and the
 // pure verdict in grader.h. The submission is rendered under the homework's light and each of the
 // checkpoint's probe lights to 8-bit frames (what the canvas saves), with IEEE arithmetic and a
-// census of the NaN and infinities the canvas cannot show; the reference and every known mistake
-// are rendered the same way with the submission's uniform values, and grade() decides.
+// census of the NaN and infinities the canvas cannot show; the reference is rendered the same way
+// with the submission's uniform values, and grade() decides. Only a failing submission is
+// explained: by the formula (grade/formula_explanation.h) where it can read the frames, and by the
+// catalogue's mistakes it does not read, each rendered the same way.
 #include <functional>
 #include <memory>
 #include <optional>

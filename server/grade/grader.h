@@ -62,7 +62,8 @@ struct GradeResult {
 };
 
 // `student` and `reference` are RGBA8 frames; `student_non_finite` counts NaN and infinity in the
-// same frames rendered to a float target (the 8-bit canvas hides them), one per frame; empty to
+// same frames as the program computed them (the census its rewritten fragment shader draws beside
+// its colours, shader/uniform_variants.h: the 8-bit canvas hides them), one per frame; empty to
 // skip that check.
 GradeResult grade(const SharedFrames& student, const std::vector<image::NonFinite>& student_non_finite,
                   const SharedFrames& reference, const std::vector<RenderedMistake>& mistakes, const GradeOptions& options);
