@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A class of 24 specular submissions graded in one process, against rendering the canonical job
-# once per student (issue: "a class graded at the speed of rendering"). docs/performance.md keeps
+# once per student (issue: "a class graded at the speed of rendering"). docs/performance-log.md keeps
 # the figures. The class: 8 correct, 8 with a mistake the catalogue holds (its own edits, from the
 # course profile), 8 with one it does not (another exponent, the light's colour ignored, ...).
 # Every fragment shader differs in a never-taken branch on its own constant (Mesa caches programs

@@ -3,7 +3,7 @@
 // bunny, specular, 9 frames 512 x 512, 4x MSAA, grid PNG) done the plain way, in one process, serially, with raw EGL and
 // GLES calls and libpng: compile and link, draw each frame into a multisampled framebuffer,
 // resolve, glReadPixels, then compose the grid and write it as a PNG (zlib level 1, the UP filter,
-// RGB: the fastest settings the encode table in docs/performance.md found). No ShadeLab code runs
+// RGB: the fastest settings the encode table in docs/performance-log.md found). No ShadeLab code runs
 // in the timed part; ShadeLab's readers only prepare the inputs (the GLSL out of the preset's JS
 // modules, the bunny's triangles, the course's matrices and colours).
 //

@@ -153,7 +153,7 @@ void BM_CanonicalJob_GridSerial(benchmark::State& s) { run_job(s, 4, Output::gri
 void BM_RenderOnly_Msaa4(benchmark::State& s) { run_job(s, 4, Output::none); }
 void BM_RenderOnly_NoMsaa(benchmark::State& s) { run_job(s, 0, Output::none); }
 
-// The grid encode alone, for the PNG settings table in docs/performance.md.
+// The grid encode alone, for the PNG settings table in docs/performance-log.md.
 void BM_GridEncode(benchmark::State& state) {
   const auto request = canonical(4, 0);
   const auto layout = image::GridLayout::for_frames(request.frames, request.width, request.height);

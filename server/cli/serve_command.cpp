@@ -180,7 +180,7 @@ Command add_serve_command(CLI::App& app) {
     config->limits.max_mesh_bytes = config->limits.max_body_bytes;
     config->limits.render.max_height = config->limits.render.max_width;
     // Every worker gets every core: a lone job (a student on the page) rasterises on all of them,
-    // and when all workers are busy the oversubscription measured no loss (docs/performance.md:
+    // and when all workers are busy the oversubscription measured no loss (docs/performance-log.md:
     // 1 client p50 169 -> 150 ms, 8 clients 10.5 -> 11.3 jobs/s on the 2-core machine).
     config->pool.llvmpipe_threads = *lp_threads > 0 ? *lp_threads : static_cast<int>(cores);
     // Parsed here, so workers forked from this process find the built-in course (their warm-up's) ready.

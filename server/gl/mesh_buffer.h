@@ -7,7 +7,7 @@
 // through an index buffer: the primitives, their order and every attribute the shaders see are
 // those of the page's glDrawArrays, but the driver shades a shared vertex once where its vertex
 // cache still holds it (a closed mesh shares each vertex among ~6 triangles). On llvmpipe that is
-// most of a large mesh's cost per frame (docs/performance.md, the triangle-count table).
+// most of a large mesh's cost per frame (docs/performance-log.md, the triangle-count table).
 #include <cstddef>
 #include <cstdint>
 #include <span>

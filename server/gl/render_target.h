@@ -12,7 +12,7 @@ enum class PixelFormat { rgba8, rgba32f };
 
 // How a frame leaves the driver.
 // - direct: glReadPixels into memory, which waits for the frame and copies it. On llvmpipe the
-//   "GPU" is this process's own threads, and this is the fastest (docs/performance.md).
+//   "GPU" is this process's own threads, and this is the fastest (docs/performance-log.md).
 // - pixel_buffer: glReadPixels into a pixel pack buffer, with a fence behind it. A GPU copies the
 //   frame out while it renders the next one; the CPU maps the buffer once the fence has passed.
 enum class Readback { direct, pixel_buffer };

@@ -12,7 +12,7 @@
 // |                  | 1, with its content size and checksum                    |
 //
 // zstd, not zlib: the same size at level 1, and ~6x faster to read back (a course's set of 9
-// frames: 2.7 against 18 ms), which a grade pays for every set it reads (docs/performance.md).
+// frames: 2.7 against 18 ms), which a grade pays for every set it reads (docs/performance-log.md).
 #include <optional>
 #include <string>
 #include <string_view>

@@ -17,7 +17,7 @@ enum class PngFilter : std::uint8_t { none = 0, sub = 1, up = 2 };
 // OpenImageIO's PNG writer with its defaults (zlib level 6, adaptive filters) took ~160 ms for the
 // 1920 x 1440 grid; level 1 with the UP filter and RGB when opaque ~31 ms for ~10% more bytes;
 // ShadeLab's own writer (image/png_stream.h) with the same settings on several threads less
-// again. docs/performance.md has the measurements.
+// again. docs/performance-log.md has the measurements.
 struct PngSettings {
   int compression_level = 1;
   PngFilter filter = PngFilter::up;  // fastest and smallest single filter on these images

@@ -230,7 +230,7 @@ describe("the Blender half (scene.html)", () => {
 // it) snap to 1/256, so pixels on triangle edges differ; nothing else may (no differing pixel
 // away from an edge, in every preset).
 //
-// Measured (docs/performance.md#fidelity): the lit presets (diffuse, specular) at most 0.065% of
+// Measured (docs/performance-log.md#fidelity-against-chromium): the lit presets (diffuse, specular) at most 0.065% of
 // pixels off by > 8/255, inside the 0.1%. The normal-colour presets (smooth, normals) at
 // most 0.22%: their silhouettes are bright against the black canvas, so every edge pixel whose
 // coverage differs counts; the flat starter at most 0.49%: every internal edge is a colour edge.
