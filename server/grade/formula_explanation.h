@@ -41,25 +41,6 @@ struct FormulaRead {
 };
 FormulaRead explain_with_formula(const FormulaEvidence& evidence, const GradeOptions& options);
 
-// Whether an explanation is `reading`: it explains, by the reading's variant (or by one that fits
-// as well, where the reading changes no value), with the same values changed, each within what the
-// frames tell apart.
-bool reads_as(const Explanation& explanation, const FormulaReading& reading);
-
-// The known mistakes a failing grade still renders, and the one the formula's reading recognised.
-// Where the formula explains the frames, a mistake with a reading needs no render: it is recognised
-// when the explanation is its reading, and is not the frames otherwise (the formula's change draws
-// them). Where the formula explains nothing (or read nothing: no formula, frames too small), every
-// mistake is rendered and compared: a reading that just misses (another rasteriser's frames) must
-// not lose the catalogue's diagnosis.
-struct CatalogueWork {
-  const Mistake* recognised = nullptr;
-  std::vector<const Mistake*> to_render;
-};
-CatalogueWork catalogue_work(const std::vector<Mistake>& mistakes, const std::optional<Explanation>& explanation);
-// The recognised mistake as grade::explain takes it (no frames), if any.
-std::optional<RenderedMistake> recognised_mistake(const CatalogueWork& work);
-
 // The report's explanation among its messages, for the student (the page, Gradescope, the CLI):
 // first when it explains, last (after what the probes say) when it cannot. Where a catalogued
 // mistake or a changed starter constant has said what went wrong, its words stay the student's and

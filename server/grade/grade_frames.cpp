@@ -17,6 +17,7 @@
 
 #include "core/words.h"
 #include "grade/diagnosis.h"
+#include "grade/catalogue_reading.h"
 #include "grade/formula_explanation.h"
 #include "grade/grade_session.h"
 #include "grade/lag_fit.h"

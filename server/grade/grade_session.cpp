@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "grade/diagnosis.h"
+#include "grade/catalogue_reading.h"
 #include "grade/formula_explanation.h"
 #include "grade/formula_geometry.h"
 #include "image/encode.h"

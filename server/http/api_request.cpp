@@ -50,13 +50,15 @@ Expected<std::vector<render::UniformSetting>> read_uniforms(const json& fields) 
 
 namespace {
 
-const std::set<std::string> kKnownFields = {"course", "vertex",  "fragment", "vertexName", "fragmentName", "preset",
+const std::set<std::string> kApiFields = {"course", "vertex",  "fragment", "vertexName", "fragmentName", "preset",
                                             "mesh",    "fit",      "width",      "height",       "frames",
                                             "degreesPerFrame", "msaa", "uniforms", "prefix",     "output",
                                             "format", "reference", "referenceVertex", "referenceFragment",
                                             "threshold", "maxFailingFraction", "spatialTolerance", "maxScore"};
 
 }  // namespace
+
+bool is_api_field(const std::string& name) { return kApiFields.count(name) > 0; }
 
 // 128 bits of SHA-256: an id is the capability to use an upload, so it must not be craftable.
 std::string mesh_id(const std::string& bytes) { return "m" + sha256_hex(bytes).substr(0, 32); }
@@ -223,7 +225,7 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
   ParsedJob out;
   out.job = worker::course_job(course, kind);
   for (const auto& [k, v] : raw.fields.items())
-    if (!kKnownFields.count(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
+    if (!is_api_field(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
   if (auto s = read_job_shaders(raw, kind, limits, course, out); !s) return s.take_error();
   if (auto s = read_render_settings(raw.fields, out.job.request); !s) return s.take_error();
   if (auto s = read_output(raw.fields, course, out.job); !s) return s.take_error();

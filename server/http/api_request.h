@@ -59,6 +59,10 @@ Expected<RequestShaders> read_shaders(const RawRequest& raw, const Limits& limit
 // The `uniforms` object: GLSL name -> number, boolean or array of numbers.
 Expected<std::vector<render::UniformSetting>> read_uniforms(const nlohmann::json& fields);
 
+// Whether a request's field is one the API reads (a render's or a grade's: one job can be sent to
+// both routes); any other is ignored with a warning.
+bool is_api_field(const std::string& name);
+
 // A mesh id: content-addressed ("m" + 16 hex digits of a 64-bit FNV-1a of the bytes).
 std::string mesh_id(const std::string& bytes);
 

@@ -1,7 +1,5 @@
 #include "http/code_grade_request.h"
 
-#include <set>
-
 #include "http/request_fields.h"
 #include "scene/mesh.h"
 
@@ -10,14 +8,6 @@ namespace shadelab::http {
 using nlohmann::json;
 
 namespace {
-
-// `prefix` and `output` shape a render's download and mean nothing to a grade; they are accepted
-// as the render's fields are, so one job can be sent to both routes.
-const std::set<std::string> kGradeFields = {"course", "vertex",  "fragment", "vertexName", "fragmentName", "preset",
-                                            "mesh",    "fit",      "width",      "height",       "frames",
-                                            "degreesPerFrame", "msaa", "uniforms", "prefix",     "output",
-                                            "format", "reference", "referenceVertex", "referenceFragment",
-                                            "threshold", "maxFailingFraction", "spatialTolerance", "maxScore"};
 
 Expected<std::optional<int>> optional_integer(const json& f, const char* name) {
   if (!f.contains(name)) return std::optional<int>();
@@ -106,7 +96,7 @@ Status read_tolerance(const json& f, road::ToleranceShape& t) {
 Expected<ParsedCodeGrade> parse_code_grade(const RawRequest& raw, const Limits& limits) {
   ParsedCodeGrade out;
   for (const auto& [k, v] : raw.fields.items())
-    if (!kGradeFields.count(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
+    if (!is_api_field(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
   auto format = text_field(raw.fields, "format", "json");
   if (!format) return format.take_error();
   if (*format != "json" && *format != "gradescope") return bad_request("'format' must be json or gradescope");
