@@ -3,7 +3,10 @@
 // formula, and the colours and exponent, that reproduce them within the rule a correct submission
 // meets against the reference, said in the homework's terms with the numbers. Where no change of
 // one or two parts reproduces them, it says so and where the frames differ (grade/difference_regions.h):
-// an honest "cannot tell why" rather than a confident wrong explanation.
+// an honest "cannot tell why" rather than a confident wrong explanation. The reading runs as an
+// ordered table of stages (formula_explanation.cpp); the kinds of explanation (the formula's
+// variants, the course's catalogue, the grader's own diagnoses) and where a new mistake belongs are
+// written down once, in docs/grading.md ("The kinds of explanation").
 #include <functional>
 #include <vector>
 
