@@ -15,15 +15,17 @@ work=$(mktemp -d -t shadelab-road.XXXXXX)
 pids=()
 trap 'kill "${pids[@]}" 2>/dev/null; wait 2>/dev/null; rm -rf "$work"' EXIT
 
-start() {  # NAME BIN -> prints the port
+start() {  # NAME BIN: sets $port (not in a subshell: the trap must know each server's pid)
   local log=$work/$1.log
   "$2" serve --port 0 --workers 2 --cache-dir "$work/$1-store" >"$log" 2>&1 &
   pids+=($!)
   until grep -qo 'serving on [^ ]*:[0-9]*' "$log"; do sleep 0.1; done
-  grep -o 'serving on [^ ]*:[0-9]*' "$log" | head -1 | sed 's/.*://'
+  port=$(grep -o 'serving on [^ ]*:[0-9]*' "$log" | head -1 | sed 's/.*://')
 }
-base_port=$(start base "$base")
-head_port=$(start head "$head")
+start base "$base"
+base_port=$port
+start head "$head"
+head_port=$port
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 
 python3 - "$root" "$runs" "$base_port" "$head_port" <<'PY'
