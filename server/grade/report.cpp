@@ -2,20 +2,12 @@
 
 #include <algorithm>
 
+#include "core/json_fields.h"
+
 namespace shadelab::grade {
 
 using nlohmann::json;
-
-namespace {
-
-json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
-
-std::optional<double> optional_number(const json& j, const char* key) {
-  if (!j.contains(key) || j.at(key).is_null()) return std::nullopt;
-  return j.at(key).get<double>();
-}
-
-}  // namespace
+using json_fields::When;
 
 Report report(const GradeResult& r, const std::string& checkpoint, const std::vector<std::string>& lights,
               size_t frames_per_light) {
@@ -55,95 +47,54 @@ Report part_of(const Report& whole, bool probes, double max_score) {
   return out;
 }
 
-// The wire: one to_json / from_json pair per struct.
+// The wire: each struct's fields declared once (core/json_fields.h).
 
-void to_json(json& j, const FrameReport& f) {
-  const auto& m = f.grade.metrics;
-  j = {{"light", f.light},
-       {"pass", f.grade.pass},
-       {"identical", m.identical},
-       {"rmse", m.rmse},
-       {"psnr", m.psnr ? json(*m.psnr) : json(nullptr)},  // null: identical
-       {"ssim", m.ssim},
-       {"maxAbsError", m.max_abs},
-       {"failingFraction", m.failing_fraction},
-       {"failingFractionOfObject", f.grade.failing_fraction_of_object},
-       {"nanPixels", f.grade.non_finite.nan},
-       {"infPixels", f.grade.non_finite.inf},
-       {"lagDegrees", optional_number(f.lag_degrees)}};
-}
+namespace {
 
-void from_json(const json& j, FrameReport& f) {
-  f.light = j.at("light");
-  f.grade.pass = j.at("pass");
-  auto& m = f.grade.metrics;
-  m.identical = j.at("identical");
-  m.rmse = j.at("rmse");
-  if (!j.at("psnr").is_null()) m.psnr = j.at("psnr").get<double>();
-  m.ssim = j.at("ssim");
-  m.max_abs = j.at("maxAbsError");
-  m.failing_fraction = j.at("failingFraction");
-  f.grade.failing_fraction_of_object = j.at("failingFractionOfObject");
-  f.grade.non_finite.nan = j.at("nanPixels");
-  f.grade.non_finite.inf = j.at("infPixels");
-  f.lag_degrees = optional_number(j, "lagDegrees");
-}
+constexpr json_fields::Named<FlagKind> kFlagIds{to_string, flag_named};
 
-void to_json(json& j, const Flag& f) { j = {{"id", to_string(f.kind)}, {"message", f.message}}; }
+// The frames in order, each with its index first in the list's reading.
+struct NumberedFrames {
+  json write(const std::vector<FrameReport>& frames) const {
+    json out = frames;
+    for (size_t k = 0; k < out.size(); ++k) out[k]["frame"] = k;
+    return out;
+  }
+  void read(const json& j, std::vector<FrameReport>& frames) const { j.get_to(frames); }
+};
 
-void from_json(const json& j, Flag& f) {
-  const auto kind = flag_named(j.at("id").get<std::string>());
-  if (!kind) throw json::other_error::create(501, "unknown flag " + j.at("id").dump(), &j);
-  f = {*kind, j.at("message")};
-}
+}  // namespace
 
-void to_json(json& j, const Report::GraderWork& w) {
-  j = {{"rendered", w.rendered}, {"fromStore", w.from_store}, {"fromMemory", w.from_memory}};
-}
+SHADELAB_JSON_FIELDS(FrameReport, field("light", &FrameReport::light), at("pass", [](auto& f) -> auto& { return f.grade.pass; }),
+                     at("identical", [](auto& f) -> auto& { return f.grade.metrics.identical; }),
+                     at("rmse", [](auto& f) -> auto& { return f.grade.metrics.rmse; }),
+                     at("psnr", [](auto& f) -> auto& { return f.grade.metrics.psnr; }, When::null_when_empty),  // null: identical
+                     at("ssim", [](auto& f) -> auto& { return f.grade.metrics.ssim; }),
+                     at("maxAbsError", [](auto& f) -> auto& { return f.grade.metrics.max_abs; }),
+                     at("failingFraction", [](auto& f) -> auto& { return f.grade.metrics.failing_fraction; }),
+                     at("failingFractionOfObject", [](auto& f) -> auto& { return f.grade.failing_fraction_of_object; }),
+                     at("nanPixels", [](auto& f) -> auto& { return f.grade.non_finite.nan; }),
+                     at("infPixels", [](auto& f) -> auto& { return f.grade.non_finite.inf; }),
+                     field("lagDegrees", &FrameReport::lag_degrees, When::null_when_empty))
 
-void from_json(const json& j, Report::GraderWork& w) { w = {j.at("rendered"), j.at("fromStore"), j.at("fromMemory")}; }
+SHADELAB_JSON_FIELDS(Flag, field("id", &Flag::kind, kFlagIds), field("message", &Flag::message))
+
+SHADELAB_JSON_FIELDS(Report::GraderWork, field("rendered", &Report::GraderWork::rendered),
+                     field("fromStore", &Report::GraderWork::from_store), field("fromMemory", &Report::GraderWork::from_memory))
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Explanation::Parameter, name, course, fitted)
 
-void to_json(json& j, const Explanation& e) {
-  j = {{"explained", e.explained}, {"variant", e.variant}, {"alsoFits", e.also_fits}, {"parameters", e.parameters},
-       {"residual", e.residual}, {"text", e.text}, {"label", e.label}};
-}
+SHADELAB_JSON_FIELDS(Explanation, field("explained", &Explanation::explained), field("variant", &Explanation::variant),
+                     field("alsoFits", &Explanation::also_fits), field("parameters", &Explanation::parameters),
+                     field("residual", &Explanation::residual), field("text", &Explanation::text), field("label", &Explanation::label))
 
-void from_json(const json& j, Explanation& e) {
-  j.at("explained").get_to(e.explained);
-  j.at("variant").get_to(e.variant);
-  j.at("alsoFits").get_to(e.also_fits);
-  j.at("parameters").get_to(e.parameters);
-  j.at("residual").get_to(e.residual);
-  j.at("text").get_to(e.text);
-  j.at("label").get_to(e.label);
-}
-
-void to_json(json& j, const Report& r) {
-  json frames = r.frames;
-  for (size_t k = 0; k < frames.size(); ++k) frames[k]["frame"] = k;  // each frame's index, first
-  j = {{"checkpoint", r.checkpoint}, {"pass", r.pass},         {"score", r.score},   {"maxScore", r.max_score},
-       {"diagnosis", r.diagnosis},   {"messages", r.messages}, {"frames", frames},   {"diagnostics", r.diagnostics},
-       {"warnings", r.warnings},     {"flags", r.flags},       {"attempts", r.attempts}, {"graderWork", r.grader_work}};
-  if (r.explanation) j["explanation"] = *r.explanation;
-}
-
-void from_json(const json& j, Report& r) {
-  r.checkpoint = j.at("checkpoint");
-  r.pass = j.at("pass");
-  r.score = j.at("score");
-  r.max_score = j.at("maxScore");
-  r.diagnosis = j.at("diagnosis");
-  r.messages = j.at("messages").get<std::vector<std::string>>();
-  r.frames = j.at("frames").get<std::vector<FrameReport>>();
-  j.at("diagnostics").get_to(r.diagnostics);
-  r.warnings = j.at("warnings").get<std::vector<std::string>>();
-  r.attempts = j.value("attempts", 1);
-  r.flags = j.value("flags", json::array()).get<std::vector<Flag>>();
-  if (j.contains("graderWork")) r.grader_work = j.at("graderWork").get<Report::GraderWork>();
-  if (j.contains("explanation")) r.explanation = j.at("explanation").get<Explanation>();
-}
+SHADELAB_JSON_FIELDS(Report, field("checkpoint", &Report::checkpoint), field("pass", &Report::pass), field("score", &Report::score),
+                     field("maxScore", &Report::max_score), field("diagnosis", &Report::diagnosis), field("messages", &Report::messages),
+                     field("frames", &Report::frames, NumberedFrames{}), field("diagnostics", &Report::diagnostics),
+                     field("warnings", &Report::warnings), field("flags", &Report::flags, When::default_when_missing),
+                     field("attempts", &Report::attempts, When::default_when_missing),
+                     field("graderWork", &Report::grader_work, When::default_when_missing),
+                     field("explanation", &Report::explanation, When::omitted_when_empty))
 
 json to_json(const Report& r) { return r; }
 

@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "core/json_fields.h"
 #include "grade/grader.h"
 #include "grade/provenance.h"
 
@@ -89,18 +90,12 @@ Report part_of(const Report& whole, bool probes, double max_score);
 
 // The wire, one declaration per struct (nlohmann finds these pairs by their argument's type);
 // `from_json` throws nlohmann::json::exception on a malformed report.
-void to_json(nlohmann::json& j, const FrameReport& f);  // its index ("frame") is the report's to write
-void from_json(const nlohmann::json& j, FrameReport& f);
-void to_json(nlohmann::json& j, const Flag& f);
-void from_json(const nlohmann::json& j, Flag& f);
-void to_json(nlohmann::json& j, const Report::GraderWork& w);
-void from_json(const nlohmann::json& j, Report::GraderWork& w);
-void to_json(nlohmann::json& j, const Explanation::Parameter& p);
-void from_json(const nlohmann::json& j, Explanation::Parameter& p);
-void to_json(nlohmann::json& j, const Explanation& e);
-void from_json(const nlohmann::json& j, Explanation& e);
-void to_json(nlohmann::json& j, const Report& r);
-void from_json(const nlohmann::json& j, Report& r);
+SHADELAB_JSON_DECLARE(FrameReport);  // its index ("frame") is the report's to write
+SHADELAB_JSON_DECLARE(Flag);
+SHADELAB_JSON_DECLARE(Report::GraderWork);
+SHADELAB_JSON_DECLARE(Explanation::Parameter);
+SHADELAB_JSON_DECLARE(Explanation);
+SHADELAB_JSON_DECLARE(Report);
 
 nlohmann::json to_json(const Report& report);
 // A malformed report is worker_protocol.
@@ -119,6 +114,5 @@ nlohmann::json to_gradescope(const Report& report, double execution_seconds);
 namespace shadelab {
 // A diagnostic as a report and the worker carry it. Reading is lenient (a missing field is its
 // default): the worker that sends one runs student code.
-void to_json(nlohmann::json& j, const Diagnostic& d);
-void from_json(const nlohmann::json& j, Diagnostic& d);
+SHADELAB_JSON_DECLARE(Diagnostic);
 }  // namespace shadelab

@@ -3,14 +3,14 @@
 #include <array>
 #include <initializer_list>
 
-#include "core/enum_names.h"
-#include "core/json_enum.h"
+#include "core/json_fields.h"
 #include "worker/scene_json.h"
 
-// The job wire: one to_json / from_json pair per struct, in the struct's own namespace (where
-// nlohmann finds it). from_json throws nlohmann::json::exception on a malformed job.
+// The job wire: each struct's fields declared once (core/json_fields.h), in the struct's own
+// namespace (where nlohmann finds them). from_json throws nlohmann::json::exception on a malformed job.
 
 using nlohmann::json;
+using shadelab::json_fields::When;
 
 namespace shadelab::shader {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ShaderFile, name, text)
@@ -18,172 +18,84 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ShaderFile, name, text)
 
 namespace shadelab::store {
 
-void to_json(json& j, const SharedStoreConfig& s) {
-  j = {{"url", s.url}, {"timeoutMs", s.timeout.count()}, {"retryAfterMs", s.retry_after.count()},
-       {"timeToLiveS", s.time_to_live.count()}, {"maxValueBytes", s.max_value_bytes}};
-}
-
-void from_json(const json& j, SharedStoreConfig& s) {
-  s.url = j.at("url");
-  s.timeout = std::chrono::milliseconds(j.at("timeoutMs").get<long long>());
-  s.retry_after = std::chrono::milliseconds(j.at("retryAfterMs").get<long long>());
-  s.time_to_live = std::chrono::seconds(j.at("timeToLiveS").get<long long>());
-  s.max_value_bytes = j.at("maxValueBytes");
-}
+SHADELAB_JSON_FIELDS(SharedStoreConfig, field("url", &SharedStoreConfig::url), field("timeoutMs", &SharedStoreConfig::timeout, Count{}),
+                     field("retryAfterMs", &SharedStoreConfig::retry_after, Count{}),
+                     field("timeToLiveS", &SharedStoreConfig::time_to_live, Count{}),
+                     field("maxValueBytes", &SharedStoreConfig::max_value_bytes))
 
 }  // namespace shadelab::store
 
 namespace shadelab::grade {
 
-void to_json(json& j, const FormulaReading& r) {
-  j = {{"variant", std::string(model::info(r.variant).id)}, {"values", json::array()}};
-  for (const auto& v : r.values) j["values"].push_back({{"parameter", model::to_string(v.parameter)}, {"value", v.value}});
-}
-void from_json(const json& j, FormulaReading& r) {
-  const auto variant = model::variant_named(j.at("variant").get<std::string>());
-  if (!variant) throw json::other_error::create(501, "unknown variant", &j);
-  r.variant = *variant;
-  for (const auto& v : j.at("values")) {
-    const auto parameter = model::parameter_named(v.at("parameter").get<std::string>());
-    if (!parameter) throw json::other_error::create(501, "unknown parameter", &v);
-    r.values.push_back({*parameter, v.at("value").get<std::vector<double>>()});
-  }
-}
+namespace {
+std::string_view variant_id(model::Variant v) { return model::info(v).id; }
+constexpr json_fields::Named<model::Variant> kVariantIds{variant_id, model::variant_named};
+constexpr json_fields::Named<model::Parameter> kParameterNames{model::to_string, model::parameter_named};
+constexpr json_fields::Named<model::Terms> kTermsNames{model::to_string, model::terms_named};
+constexpr json_fields::Names<HeatMap, 3> kHeatMaps{{{{HeatMap::always, "always"}, {HeatMap::when_failing, "whenFailing"}, {HeatMap::never, "never"}}}};
+}  // namespace
 
-void to_json(json& j, const Mistake& m) {
-  j = {{"id", m.id}, {"message", m.message}, {"vertex", m.vertex}, {"fragment", m.fragment}};
-  if (m.reading) j["reading"] = *m.reading;
-}
-void from_json(const json& j, Mistake& m) {
-  j.at("id").get_to(m.id);
-  j.at("message").get_to(m.message);
-  j.at("vertex").get_to(m.vertex);
-  j.at("fragment").get_to(m.fragment);
-  if (j.contains("reading")) m.reading = j.at("reading").get<FormulaReading>();
-}
+SHADELAB_JSON_FIELDS(FormulaReading::Value, field("parameter", &FormulaReading::Value::parameter, kParameterNames),
+                     field("value", &FormulaReading::Value::value))
+SHADELAB_JSON_FIELDS(FormulaReading, field("variant", &FormulaReading::variant, kVariantIds), field("values", &FormulaReading::values))
+SHADELAB_JSON_FIELDS(Mistake, field("id", &Mistake::id), field("message", &Mistake::message), field("vertex", &Mistake::vertex),
+                     field("fragment", &Mistake::fragment), field("reading", &Mistake::reading, When::omitted_when_empty))
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StarterConstant, variable, meaning, value)
-
-void to_json(json& j, const Probe& p) {
-  j = {{"name", p.name}, {"checks", p.checks}};
-  if (p.light_position) j["lightPosition"] = *p.light_position;
-  if (p.light_color) j["lightColor"] = *p.light_color;
-}
-void from_json(const json& j, Probe& p) {
-  p = {j.at("name"), std::nullopt, std::nullopt, j.value("checks", "")};
-  if (j.contains("lightPosition")) p.light_position = j.at("lightPosition").get<std::array<float, 3>>();
-  if (j.contains("lightColor")) p.light_color = j.at("lightColor").get<std::array<float, 3>>();
-}
+SHADELAB_JSON_FIELDS(Probe, field("name", &Probe::name), field("lightPosition", &Probe::light_position, When::omitted_when_empty),
+                     field("lightColor", &Probe::light_color, When::omitted_when_empty),
+                     field("checks", &Probe::checks, When::default_when_missing))
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ProbeUniform, names, type)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FormulaInput, names, value, alpha)
 
-void to_json(json& j, const FormulaSpec& f) {
-  j = {{"terms", model::to_string(f.terms)}, {"positionVarying", f.position_varying}, {"normalVarying", f.normal_varying},
-       {"colourVarying", f.colour_varying}, {"geometryVertex", f.geometry_vertex}, {"ambient", f.ambient}, {"diffuse", f.diffuse}, {"specular", f.specular}, {"lightPosition", f.light_position},
-       {"lightColour", f.light_colour}, {"exponent", f.exponent}};
-}
-void from_json(const json& j, FormulaSpec& f) {
-  f.terms = enum_from_json(j.at("terms"), {model::Terms::lambert, model::Terms::phong, model::Terms::normal_colour});
-  j.at("positionVarying").get_to(f.position_varying);
-  j.at("normalVarying").get_to(f.normal_varying);
-  j.at("colourVarying").get_to(f.colour_varying);
-  j.at("geometryVertex").get_to(f.geometry_vertex);
-  j.at("ambient").get_to(f.ambient);
-  j.at("diffuse").get_to(f.diffuse);
-  j.at("specular").get_to(f.specular);
-  j.at("lightPosition").get_to(f.light_position);
-  j.at("lightColour").get_to(f.light_colour);
-  j.at("exponent").get_to(f.exponent);
-}
-
-constexpr EnumName<HeatMap> kHeatMaps[] = {{HeatMap::always, "always"}, {HeatMap::when_failing, "whenFailing"}, {HeatMap::never, "never"}};
+SHADELAB_JSON_FIELDS(FormulaSpec, field("terms", &FormulaSpec::terms, kTermsNames), field("positionVarying", &FormulaSpec::position_varying),
+                     field("normalVarying", &FormulaSpec::normal_varying), field("colourVarying", &FormulaSpec::colour_varying),
+                     field("geometryVertex", &FormulaSpec::geometry_vertex), field("ambient", &FormulaSpec::ambient),
+                     field("diffuse", &FormulaSpec::diffuse), field("specular", &FormulaSpec::specular),
+                     field("lightPosition", &FormulaSpec::light_position), field("lightColour", &FormulaSpec::light_colour),
+                     field("exponent", &FormulaSpec::exponent))
 
 // The options and the reference store's places travel flat, beside the spec's own fields.
-void to_json(json& j, const GradeSpec& g) {
-  const auto& o = g.options;
-  j = {{"referenceName", g.reference_name}, {"referenceVertex", g.reference_vertex}, {"referenceFragment", g.reference_fragment},
-       {"mistakes", g.mistakes}, {"probes", g.probes}, {"lightPositionUniforms", g.light_position_uniforms}, {"lightColorUniform", g.light_color_uniform},
-       {"starterConstants", g.starter_constants}, {"referenceStore", g.reference_store.folder},
-       {"sharedStore", g.reference_store.shared}, {"threshold", o.compare.threshold},
-       {"spatialTolerance", o.compare.spatial_tolerance}, {"maxFailingFraction", o.max_failing_fraction},
-       {"maxScore", o.max_score}, {"sameOutline", o.same_outline},
-       {"savedFramesCloserThanReference", o.saved_frames_closer_than_reference},
-       {"heatmap", name_in(kHeatMaps, g.heatmap)}, {"framesFromPage", g.frames_from_page}};
-  if (g.formula) j["formula"] = *g.formula;
-}
-
-void from_json(const json& j, GradeSpec& g) {
-  j.at("referenceName").get_to(g.reference_name);
-  j.at("referenceVertex").get_to(g.reference_vertex);
-  j.at("referenceFragment").get_to(g.reference_fragment);
-  j.at("mistakes").get_to(g.mistakes);
-  j.at("probes").get_to(g.probes);
-  j.at("lightPositionUniforms").get_to(g.light_position_uniforms);
-  j.at("lightColorUniform").get_to(g.light_color_uniform);
-  j.at("starterConstants").get_to(g.starter_constants);
-  j.at("referenceStore").get_to(g.reference_store.folder);
-  j.at("sharedStore").get_to(g.reference_store.shared);
-  auto& o = g.options;
-  j.at("threshold").get_to(o.compare.threshold);
-  j.at("spatialTolerance").get_to(o.compare.spatial_tolerance);
-  j.at("maxFailingFraction").get_to(o.max_failing_fraction);
-  j.at("maxScore").get_to(o.max_score);
-  j.at("sameOutline").get_to(o.same_outline);
-  j.at("savedFramesCloserThanReference").get_to(o.saved_frames_closer_than_reference);
-  const auto heatmap = value_in(kHeatMaps, j.at("heatmap").get<std::string>());
-  if (!heatmap) throw json::other_error::create(501, "unknown heat map policy", &j);
-  g.heatmap = *heatmap;
-  j.at("framesFromPage").get_to(g.frames_from_page);
-  if (j.contains("formula")) g.formula = j.at("formula").get<FormulaSpec>();
-}
+SHADELAB_JSON_FIELDS(GradeSpec, field("referenceName", &GradeSpec::reference_name), field("referenceVertex", &GradeSpec::reference_vertex),
+                     field("referenceFragment", &GradeSpec::reference_fragment), field("mistakes", &GradeSpec::mistakes),
+                     field("probes", &GradeSpec::probes), field("lightPositionUniforms", &GradeSpec::light_position_uniforms),
+                     field("lightColorUniform", &GradeSpec::light_color_uniform), field("starterConstants", &GradeSpec::starter_constants),
+                     at("referenceStore", [](auto& g) -> auto& { return g.reference_store.folder; }),
+                     at("sharedStore", [](auto& g) -> auto& { return g.reference_store.shared; }),
+                     at("threshold", [](auto& g) -> auto& { return g.options.compare.threshold; }),
+                     at("spatialTolerance", [](auto& g) -> auto& { return g.options.compare.spatial_tolerance; }),
+                     at("maxFailingFraction", [](auto& g) -> auto& { return g.options.max_failing_fraction; }),
+                     at("maxScore", [](auto& g) -> auto& { return g.options.max_score; }),
+                     at("sameOutline", [](auto& g) -> auto& { return g.options.same_outline; }),
+                     at("savedFramesCloserThanReference", [](auto& g) -> auto& { return g.options.saved_frames_closer_than_reference; }),
+                     field("heatmap", &GradeSpec::heatmap, kHeatMaps), field("framesFromPage", &GradeSpec::frames_from_page),
+                     field("formula", &GradeSpec::formula, When::omitted_when_empty))
 
 }  // namespace shadelab::grade
 
 namespace shadelab::render {
 
+namespace {
+constexpr json_fields::Names<image::PixelType, 2> kPixelTypes{{{{image::PixelType::u8, "u8"}, {image::PixelType::f32, "f32"}}}};
+constexpr json_fields::Names<FloatSemantics, 2> kSemantics{{{{FloatSemantics::as_compiled, "asCompiled"}, {FloatSemantics::ieee, "ieee"}}}};
+}  // namespace
+
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(UniformSetting, name, values)
 
-void to_json(json& j, const ConstantUniform& u) {
-  j = {{"name", u.name}, {"type", u.glsl_type}, {"value", u.value}, {"components", u.components}};
-}
-void from_json(const json& j, ConstantUniform& u) { u = {j.at("name"), j.at("type"), j.at("value"), j.at("components")}; }
+SHADELAB_JSON_FIELDS(ConstantUniform, field("name", &ConstantUniform::name), field("type", &ConstantUniform::glsl_type),
+                     field("value", &ConstantUniform::value), field("components", &ConstantUniform::components))
 
 // The camera travels flat, beside the page's uniforms.
-void to_json(json& j, const PageSetup& p) {
-  const auto& c = p.camera;
-  j = {{"fovYDegrees", c.fov_y_degrees}, {"near", c.near}, {"far", c.far}, {"meshTranslation", c.mesh_translation},
-       {"uniforms", p.uniforms}};
-}
+SHADELAB_JSON_FIELDS(PageSetup, at("fovYDegrees", [](auto& p) -> auto& { return p.camera.fov_y_degrees; }),
+                     at("near", [](auto& p) -> auto& { return p.camera.near; }), at("far", [](auto& p) -> auto& { return p.camera.far; }),
+                     at("meshTranslation", [](auto& p) -> auto& { return p.camera.mesh_translation; }),
+                     field("uniforms", &PageSetup::uniforms))
 
-void from_json(const json& j, PageSetup& p) {
-  j.at("fovYDegrees").get_to(p.camera.fov_y_degrees);
-  j.at("near").get_to(p.camera.near);
-  j.at("far").get_to(p.camera.far);
-  j.at("meshTranslation").get_to(p.camera.mesh_translation);
-  j.at("uniforms").get_to(p.uniforms);
-}
-
-void to_json(json& j, const RenderRequest& r) {
-  j = {{"vertex", r.vertex}, {"fragment", r.fragment}, {"width", r.width}, {"height", r.height}, {"frames", r.frames},
-       {"degreesPerFrame", r.degrees_per_frame}, {"angles", r.angles}, {"msaa", r.msaa}, {"samplePosition", r.sample_position ? json(*r.sample_position) : json(nullptr)}, {"page", r.page},
-       {"uniforms", r.uniforms}, {"pixelType", r.pixel_type == image::PixelType::f32 ? "f32" : "u8"},
-       {"semantics", r.semantics == FloatSemantics::ieee ? "ieee" : "asCompiled"}};
-}
-
-void from_json(const json& j, RenderRequest& r) {
-  j.at("vertex").get_to(r.vertex);
-  j.at("fragment").get_to(r.fragment);
-  j.at("width").get_to(r.width);
-  j.at("height").get_to(r.height);
-  j.at("frames").get_to(r.frames);
-  j.at("degreesPerFrame").get_to(r.degrees_per_frame);
-  j.at("angles").get_to(r.angles);
-  j.at("msaa").get_to(r.msaa);
-  if (const auto at = j.find("samplePosition"); at != j.end() && !at->is_null()) r.sample_position = at->get<std::array<double, 2>>();
-  j.at("page").get_to(r.page);
-  j.at("uniforms").get_to(r.uniforms);
-  r.pixel_type = j.at("pixelType") == "f32" ? image::PixelType::f32 : image::PixelType::u8;
-  r.semantics = j.at("semantics") == "ieee" ? FloatSemantics::ieee : FloatSemantics::as_compiled;
-}
+SHADELAB_JSON_FIELDS(RenderRequest, field("vertex", &RenderRequest::vertex), field("fragment", &RenderRequest::fragment),
+                     field("width", &RenderRequest::width), field("height", &RenderRequest::height), field("frames", &RenderRequest::frames),
+                     field("degreesPerFrame", &RenderRequest::degrees_per_frame), field("angles", &RenderRequest::angles),
+                     field("msaa", &RenderRequest::msaa), field("samplePosition", &RenderRequest::sample_position, When::null_when_empty),
+                     field("page", &RenderRequest::page), field("uniforms", &RenderRequest::uniforms),
+                     field("pixelType", &RenderRequest::pixel_type, kPixelTypes), field("semantics", &RenderRequest::semantics, kSemantics))
 
 }  // namespace shadelab::render
 
@@ -196,19 +108,10 @@ void from_json(const json& j, Bounds& b) {
   b = {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
 }
 
-void to_json(json& j, const SceneDescription& s) {
-  j = {{"objects", s.objects}, {"ground", s.ground ? json(*s.ground) : json(nullptr)}, {"camera", s.camera},
-       {"lights", s.lights},   {"world", s.world},                                   {"render", s.render}};
-}
-
-void from_json(const json& j, SceneDescription& s) {
-  j.at("objects").get_to(s.objects);
-  s.ground = j.at("ground").is_null() ? std::nullopt : std::optional<Ground>(j.at("ground").get<Ground>());
-  j.at("camera").get_to(s.camera);
-  j.at("lights").get_to(s.lights);
-  j.at("world").get_to(s.world);
-  j.at("render").get_to(s.render);
-}
+SHADELAB_JSON_FIELDS(SceneDescription, field("objects", &SceneDescription::objects),
+                     field("ground", &SceneDescription::ground, When::null_when_empty), field("camera", &SceneDescription::camera),
+                     field("lights", &SceneDescription::lights), field("world", &SceneDescription::world),
+                     field("render", &SceneDescription::render))
 
 }  // namespace shadelab::scene
 
@@ -216,35 +119,19 @@ namespace shadelab::worker {
 
 namespace {
 
-constexpr std::initializer_list<JobKind> kKinds = {JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade,
-                                                   JobKind::grade_frames, JobKind::scene, JobKind::check_images};
+constexpr auto kKinds = json_fields::by_to_string(JobKind::render, JobKind::compile, JobKind::mesh_check, JobKind::grade,
+                                                  JobKind::grade_frames, JobKind::scene, JobKind::check_images);
 
 bool is_grade(JobKind k) { return k == JobKind::grade || k == JobKind::grade_frames; }
 
 }  // namespace
 
-void to_json(json& j, const Job& job) {
-  j = {{"kind", to_string(job.kind)},     {"request", job.request},     {"mesh", job.mesh},
-       {"meshEmbedded", job.mesh_embedded}, {"meshFormat", job.mesh_format}, {"fit", job.fit ? json(*job.fit) : json(nullptr)},
-       {"frameName", job.frame_name},     {"prefix", job.prefix},       {"output", to_string(job.output)},
-       {"format", to_string(job.format)}, {"notice", job.notice}};
-  if (is_grade(job.kind)) j["grade"] = job.grade;
-}
-
-void from_json(const json& j, Job& job) {
-  job.kind = enum_from_json(j.at("kind"), kKinds);
-  j.at("request").get_to(job.request);
-  j.at("mesh").get_to(job.mesh);
-  j.at("meshEmbedded").get_to(job.mesh_embedded);
-  j.at("meshFormat").get_to(job.mesh_format);
-  if (const json& fit = j.at("fit"); !fit.is_null()) job.fit = fit.get<scene::Bounds>();
-  j.at("frameName").get_to(job.frame_name);
-  j.at("prefix").get_to(job.prefix);
-  job.output = enum_from_json(j.at("output"), {Output::grid, Output::frames, Output::json});
-  job.format = enum_from_json(j.at("format"), {Format::png, Format::exr});
-  j.at("notice").get_to(job.notice);
-  if (is_grade(job.kind)) j.at("grade").get_to(job.grade);
-}
+SHADELAB_JSON_FIELDS(Job, field("kind", &Job::kind, kKinds), field("request", &Job::request), field("mesh", &Job::mesh),
+                     field("meshEmbedded", &Job::mesh_embedded), field("meshFormat", &Job::mesh_format),
+                     field("fit", &Job::fit, When::null_when_empty), field("frameName", &Job::frame_name), field("prefix", &Job::prefix),
+                     field("output", &Job::output, json_fields::by_to_string(Output::grid, Output::frames, Output::json)),
+                     field("format", &Job::format, json_fields::by_to_string(Format::png, Format::exr)), field("notice", &Job::notice),
+                     only_where([](const Job& job) { return is_grade(job.kind); }, field("grade", &Job::grade)))
 
 std::string_view to_string(JobKind k) {
   switch (k) {
@@ -299,7 +186,9 @@ Message to_message(const ImagesJob& job) {
 
 Expected<JobKind> job_kind_of(const Message& m) {
   try {
-    return enum_from_json(m.header.at("kind"), kKinds);
+    JobKind kind{};
+    kKinds.read(m.header.at("kind"), kind);
+    return kind;
   } catch (const json::exception& e) {
     return make_error(ErrorCode::worker_protocol, std::string("a job without a known kind: ") + e.what());
   }

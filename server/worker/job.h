@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "core/json_fields.h"
 #include "grade/grade_spec.h"
 #include "grade/hand_in_images.h"
 #include "render/render_request.h"
@@ -94,14 +95,12 @@ std::string_view to_string(Output o);
 std::string_view to_string(Format f);
 
 // A job's header on the wire; from_json throws nlohmann::json::exception when malformed.
-void to_json(nlohmann::json& j, const Job& job);
-void from_json(const nlohmann::json& j, Job& job);
+SHADELAB_JSON_DECLARE(Job);
 
 }  // namespace shadelab::worker
 
 namespace shadelab::scene {
 // The scene description on the wire: every field of the struct (worker/scene_json.h), nothing
 // re-validated; from_json throws nlohmann::json::exception.
-void to_json(nlohmann::json& j, const SceneDescription& scene);
-void from_json(const nlohmann::json& j, SceneDescription& scene);
+SHADELAB_JSON_DECLARE(SceneDescription);
 }  // namespace shadelab::scene

@@ -1,9 +1,11 @@
 #include "worker/result.h"
 
 #include "core/json_enum.h"
+#include "core/json_fields.h"
 #include "worker/scene_json.h"
 
 using nlohmann::json;
+using shadelab::json_fields::When;
 
 namespace shadelab {
 
@@ -32,19 +34,15 @@ void from_json(const json& j, Error& e) {
 
 namespace shadelab::grade {
 
-void to_json(json& j, const ImageVerdict& v) { j = {{"pass", v.pass}, {"message", v.message}, {"leavesOut", v.leaves_out}}; }
-void from_json(const json& j, ImageVerdict& v) {
-  j.at("pass").get_to(v.pass);
-  j.at("message").get_to(v.message);
-  j.at("leavesOut").get_to(v.leaves_out);
-}
+SHADELAB_JSON_FIELDS(ImageVerdict, field("pass", &ImageVerdict::pass), field("message", &ImageVerdict::message),
+                     field("leavesOut", &ImageVerdict::leaves_out))
 
 }  // namespace shadelab::grade
 
 namespace shadelab::render {
 
-void to_json(json& j, const VariableInfo& v) { j = {{"name", v.name}, {"type", v.type}, {"arraySize", v.array_size}}; }
-void from_json(const json& j, VariableInfo& v) { v = {j.at("name"), j.at("type"), j.at("arraySize")}; }
+SHADELAB_JSON_FIELDS(VariableInfo, field("name", &VariableInfo::name), field("type", &VariableInfo::type),
+                     field("arraySize", &VariableInfo::array_size))
 
 }  // namespace shadelab::render
 
@@ -53,6 +51,18 @@ namespace shadelab::scene_render {
 namespace {
 
 constexpr auto kTransforms = {scene::ViewTransform::standard, scene::ViewTransform::filmic};
+constexpr auto kTransformNames = json_fields::by_to_string(scene::ViewTransform::standard, scene::ViewTransform::filmic);
+constexpr auto kEngineNames = json_fields::by_to_string(scene::Engine::workbench, scene::Engine::eevee);
+constexpr json_fields::Names<scene::Projection, 2> kProjections{
+    {{{scene::Projection::perspective, "perspective"}, {scene::Projection::orthographic, "orthographic"}}}};
+
+// An object's box in the image, by its corners.
+struct Corners {
+  json write(const PixelBox& b) const { return {{"x0", b.min.x}, {"y0", b.min.y}, {"x1", b.max.x}, {"y1", b.max.y}}; }
+  void read(const json& j, PixelBox& b) const {
+    b = {{j.at("x0").get<double>(), j.at("y0").get<double>()}, {j.at("x1").get<double>(), j.at("y1").get<double>()}};
+  }
+};
 
 // Each pass's detail is read by its pass's name.
 PassDetail detail_from(const std::string& name, const json& d) {
@@ -86,143 +96,62 @@ json detail_json(const PassDetail& detail) {
 void to_json(json& j, const PassTiming& p) { j = {{"name", p.name()}, {"ms", p.ms}, {"detail", detail_json(p.detail)}}; }
 void from_json(const json& j, PassTiming& p) { p = {j.at("ms"), detail_from(j.at("name"), j.at("detail"))}; }
 
-void to_json(json& j, const ObjectFraming& f) {
-  j = {{"name", f.name},
-       {"drawn", f.drawn},
-       {"fullyVisible", f.fully_visible},
-       {"fractionInFrame", f.fraction_in_frame},
-       {"imageCoverage", f.image_coverage},
-       {"visiblePixels", f.visible_pixels},
-       {"behindCamera", f.behind_camera},
-       {"partlyBehindCamera", f.partly_behind_camera},
-       {"boundingBox", nullptr}};
-  if (f.box) j["boundingBox"] = {{"x0", f.box->min.x}, {"y0", f.box->min.y}, {"x1", f.box->max.x}, {"y1", f.box->max.y}};
-}
+SHADELAB_JSON_FIELDS(ObjectFraming, field("name", &ObjectFraming::name), field("drawn", &ObjectFraming::drawn),
+                     field("fullyVisible", &ObjectFraming::fully_visible), field("fractionInFrame", &ObjectFraming::fraction_in_frame),
+                     field("imageCoverage", &ObjectFraming::image_coverage), field("visiblePixels", &ObjectFraming::visible_pixels),
+                     field("behindCamera", &ObjectFraming::behind_camera), field("partlyBehindCamera", &ObjectFraming::partly_behind_camera),
+                     field("boundingBox", &ObjectFraming::box, When::null_when_empty, Corners{}))
 
-void from_json(const json& j, ObjectFraming& f) {
-  j.at("name").get_to(f.name);
-  j.at("drawn").get_to(f.drawn);
-  j.at("fullyVisible").get_to(f.fully_visible);
-  j.at("fractionInFrame").get_to(f.fraction_in_frame);
-  j.at("imageCoverage").get_to(f.image_coverage);
-  j.at("visiblePixels").get_to(f.visible_pixels);
-  j.at("behindCamera").get_to(f.behind_camera);
-  j.at("partlyBehindCamera").get_to(f.partly_behind_camera);
-  f.box.reset();
-  if (const json& b = j.at("boundingBox"); !b.is_null())
-    f.box = PixelBox{{b.at("x0").get<double>(), b.at("y0").get<double>()}, {b.at("x1").get<double>(), b.at("y1").get<double>()}};
-}
+SHADELAB_JSON_FIELDS(CameraSummary, field("horizontalFov", &CameraSummary::horizontal_fov_degrees),
+                     field("verticalFov", &CameraSummary::vertical_fov_degrees), field("type", &CameraSummary::type, kProjections))
 
-void to_json(json& j, const CameraSummary& c) {
-  j = {{"horizontalFov", c.horizontal_fov_degrees}, {"verticalFov", c.vertical_fov_degrees}, {"type", c.type}};
-}
-
-void from_json(const json& j, CameraSummary& c) {
-  j.at("horizontalFov").get_to(c.horizontal_fov_degrees);
-  j.at("verticalFov").get_to(c.vertical_fov_degrees);
-  const std::string type = j.at("type");
-  if (type != "perspective" && type != "orthographic") throw json::other_error::create(501, "unknown camera type " + type, &j);
-  c.type = type == "orthographic" ? scene::Projection::orthographic : scene::Projection::perspective;
-}
-
-void to_json(json& j, const SceneReport& r) {
-  j = {{"engine", scene::to_string(r.engine)}, {"viewTransform", scene::to_string(r.view_transform)},
-       {"width", r.width},                    {"height", r.height},
-       {"passes", r.passes},                  {"features", r.features},
-       {"framing", r.framing},                {"camera", r.camera},
-       {"depth", r.depth},                    {"totalMs", r.total_ms}};
-}
-
-void from_json(const json& j, SceneReport& r) {
-  r.engine = enum_from_json(j.at("engine"), {scene::Engine::workbench, scene::Engine::eevee});
-  r.view_transform = enum_from_json(j.at("viewTransform"), kTransforms);
-  j.at("width").get_to(r.width);
-  j.at("height").get_to(r.height);
-  j.at("passes").get_to(r.passes);
-  j.at("features").get_to(r.features);
-  j.at("framing").get_to(r.framing);
-  j.at("camera").get_to(r.camera);
-  j.at("depth").get_to(r.depth);
-  j.at("totalMs").get_to(r.total_ms);
-}
+SHADELAB_JSON_FIELDS(SceneReport, field("engine", &SceneReport::engine, kEngineNames),
+                     field("viewTransform", &SceneReport::view_transform, kTransformNames), field("width", &SceneReport::width),
+                     field("height", &SceneReport::height), field("passes", &SceneReport::passes), field("features", &SceneReport::features),
+                     field("framing", &SceneReport::framing), field("camera", &SceneReport::camera), field("depth", &SceneReport::depth),
+                     field("totalMs", &SceneReport::total_ms))
 
 }  // namespace shadelab::scene_render
 
 namespace shadelab::worker {
 
-void to_json(json& j, const ConstantFrame& c) { j = {{"frame", c.frame}, {"rgba", c.rgba}}; }
-void from_json(const json& j, ConstantFrame& c) {
-  j.at("frame").get_to(c.frame);
-  j.at("rgba").get_to(c.rgba);
-}
+namespace {
 
-void to_json(json& j, const RenderTimings& t) {
-  j = {{"compile", t.compile_ms}, {"upload", t.upload_ms},     {"firstFrame", t.first_frame_ms},
-       {"render", t.render_ms},   {"readback", t.readback_ms}, {"encode", t.encode_ms}};
-}
+// A mesh's bounds, together under one key.
+struct MinMax {
+  json write(const MeshCheckResult& r) const { return {{"min", r.min}, {"max", r.max}}; }
+  void read(const json& j, MeshCheckResult& r) const {
+    j.at("min").get_to(r.min);
+    j.at("max").get_to(r.max);
+  }
+};
 
-void from_json(const json& j, RenderTimings& t) {
-  t = {j.at("compile"), j.at("upload"), j.at("firstFrame"), j.at("render"), j.at("readback"), j.at("encode")};
-}
+}  // namespace
 
-void to_json(json& j, const CompileResult& r) {
-  j = {{"warnings", r.warnings}, {"diagnostics", r.diagnostics}, {"attributes", r.attributes}, {"uniforms", r.uniforms},
-       {"compileMs", r.compile_ms}};
-}
+SHADELAB_JSON_FIELDS(ConstantFrame, field("frame", &ConstantFrame::frame), field("rgba", &ConstantFrame::rgba))
 
-void from_json(const json& j, CompileResult& r) {
-  j.at("warnings").get_to(r.warnings);
-  j.at("diagnostics").get_to(r.diagnostics);
-  j.at("attributes").get_to(r.attributes);
-  j.at("uniforms").get_to(r.uniforms);
-  j.at("compileMs").get_to(r.compile_ms);
-}
+SHADELAB_JSON_FIELDS(RenderTimings, field("compile", &RenderTimings::compile_ms), field("upload", &RenderTimings::upload_ms),
+                     field("firstFrame", &RenderTimings::first_frame_ms), field("render", &RenderTimings::render_ms),
+                     field("readback", &RenderTimings::readback_ms), field("encode", &RenderTimings::encode_ms))
 
-void to_json(json& j, const RenderResult& r) {
-  j = {{"warnings", r.warnings},          {"diagnostics", r.diagnostics}, {"attributes", r.attributes},
-       {"uniforms", r.uniforms},          {"samples", r.samples},         {"constantFrames", r.constant_frames},
-       {"timings", r.timings},            {"contentType", r.content_type}};
-}
+SHADELAB_JSON_FIELDS(CompileResult, field("warnings", &CompileResult::warnings), field("diagnostics", &CompileResult::diagnostics),
+                     field("attributes", &CompileResult::attributes), field("uniforms", &CompileResult::uniforms),
+                     field("compileMs", &CompileResult::compile_ms))
 
-void from_json(const json& j, RenderResult& r) {
-  j.at("warnings").get_to(r.warnings);
-  j.at("diagnostics").get_to(r.diagnostics);
-  j.at("attributes").get_to(r.attributes);
-  j.at("uniforms").get_to(r.uniforms);
-  j.at("samples").get_to(r.samples);
-  j.at("constantFrames").get_to(r.constant_frames);
-  j.at("timings").get_to(r.timings);
-  j.at("contentType").get_to(r.content_type);
-}
+SHADELAB_JSON_FIELDS(RenderResult, field("warnings", &RenderResult::warnings), field("diagnostics", &RenderResult::diagnostics),
+                     field("attributes", &RenderResult::attributes), field("uniforms", &RenderResult::uniforms),
+                     field("samples", &RenderResult::samples), field("constantFrames", &RenderResult::constant_frames),
+                     field("timings", &RenderResult::timings), field("contentType", &RenderResult::content_type))
 
-void to_json(json& j, const MeshCheckResult& r) {
-  j = {{"triangles", r.triangles}, {"normalsFromFile", r.normals_from_file}, {"bounds", {{"min", r.min}, {"max", r.max}}}};
-}
+SHADELAB_JSON_FIELDS(MeshCheckResult, field("triangles", &MeshCheckResult::triangles),
+                     field("normalsFromFile", &MeshCheckResult::normals_from_file),
+                     at("bounds", [](auto& r) -> auto& { return r; }, When::required, MinMax{}))
 
-void from_json(const json& j, MeshCheckResult& r) {
-  j.at("triangles").get_to(r.triangles);
-  j.at("normalsFromFile").get_to(r.normals_from_file);
-  j.at("bounds").at("min").get_to(r.min);
-  j.at("bounds").at("max").get_to(r.max);
-}
-
-void to_json(json& j, const SceneResult& r) { j = {{"report", r.report}, {"encodeMs", r.encode_ms}}; }
-void from_json(const json& j, SceneResult& r) {
-  j.at("report").get_to(r.report);
-  j.at("encodeMs").get_to(r.encode_ms);
-}
-
-void to_json(json& j, const GradeResult& r) { j = {{"report", r.report}}; }
-void from_json(const json& j, GradeResult& r) { j.at("report").get_to(r.report); }
-
-void to_json(json& j, const FramesGradeResult& r) { j = {{"frames", r.frames}, {"code", r.code ? json(*r.code) : json(nullptr)}}; }
-void from_json(const json& j, FramesGradeResult& r) {
-  j.at("frames").get_to(r.frames);
-  r.code = j.at("code").is_null() ? std::nullopt : std::optional<grade::Report>(j.at("code").get<grade::Report>());
-}
-
-void to_json(json& j, const ImagesResult& r) { j = {{"verdicts", r.verdicts}}; }
-void from_json(const json& j, ImagesResult& r) { j.at("verdicts").get_to(r.verdicts); }
+SHADELAB_JSON_FIELDS(SceneResult, field("report", &SceneResult::report), field("encodeMs", &SceneResult::encode_ms))
+SHADELAB_JSON_FIELDS(GradeResult, field("report", &GradeResult::report))
+SHADELAB_JSON_FIELDS(FramesGradeResult, field("frames", &FramesGradeResult::frames),
+                     field("code", &FramesGradeResult::code, When::null_when_empty))
+SHADELAB_JSON_FIELDS(ImagesResult, field("verdicts", &ImagesResult::verdicts))
 
 namespace {
 

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/expected.h"
+#include "core/json_fields.h"
 #include "grade/image_check.h"
 #include "grade/report.h"
 #include "render/render_request.h"
@@ -109,51 +110,35 @@ Expected<Result> result_from(const Message& answer);
 // The JSON forms, one to_json / from_json pair per struct, shared by the wire and the HTTP
 // responses that show them. A result's files travel beside its JSON (see the table above), so
 // its pair reads and writes the rest. from_json throws nlohmann::json::exception when malformed.
-void to_json(nlohmann::json& j, const ConstantFrame& c);
-void from_json(const nlohmann::json& j, ConstantFrame& c);
-void to_json(nlohmann::json& j, const RenderTimings& t);
-void from_json(const nlohmann::json& j, RenderTimings& t);
-void to_json(nlohmann::json& j, const CompileResult& r);
-void from_json(const nlohmann::json& j, CompileResult& r);
-void to_json(nlohmann::json& j, const RenderResult& r);
-void from_json(const nlohmann::json& j, RenderResult& r);
-void to_json(nlohmann::json& j, const MeshCheckResult& r);
-void from_json(const nlohmann::json& j, MeshCheckResult& r);
-void to_json(nlohmann::json& j, const SceneResult& r);
-void from_json(const nlohmann::json& j, SceneResult& r);
-void to_json(nlohmann::json& j, const GradeResult& r);
-void from_json(const nlohmann::json& j, GradeResult& r);
-void to_json(nlohmann::json& j, const FramesGradeResult& r);
-void from_json(const nlohmann::json& j, FramesGradeResult& r);
-void to_json(nlohmann::json& j, const ImagesResult& r);
-void from_json(const nlohmann::json& j, ImagesResult& r);
+SHADELAB_JSON_DECLARE(ConstantFrame);
+SHADELAB_JSON_DECLARE(RenderTimings);
+SHADELAB_JSON_DECLARE(CompileResult);
+SHADELAB_JSON_DECLARE(RenderResult);
+SHADELAB_JSON_DECLARE(MeshCheckResult);
+SHADELAB_JSON_DECLARE(SceneResult);
+SHADELAB_JSON_DECLARE(GradeResult);
+SHADELAB_JSON_DECLARE(FramesGradeResult);
+SHADELAB_JSON_DECLARE(ImagesResult);
 
 }  // namespace shadelab::worker
 
 namespace shadelab {
 // An error as the worker sends it. Reading never throws: the worker runs student code, so what
 // it sends is read, not trusted; an unknown or missing code reads as worker_protocol.
-void to_json(nlohmann::json& j, const Error& e);
-void from_json(const nlohmann::json& j, Error& e);
+SHADELAB_JSON_DECLARE(Error);
 }  // namespace shadelab
 
 namespace shadelab::grade {
-void to_json(nlohmann::json& j, const ImageVerdict& v);
-void from_json(const nlohmann::json& j, ImageVerdict& v);
+SHADELAB_JSON_DECLARE(ImageVerdict);
 }  // namespace shadelab::grade
 
 namespace shadelab::render {
-void to_json(nlohmann::json& j, const VariableInfo& v);
-void from_json(const nlohmann::json& j, VariableInfo& v);
+SHADELAB_JSON_DECLARE(VariableInfo);
 }  // namespace shadelab::render
 
 namespace shadelab::scene_render {
-void to_json(nlohmann::json& j, const PassTiming& p);
-void from_json(const nlohmann::json& j, PassTiming& p);
-void to_json(nlohmann::json& j, const ObjectFraming& f);
-void from_json(const nlohmann::json& j, ObjectFraming& f);
-void to_json(nlohmann::json& j, const CameraSummary& c);
-void from_json(const nlohmann::json& j, CameraSummary& c);
-void to_json(nlohmann::json& j, const SceneReport& r);
-void from_json(const nlohmann::json& j, SceneReport& r);
+SHADELAB_JSON_DECLARE(PassTiming);
+SHADELAB_JSON_DECLARE(ObjectFraming);
+SHADELAB_JSON_DECLARE(CameraSummary);
+SHADELAB_JSON_DECLARE(SceneReport);
 }  // namespace shadelab::scene_render
