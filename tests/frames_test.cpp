@@ -1,4 +1,4 @@
-// Grading the frames a student saved from their browser (GradeSession::grade_frames), in process on
+// Grading the frames a student saved from their browser (grade/judge_saved_frames.h), in process on
 // the real renderer: frames drawn with the page's lag pass and the lag is found; each kind of wrong
 // hand-in (another deliverable's frames, a repeated frame, the wrong size, frames that are not what
 // the code renders) fails with a diagnosis a student can act on.
@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "grade/grade_session.h"
+#include "grade/judge_saved_frames.h"
 #include "grade/lag_fit.h"
 #include "image/encode.h"
 #include "image/png_decode.h"
@@ -28,10 +28,10 @@ std::vector<grade::SavedFrame> saved_frames(const std::string& preset, const std
 
 class FramesTest : public ::testing::Test {
  protected:
-  // One session for the suite, as one worker grading a class: the reference grid renders once.
-  static grade::GradeSession& session() {
-    static grade::GradeSession s(testkit::shared_renderer());
-    return s;
+  // One set of renders for the suite, as one worker grading a class: the reference grid renders once.
+  static grade::GradeRenders& renders() {
+    static grade::GradeRenders r(testkit::shared_renderer());
+    return r;
   }
   // `from_page`: the course wants frames saved from its page (the built-in course does).
   static grade::FramesGradeOutput grade(const std::string& checkpoint, const std::vector<grade::SavedFrame>& saved,
@@ -47,7 +47,7 @@ class FramesTest : public ::testing::Test {
       const auto* p = c.preset(code_preset);
       code = c.render_request(p->vertex, p->fragment);
     }
-    auto out = session().grade_frames(spec, code, saved, [] { return Expected<const scene::Mesh*>(&bunny()); }, "bunny",
+    auto out = grade::judge_saved_frames(renders(), spec, code, saved, [] { return Expected<const scene::Mesh*>(&bunny()); }, "bunny",
                                       [](JobPhase) -> Status { return Ok{}; });
     EXPECT_TRUE(out.ok()) << (out ? "" : out.error().message);
     return out ? std::move(*out) : grade::FramesGradeOutput{};
@@ -265,7 +265,7 @@ TEST_F(FramesTest, CodeThatDoesNotCompileIsTheCodesReportNotTheFrames) {
   const auto* p = c.preset("specular");
   shader::ShaderFile broken = p->fragment;
   broken.text.replace(broken.text.find("void main"), 9, "float broken() { return undeclared_name; }\nvoid main");
-  auto out = session().grade_frames(spec, c.render_request(p->vertex, broken), saved_frames("specular", "specular"),
+  auto out = grade::judge_saved_frames(renders(), spec, c.render_request(p->vertex, broken), saved_frames("specular", "specular"),
                                     [] { return Expected<const scene::Mesh*>(&bunny()); }, "bunny", [](JobPhase) -> Status { return Ok{}; });
   ASSERT_TRUE(out.ok());
   EXPECT_TRUE(out->frames.pass);

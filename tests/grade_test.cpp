@@ -11,7 +11,7 @@
 #include "core/base64.h"
 #include "core/lru_cache.h"
 #include "grade/diagnosis.h"
-#include "grade/grade_session.h"
+#include "grade/judge_code.h"
 #include "grade/reference_cache.h"
 #include "grade/starter_constants.h"
 #include "scene/mesh.h"
@@ -542,13 +542,13 @@ TEST(GradeHeatMapTest, IsDrawnOnlyWhereItIsShown) {
   grade::GradeSpec spec = c.grade_spec(*c.checkpoint("specular")->checkpoint, {});
   const auto* right = c.preset("specular");
   const auto* wrong = c.preset("diffuse");
-  grade::GradeSession session(testkit::shared_renderer());
+  grade::GradeRenders renders(testkit::shared_renderer());
   const auto heatmap = [&](grade::HeatMap policy, const course::Preset& p) {
     spec.heatmap = policy;
     render::RenderRequest r = c.render_request(p.vertex, p.fragment);
     r.frames = 1;
     r.width = r.height = 64;
-    auto out = session.grade(spec, r, [] { return Expected<const scene::Mesh*>(&testkit::builtin(testkit::course().default_mesh)); },
+    auto out = grade::judge_code(renders, spec, r, [] { return Expected<const scene::Mesh*>(&testkit::builtin(testkit::course().default_mesh)); },
                              "bunny", [](JobPhase) -> Status { return Ok{}; });
     EXPECT_TRUE(out) << out.error().format();
     EXPECT_EQ(out->report.pass, &p == right);

@@ -5,7 +5,6 @@
 #include <cstring>
 
 #include "core/embedded_files.h"
-#include "grade/grade_session.h"
 #include "course/course_reader.h"
 #include "worker/job.h"
 #include "worker/protocol.h"

@@ -3,9 +3,10 @@
 // `autograde` (Gradescope), the class batch, the sheet and `course warm` each parse their input
 // into a submission, call one function here, and format the report it returns:
 //
-//   adapter ──► grade_code / grade_saved_frames ──► worker pool ──► worker: GradeSession ──► renderer
-//   (parses,     (builds the jobs, the        (queue, dead-    (grade_session.h;
-//    formats)     rule below, the retry)       lines, kills)    grader.h's verdict)
+//   adapter ──► grade_code / grade_saved_frames ──► worker pool ──► worker ──► grade/judge_code.h,
+//   (parses,     (builds the jobs, the        (queue, dead-    (dispatches) judge_saved_frames.h
+//    formats)     rule below, the retry)       lines, kills)                (renders: grade_renders.h;
+//                                                                            grader.h's verdict)
 //
 // The rule, applied here and nowhere above: what the submission causes (its source refused
 // before any driver, a compile error, a hang or crash that the retry confirms, a frame missing,

@@ -42,7 +42,7 @@ struct CheckpointSection {
   grade::Report report;         // when not graded, messages[0] says what was handed in
   std::vector<CodeListing> code;  // vertex, then fragment
   // The frames the student saved (images/hw2_{prefix}_*.png), shown beside the grid their code
-  // renders, and how they were graded (grade/grade_session.h's grade_frames).
+  // renders, and how they were graded (grade/judge_saved_frames.h).
   std::string saved_grid_png;                  // set when there is code to show them beside
   std::optional<grade::Report> frames_report;  // against the reference, at their lags
   std::optional<grade::Report> match_report;   // against what the code renders

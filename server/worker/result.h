@@ -80,7 +80,7 @@ struct GradeResult {
   std::string heatmap_png;  // empty when the submission did not render
 };
 
-// Saved frames graded (grade/grade_session.h's grade_frames): against the reference, and against
+// Saved frames graded (grade/judge_saved_frames.h): against the reference, and against
 // the code handed in with them when there was some.
 struct FramesGradeResult {
   grade::Report frames;

@@ -6,7 +6,8 @@
 #include <optional>
 
 #include "core/lru_cache.h"
-#include "grade/grade_session.h"
+#include "grade/judge_code.h"
+#include "grade/judge_saved_frames.h"
 #include "grade/hand_in_images.h"
 #include "image/encode.h"
 #include "image/grid.h"
@@ -76,7 +77,7 @@ Status encode_output(const Job& job, const std::vector<image::Image>& frames, st
 
 class Worker {
  public:
-  Worker(int fd, render::Renderer renderer) : fd_(fd), renderer_(std::move(renderer)), grading_(renderer_) {}
+  Worker(int fd, render::Renderer renderer) : fd_(fd), renderer_(std::move(renderer)), renders_(renderer_) {}
 
   // The first job in a fresh process pays for what every later job finds ready: llvmpipe's
   // draw and rasteriser setup, the course's default mesh parsed and uploaded, the multisampled
@@ -123,7 +124,7 @@ class Worker {
     const auto sizes = renderer_.cache_sizes();
     const size_t mesh_bytes = sizes.mesh_bytes + meshes_.bytes() + scene::bytes_of(fitted_);
     return {{"programs", sizes.programs}, {"meshes", sizes.meshes}, {"meshBytes", mesh_bytes},
-            {"referenceBytes", grading_.reference_cache_bytes()}};
+            {"referenceBytes", renders_.reference_cache_bytes()}};
   }
 
   template <class Result>
@@ -245,7 +246,7 @@ class Worker {
 
   Expected<GradeResult> grade(const Job& job, const std::string& payload) {
     const FaultPlan fault = fault_plan(job.request.fragment.text);  // inactive outside fault-injection runs
-    auto graded = grading_.grade(job.grade, job.request, [&] { return job_mesh(job, payload); }, fitted_key(job), [&](JobPhase phase) {
+    auto graded = grade::judge_code(renders_, job.grade, job.request, [&] { return job_mesh(job, payload); }, fitted_key(job), [&](JobPhase phase) {
       auto entered = enter_phase(phase);
       if (phase == JobPhase::grader) inject_fault(fault, FaultPhase::grader, fd_);
       return entered;
@@ -257,7 +258,7 @@ class Worker {
   Expected<FramesGradeResult> grade_frames(const Job& job, const Message& in) {
     auto payload = frames_payload_from(in);
     if (!payload) return payload.take_error();
-    auto graded = grading_.grade_frames(job.grade, job.request, payload->saved, [&] { return job_mesh(job, payload->mesh); },
+    auto graded = grade::judge_saved_frames(renders_, job.grade, job.request, payload->saved, [&] { return job_mesh(job, payload->mesh); },
                                         fitted_key(job), [&](JobPhase phase) { return enter_phase(phase); });
     if (!graded) return graded.take_error();
     return FramesGradeResult{std::move(graded->frames), std::move(graded->code), std::move(graded->heatmap_png)};
@@ -314,7 +315,7 @@ class Worker {
 
   int fd_;
   render::Renderer renderer_;
-  grade::GradeSession grading_;
+  grade::GradeRenders renders_;  // a grade's renders and the caches every grade shares
   // Parsed meshes by id (a built-in's name or an upload's content address). An upload of 16 MiB
   // parses to up to ~1M triangles, 72 MB: the budget keeps five of those, or the class's few.
   LruCache<scene::Mesh> meshes_{16, 384u << 20};

@@ -1,34 +1,29 @@
-#include "grade/grade_session.h"
+#include "grade/grade_renders.h"
 
 #include <algorithm>
 #include <memory>
 
-#include "grade/diagnosis.h"
-#include "grade/catalogue_reading.h"
-#include "grade/formula_explanation.h"
-#include "grade/formula_geometry.h"
 #include "image/encode.h"
 #include "image/grid.h"
 #include "image/metrics.h"
-#include "grade/starter_constants.h"
 
 namespace shadelab::grade {
 
-std::string GradeSession::heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job) {
+std::string heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job) {
   std::vector<image::Image> heat;
   for (size_t k = 0; k < static_cast<size_t>(job.frames); ++k) heat.push_back(image::heatmap(*frames[k], *reference[k]));
   auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(job.frames, job.width, job.height), heat));
   return png ? std::string(png->begin(), png->end()) : std::string();
 }
 
-Expected<SharedFrames> GradeSession::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
+Expected<SharedFrames> GradeRenders::frames_of(const render::RenderRequest& r, const scene::Mesh& m) {
   SharedFrames out;
   auto rendered = renderer_.render(r, m, [&](int, const image::Image& f, bool) { out.push_back(std::make_shared<const image::Image>(f)); });
   if (!rendered) return rendered.take_error();
   return out;
 }
 
-void GradeSession::begin(const GradeSpec& spec) {
+void GradeRenders::begin(const GradeSpec& spec) {
   work_ = {};
   store_.reset();
   if (spec.reference_store.empty()) return;
@@ -36,7 +31,7 @@ void GradeSession::begin(const GradeSpec& spec) {
   store_.emplace(spec.reference_store.folder, shared_store(spec.reference_store.shared), info.gl_renderer + " | " + info.gl_version);
 }
 
-store::SharedStore* GradeSession::shared_store(const store::SharedStoreConfig& config) {
+store::SharedStore* GradeRenders::shared_store(const store::SharedStoreConfig& config) {
   if (config.url.empty()) return nullptr;
   if (!shared_ || shared_config_ != config) {
     auto opened = store::SharedStore::open(config);
@@ -46,7 +41,7 @@ store::SharedStore* GradeSession::shared_store(const store::SharedStoreConfig& c
   return shared_.get();
 }
 
-const std::string& GradeSession::mesh_address(const std::string& mesh_key, const scene::Mesh& mesh) {
+const std::string& GradeRenders::mesh_address(const std::string& mesh_key, const scene::Mesh& mesh) {
   if (address_of_ != mesh_key) {
     address_ = scene::content_address(mesh);
     address_of_ = mesh_key;
@@ -54,7 +49,7 @@ const std::string& GradeSession::mesh_address(const std::string& mesh_key, const
   return address_;
 }
 
-Expected<SharedFrames> GradeSession::stored_or_rendered(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
+Expected<SharedFrames> GradeRenders::stored_or_rendered(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
   const std::string stored = store_ ? store_->key(r, mesh_address(mesh_key, m)) : std::string();
   if (store_)
     if (auto loaded = store_->load(stored, r)) {
@@ -68,7 +63,7 @@ Expected<SharedFrames> GradeSession::stored_or_rendered(const render::RenderRequ
   return frames;
 }
 
-Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
+Expected<SharedFrames> GradeRenders::cached_frames(const render::RenderRequest& r, const scene::Mesh& m, const std::string& mesh_key) {
   std::string key = render::pixel_identity(r) + '\0' + mesh_key;
   if (const SharedFrames* hit = references_.find(key)) {
     ++work_.from_memory;
@@ -79,7 +74,7 @@ Expected<SharedFrames> GradeSession::cached_frames(const render::RenderRequest& 
   return frames;
 }
 
-std::vector<RenderedMistake> GradeSession::rendered_mistakes(const GradeSpec& spec, const std::vector<const Mistake*>& which,
+std::vector<RenderedMistake> GradeRenders::rendered_mistakes(const GradeSpec& spec, const std::vector<const Mistake*>& which,
                                                              const render::RenderRequest& reference, const scene::Mesh& mesh,
                                                              const std::string& mesh_key) {
   std::vector<RenderedMistake> mistakes;
@@ -94,7 +89,7 @@ std::vector<RenderedMistake> GradeSession::rendered_mistakes(const GradeSpec& sp
 
 // `base` under the probe's light, for the names the program declares as the page does; a name
 // declared otherwise stays as the homework sets it, as in the browser.
-Expected<render::RenderRequest> GradeSession::with_light(const GradeSpec& spec, const render::RenderRequest& base, const Probe& probe) {
+Expected<render::RenderRequest> GradeRenders::with_light(const GradeSpec& spec, const render::RenderRequest& base, const Probe& probe) {
   auto program = renderer_.compile(base.vertex, base.fragment);
   if (!program) return program.take_error();
   render::RenderRequest lit = base;
@@ -107,25 +102,7 @@ Expected<render::RenderRequest> GradeSession::with_light(const GradeSpec& spec, 
   return lit;
 }
 
-// A submission right under the page's light and wrong only under probe lights is told which, and
-// what each checks, in the course's words: the probe is the explanation ("the light's colour
-// multiplies both terms").
-static void name_probes_that_fail(Report& report, const std::vector<Probe>& probes) {
-  const auto failing = [&](const std::string& light) {
-    return std::count_if(report.frames.begin(), report.frames.end(), [&](const FrameReport& f) { return f.light == light && !f.grade.pass; });
-  };
-  if (failing("homework") > 0) return;
-  std::vector<std::string> said;
-  for (const auto& p : probes)
-    if (const auto n = failing(p.name); n > 0) {
-      const auto of = std::count_if(report.frames.begin(), report.frames.end(), [&](const FrameReport& f) { return f.light == p.name; });
-      said.push_back("right under the page's light, not under the probe light " + p.name + " (" + std::to_string(n) + " of " +
-                     std::to_string(of) + " frames differ)" + (p.checks.empty() ? "" : ", which checks that " + p.checks));
-    }
-  report.messages.insert(report.messages.begin(), said.begin(), said.end());
-}
-
-const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
+const std::vector<model::FrameSurface>* GradeRenders::surfaces(const FormulaSpec& formula, const render::RenderRequest& reference,
                                                               const scene::Mesh& mesh, const std::string& mesh_key, GeometryKept kept,
                                                               SampleGeometry samples) {
   auto requests = geometry_requests(formula, reference, samples);
@@ -164,7 +141,7 @@ const std::vector<model::FrameSurface>* GradeSession::surfaces(const FormulaSpec
   return &surfaces_.insert(std::move(key), std::move(out), bytes);
 }
 
-std::function<const std::vector<model::FrameSurface>*()> GradeSession::sampled_surfaces(const FormulaSpec& formula,
+std::function<const std::vector<model::FrameSurface>*()> GradeRenders::sampled_surfaces(const FormulaSpec& formula,
                                                                                       const render::RenderRequest& reference,
                                                                                       const scene::Mesh& mesh, const std::string& mesh_key,
                                                                                       GeometryKept kept) {
@@ -172,20 +149,8 @@ std::function<const std::vector<model::FrameSurface>*()> GradeSession::sampled_s
   return [this, &formula, reference, &mesh, mesh_key, kept] { return surfaces(formula, reference, mesh, mesh_key, kept, SampleGeometry::each_sample); };
 }
 
-std::optional<Explanation> GradeSession::formula_explanation(const GradeSpec& spec, const render::RenderRequest& reference,
-                                                              const scene::Mesh& mesh, const std::string& mesh_key,
-                                                              const SharedFrames& student, const SharedFrames& reference_frames) {
-  if (!spec.formula) return std::nullopt;
-  const auto* geometry = surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references);
-  if (!geometry) return std::nullopt;
-  return explain_with_formula({&*spec.formula, reference.uniforms, spec.probes, geometry, &student, &reference_frames,
-                               sampled_surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references)},
-                              spec.options)
-      .explanation;
-}
-
 // `base` under the homework's light, then under each probe light.
-Expected<std::vector<render::RenderRequest>> GradeSession::under_lights(const GradeSpec& spec, const render::RenderRequest& base) {
+Expected<std::vector<render::RenderRequest>> GradeRenders::under_lights(const GradeSpec& spec, const render::RenderRequest& base) {
   std::vector<render::RenderRequest> lit = {base};
   for (const auto& probe : spec.probes) {
     auto moved = with_light(spec, base, probe);
@@ -197,7 +162,7 @@ Expected<std::vector<render::RenderRequest>> GradeSession::under_lights(const Gr
 
 // A reference's or a mistake's frames, under the homework's light and then each probe light,
 // light by light through the caches.
-Expected<SharedFrames> GradeSession::cached_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
+Expected<SharedFrames> GradeRenders::cached_under_lights(const GradeSpec& spec, const render::RenderRequest& base,
                                                          const scene::Mesh& mesh, const std::string& cache_key) {
   auto lit = under_lights(spec, base);
   if (!lit) return lit.take_error();
@@ -212,7 +177,7 @@ Expected<SharedFrames> GradeSession::cached_under_lights(const GradeSpec& spec, 
 
 // The submission under every light, drawn together (Renderer::render_together), with the census
 // of its colours: the NaN and infinities the canvas would store as 0 or clamp.
-Expected<GradeSession::SubmissionFrames> GradeSession::submission_under_lights(const GradeSpec& spec,
+Expected<GradeRenders::SubmissionFrames> GradeRenders::submission_under_lights(const GradeSpec& spec,
                                                                                const render::RenderRequest& base,
                                                                                const scene::Mesh& mesh) {
   auto lit = under_lights(spec, base);
@@ -231,66 +196,30 @@ Expected<GradeSession::SubmissionFrames> GradeSession::submission_under_lights(c
   return out;
 }
 
-Expected<GradeOutput> GradeSession::grade(const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
-                                          const std::string& mesh_key, const EnterPhase& enter) {
-  const auto ungradable = [&](const Error& e) { return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}}; };
-  begin(spec);
-  auto compiled = renderer_.compile(submission.vertex, submission.fragment);
-  if (!compiled) return ungradable(compiled.error());
-  if (auto s = enter(JobPhase::render); !s) return s.take_error();
-  auto mesh = mesh_source();
-  if (!mesh) return mesh.take_error();
+MovedFlatColour GradeRenders::moved_flat_colour(const FormulaSpec& formula, const render::RenderRequest& at, const scene::Mesh& mesh) {
+  auto requests = geometry_requests(formula, at);
+  if (!requests) return {};
+  const auto flat = std::find_if(requests->begin(), requests->end(), [](const GeometryRender& g) { return g.quantity == model::Quantity::flat_colour; });
+  if (flat == requests->end()) return {};
+  return [this, request = flat->request, &mesh](const std::vector<std::size_t>& angle, const std::vector<double>& offset) -> Expected<SharedFrames> {
+    render::RenderRequest moved = request;
+    moved.angles.clear();
+    for (std::size_t i = 0; i < angle.size() && i < offset.size(); ++i)
+      if (angle[i] < request.angles.size()) moved.angles.push_back(request.angles[angle[i]] + offset[i]);
+    moved.frames = static_cast<int>(moved.angles.size());
+    auto frames = frames_of(moved, mesh);
+    if (frames) ++work_.rendered;
+    return frames;
+  };
+}
 
-  // Everything the grade compares is drawn with IEEE arithmetic: the census then finds a NaN that
-  // Mesa's optimiser would fold away and the student's GPU may not (docs/grading.md). If the
-  // driver does not take the invariant outputs, the submission is graded as compiled.
-  render::RenderRequest r = submission;
-  r.pixel_type = image::PixelType::u8;
-  r.semantics = render::FloatSemantics::ieee;
-  auto student = submission_under_lights(spec, r, **mesh);
-  if (!student && (student.error().code == ErrorCode::compile_failed || student.error().code == ErrorCode::link_failed)) {
-    render::RenderRequest as_compiled = r;
-    as_compiled.semantics = render::FloatSemantics::as_compiled;
-    student = submission_under_lights(spec, as_compiled, **mesh);
-  }
-  if (!student) return ungradable(student.error());
-  if (auto s = enter(JobPhase::grader); !s) return s.take_error();
-
-  // The reference gets the same uniform values as the submission: a grader that changes the
-  // colours grades against the reference with those colours.
-  render::RenderRequest ref = r;
-  ref.vertex = spec.reference_vertex;
-  ref.fragment = spec.reference_fragment;
-  auto reference = cached_under_lights(spec, ref, **mesh, mesh_key);
-  if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
-  // The formula and the catalogue only for a submission that fails: a passing one needs no
-  // diagnosis. The formula first: a known mistake it reads needs no render (catalogue_work).
-  GradeResult result = assess(student->frames, student->non_finite, *reference, spec.options);
-  std::optional<Explanation> explanation;
-  if (!result.pass) {
-    explanation = formula_explanation(spec, ref, **mesh, mesh_key, student->frames, *reference);
-    const CatalogueWork catalogue = catalogue_work(spec.mistakes, explanation);
-    const auto recognised = recognised_mistake(catalogue);
-    explain(result, student->frames, *reference, rendered_mistakes(spec, catalogue.to_render, ref, **mesh, mesh_key), spec.options,
-            recognised ? &*recognised : nullptr);
-  }
-
-  std::vector<std::string> lights = {"homework"};
-  for (const auto& p : spec.probes) lights.push_back(p.name);
-  GradeOutput out{report(result, spec.reference_name, lights, static_cast<size_t>(r.frames)), {}};
-  out.report.grader_work = work_;
-  out.report.warnings = compiled->warnings;
-  if (!out.report.pass && out.report.diagnosis.empty()) name_probes_that_fail(out.report, spec.probes);
-  // A catalogued mistake says what went wrong already; otherwise a changed starter constant may.
-  if (!out.report.pass && out.report.diagnosis.empty())
-    for (const auto& found : changed_starter_constants(spec.starter_constants, submission.fragment.text)) {
-      if (out.report.diagnosis.empty()) out.report.diagnosis = changed_constant_diagnosis(found.variable);
-      out.report.messages.insert(out.report.messages.begin(), found.message);
-    }
-  out.report.explanation = std::move(explanation);
-  say_explanation(out.report);
-  if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r);  // the homework light's
-  return out;
+Expected<SharedFrames> GradeRenders::at_angles(render::RenderRequest request, const scene::Mesh& mesh, const std::vector<double>& angles) {
+  request.angles = angles;
+  request.frames = static_cast<int>(angles.size());
+  request.pixel_type = image::PixelType::u8;
+  auto frames = frames_of(request, mesh);
+  if (frames) ++work_.rendered;
+  return frames;
 }
 
 }  // namespace shadelab::grade

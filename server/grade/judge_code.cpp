@@ -1,0 +1,112 @@
+#include "grade/judge_code.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "grade/catalogue_reading.h"
+#include "grade/diagnosis.h"
+#include "grade/formula_explanation.h"
+#include "grade/starter_constants.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+// A submission right under the page's light and wrong only under probe lights is told which, and
+// what each checks, in the course's words: the probe is the explanation ("the light's colour
+// multiplies both terms").
+void name_probes_that_fail(Report& report, const std::vector<Probe>& probes) {
+  const auto failing = [&](const std::string& light) {
+    return std::count_if(report.frames.begin(), report.frames.end(), [&](const FrameReport& f) { return f.light == light && !f.grade.pass; });
+  };
+  if (failing("homework") > 0) return;
+  std::vector<std::string> said;
+  for (const auto& p : probes)
+    if (const auto n = failing(p.name); n > 0) {
+      const auto of = std::count_if(report.frames.begin(), report.frames.end(), [&](const FrameReport& f) { return f.light == p.name; });
+      said.push_back("right under the page's light, not under the probe light " + p.name + " (" + std::to_string(n) + " of " +
+                     std::to_string(of) + " frames differ)" + (p.checks.empty() ? "" : ", which checks that " + p.checks));
+    }
+  report.messages.insert(report.messages.begin(), said.begin(), said.end());
+}
+
+// A failing submission's frames read by the checkpoint's formula (grade/formula_explanation.h),
+// on the geometry of `reference` (rendered once per course, kept as references are); none when
+// the spec has no formula or the geometry does not render.
+std::optional<Explanation> formula_explanation(GradeRenders& renders, const GradeSpec& spec, const render::RenderRequest& reference,
+                                                              const scene::Mesh& mesh, const std::string& mesh_key,
+                                                              const SharedFrames& student, const SharedFrames& reference_frames) {
+  if (!spec.formula) return std::nullopt;
+  const auto* geometry = renders.surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references);
+  if (!geometry) return std::nullopt;
+  return explain_with_formula({&*spec.formula, reference.uniforms, spec.probes, geometry, &student, &reference_frames,
+                               renders.sampled_surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references)},
+                              spec.options)
+      .explanation;
+}
+
+}  // namespace
+
+Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
+                                          const std::string& mesh_key, const EnterPhase& enter) {
+  const auto ungradable = [&](const Error& e) { return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}}; };
+  renders.begin(spec);
+  auto compiled = renders.renderer().compile(submission.vertex, submission.fragment);
+  if (!compiled) return ungradable(compiled.error());
+  if (auto s = enter(JobPhase::render); !s) return s.take_error();
+  auto mesh = mesh_source();
+  if (!mesh) return mesh.take_error();
+
+  // Everything the grade compares is drawn with IEEE arithmetic: the census then finds a NaN that
+  // Mesa's optimiser would fold away and the student's GPU may not (docs/grading.md). If the
+  // driver does not take the invariant outputs, the submission is graded as compiled.
+  render::RenderRequest r = submission;
+  r.pixel_type = image::PixelType::u8;
+  r.semantics = render::FloatSemantics::ieee;
+  auto student = renders.submission_under_lights(spec, r, **mesh);
+  if (!student && (student.error().code == ErrorCode::compile_failed || student.error().code == ErrorCode::link_failed)) {
+    render::RenderRequest as_compiled = r;
+    as_compiled.semantics = render::FloatSemantics::as_compiled;
+    student = renders.submission_under_lights(spec, as_compiled, **mesh);
+  }
+  if (!student) return ungradable(student.error());
+  if (auto s = enter(JobPhase::grader); !s) return s.take_error();
+
+  // The reference gets the same uniform values as the submission: a grader that changes the
+  // colours grades against the reference with those colours.
+  render::RenderRequest ref = r;
+  ref.vertex = spec.reference_vertex;
+  ref.fragment = spec.reference_fragment;
+  auto reference = renders.cached_under_lights(spec, ref, **mesh, mesh_key);
+  if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
+  // The formula and the catalogue only for a submission that fails: a passing one needs no
+  // diagnosis. The formula first: a known mistake it reads needs no render (catalogue_work).
+  GradeResult result = assess(student->frames, student->non_finite, *reference, spec.options);
+  std::optional<Explanation> explanation;
+  if (!result.pass) {
+    explanation = formula_explanation(renders, spec, ref, **mesh, mesh_key, student->frames, *reference);
+    const CatalogueWork catalogue = catalogue_work(spec.mistakes, explanation);
+    const auto recognised = recognised_mistake(catalogue);
+    explain(result, student->frames, *reference, renders.rendered_mistakes(spec, catalogue.to_render, ref, **mesh, mesh_key), spec.options,
+            recognised ? &*recognised : nullptr);
+  }
+
+  std::vector<std::string> lights = {"homework"};
+  for (const auto& p : spec.probes) lights.push_back(p.name);
+  GradeOutput out{report(result, spec.reference_name, lights, static_cast<size_t>(r.frames)), {}};
+  out.report.grader_work = renders.work();
+  out.report.warnings = compiled->warnings;
+  if (!out.report.pass && out.report.diagnosis.empty()) name_probes_that_fail(out.report, spec.probes);
+  // A catalogued mistake says what went wrong already; otherwise a changed starter constant may.
+  if (!out.report.pass && out.report.diagnosis.empty())
+    for (const auto& found : changed_starter_constants(spec.starter_constants, submission.fragment.text)) {
+      if (out.report.diagnosis.empty()) out.report.diagnosis = changed_constant_diagnosis(found.variable);
+      out.report.messages.insert(out.report.messages.begin(), found.message);
+    }
+  out.report.explanation = std::move(explanation);
+  say_explanation(out.report);
+  if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r);  // the homework light's
+  return out;
+}
+
+}  // namespace shadelab::grade
