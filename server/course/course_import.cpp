@@ -11,6 +11,7 @@
 
 #include "core/text.h"
 #include "course/course_reader.h"
+#include "course/import_reading.h"
 #include "course/notebook_import.h"
 #include "course/script_facts.h"
 
@@ -20,98 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-std::string number_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, v == std::floor(v) && std::abs(v) < 1e9 ? "%.1f" : "%g", v);
-  return buf;
-}
-
-// The homework folder's files, relative to it, shallowest first.
-struct Folder {
-  fs::path root;
-  std::vector<fs::path> files;
-
-  explicit Folder(fs::path r) : root(std::move(r)) {
-    for (const auto& e : fs::recursive_directory_iterator(root, fs::directory_options::skip_permission_denied))
-      if (e.is_regular_file() && !e.is_symlink()) files.push_back(fs::relative(e.path(), root));
-    std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
-      const auto depth = [](const fs::path& p) { return std::distance(p.begin(), p.end()); };
-      return std::pair(depth(a), a.string()) < std::pair(depth(b), b.string());
-    });
-  }
-  std::optional<fs::path> named(const std::string& name) const {
-    for (const auto& f : files)
-      if (f.filename() == name) return f;
-    return std::nullopt;
-  }
-  std::string text(const fs::path& relative) const { return read_text(root / relative); }
-};
-
-// The numbers of the first bracketed list ([...] or (...)) at or after `at`, up to its close.
-std::vector<double> numbers_after(const std::string& s, size_t at) {
-  const size_t open = s.find_first_of("[(", at);
-  if (open == std::string::npos) return {};
-  const size_t close = s.find_first_of("])", open + 1);
-  std::vector<double> out;
-  static const std::regex number("-?[0-9]*\\.?[0-9]+(?:[eE][-+]?[0-9]+)?");
-  const std::string inside = s.substr(open + 1, close == std::string::npos ? std::string::npos : close - open - 1);
-  for (std::sregex_iterator it(inside.begin(), inside.end(), number), end; it != end; ++it) out.push_back(std::stod(it->str()));
-  return out;
-}
-
-// The text of the {...} block that opens at or after `at`.
-std::string block_after(const std::string& s, size_t at) {
-  const size_t open = s.find('{', at);
-  if (open == std::string::npos) return {};
-  int depth = 0;
-  for (size_t i = open; i < s.size(); ++i) {
-    depth += s[i] == '{' ? 1 : s[i] == '}' ? -1 : 0;
-    if (depth == 0) return s.substr(open + 1, i - open - 1);
-  }
-  return {};
-}
-
-// Which homework quantity a uniform's (or a value's) name is, by the words in it.
-std::optional<UniformRole> role_of(const std::string& name) {
-  const std::string n = lower_case(name);
-  const auto has = [&](const char* word) { return n.find(word) != std::string::npos; };
-  if (has("ambient")) return UniformRole::ambient;
-  if (has("diffuse")) return UniformRole::diffuse;
-  if (has("specular")) return UniformRole::specular;
-  if (has("light") && has("pos")) return UniformRole::light_position;
-  if (has("light") && has("col")) return UniformRole::light_color;
-  return std::nullopt;
-}
-
-// uAmbientColor -> ambientColor: the other spelling the handout allows.
-std::string plain_spelling(const std::string& name) {
-  if (name.size() > 1 && name[0] == 'u' && std::isupper(static_cast<unsigned char>(name[1])))
-    return std::string(1, static_cast<char>(std::tolower(static_cast<unsigned char>(name[1])))) + name.substr(2);
-  return {};
-}
-
-// The name hw2.js would use for `role` when it does not look it up yet (the students' TODO for
-// diffuse and specular): as it names ambient, with the role's word in place ("uDiffuseColor").
-std::string name_like_ambient(const std::map<UniformRole, std::string>& names, UniformRole role) {
-  const auto ambient = names.find(UniformRole::ambient);
-  if ((role != UniformRole::diffuse && role != UniformRole::specular) || ambient == names.end()) return {};
-  const std::string& n = ambient->second;
-  const size_t at = lower_case(n).find("ambient");
-  std::string word(to_string(role));
-  if (std::isupper(static_cast<unsigned char>(n[at]))) word[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(word[0])));
-  return n.substr(0, at) + word + n.substr(at + 7);
-}
-
-std::string path_from(const fs::path& file, const fs::path& output) {
-  const fs::path from = fs::absolute(output).parent_path().lexically_normal();
-  return fs::absolute(file).lexically_normal().lexically_relative(from).generic_string();
-}
 
 class Importer {
  public:
@@ -250,11 +159,11 @@ class Importer {
       cam["fovYDegrees"] = projection->fov_y_degrees;
       cam["near"] = projection->near;
       cam["far"] = projection->far;
-      found("camera: fovY " + number_text(cam["fovYDegrees"]) + " degrees, near " + number_text(cam["near"]) + ", far " +
-            number_text(cam["far"]) + where);
+      found("camera: fovY " + literal_number(cam["fovYDegrees"]) + " degrees, near " + literal_number(cam["near"]) + ", far " +
+            literal_number(cam["far"]) + where);
     } else {
-      assumed("camera: fovY " + number_text(cam["fovYDegrees"]) + " degrees, near " + number_text(cam["near"]) + ", far " +
-              number_text(cam["far"]) + " (no perspective call with numbers for its field of view, near and far" + where + ")");
+      assumed("camera: fovY " + literal_number(cam["fovYDegrees"]) + " degrees, near " + literal_number(cam["near"]) + ", far " +
+              literal_number(cam["far"]) + " (no perspective call with numbers for its field of view, near and far" + where + ")");
     }
     if (const auto at = mesh_translation_of(script)) {
       cam["meshTranslation"] = *at;
@@ -270,9 +179,9 @@ class Importer {
     std::smatch m;
     if (const auto degrees = degrees_per_second_of(script)) {
       f["degreesPerFrame"] = *degrees;
-      found("the mesh turns " + number_text(*degrees) + " degrees per second, a frame a second" + where);
+      found("the mesh turns " + literal_number(*degrees) + " degrees per second, a frame a second" + where);
     } else {
-      assumed("the mesh turns " + number_text(f["degreesPerFrame"]) + " degrees a frame (no N * TIME or TIME * N" + where + ")");
+      assumed("the mesh turns " + literal_number(f["degreesPerFrame"]) + " degrees a frame (no N * TIME or TIME * N" + where + ")");
     }
     if (std::regex_search(js, m, std::regex("MAX_OUT_FRAMES\\s*=\\s*([0-9]+)")) && std::stoi(m[1]) > 0) {
       f["count"] = std::stoi(m[1]);
@@ -301,7 +210,7 @@ class Importer {
       found("the starter's exponent: " + m[1].str() + " = " + m[2].str() + " (" + frag->generic_string() + ")");
     } else {
       exponent_ = p_["specularExponent"]["value"];
-      assumed("the starter's exponent: " + number_text(exponent_) + " (no float ...Alpha = N; in a phong_frag.js)");
+      assumed("the starter's exponent: " + literal_number(exponent_) + " (no float ...Alpha = N; in a phong_frag.js)");
     }
   }
 
@@ -417,14 +326,14 @@ class Importer {
     }
     const Preset& s = *builtin.preset("specular");
     std::string text = s.fragment.text;
-    const std::string from = "float " + builtin.starter_constants.front().variable + " = " + number_text(value) + ";";
+    const std::string from = "float " + builtin.starter_constants.front().variable + " = " + literal_number(value) + ";";
     const std::string variable = p_["specularExponent"]["variable"];
-    text.replace(text.find(from), from.size(), "float " + variable + " = " + number_text(exponent_) + ";");
+    text.replace(text.find(from), from.size(), "float " + variable + " = " + literal_number(exponent_) + ";");
     text = std::regex_replace(text, std::regex("\\b" + builtin.starter_constants.front().variable + "\\b"), variable);
     const std::string file = fs::path(o_.output).stem().string() + ".specular_frag.js";
     out_.derived_files.emplace_back(file, text);
     preset("specular")["fragment"] = file;
-    assumed("the specular reference: the built-in course's with " + variable + " = " + number_text(exponent_) + ", written to " + file + why);
+    assumed("the specular reference: the built-in course's with " + variable + " = " + literal_number(exponent_) + ", written to " + file + why);
   }
 
   // The reference text a checkpoint's mistakes are edits of, as the import chose it.
@@ -446,7 +355,7 @@ class Importer {
   }
 
   void keep_applicable_mistakes() {
-    const std::string builtin_exponent = number_text(builtin_course().specular_exponent());
+    const std::string builtin_exponent = literal_number(builtin_course().specular_exponent());
     for (auto& c : p_["checkpoints"]) {
       if (!c.contains("mistakes")) continue;
       json kept = json::array();
@@ -461,8 +370,8 @@ class Importer {
             e[side] = in_course_names(std::regex_replace(e[side].get<std::string>(), std::regex("\\b" + builtin_variable + "\\b"), variable));
           std::string find = e["find"];
           if (find.find("= " + builtin_exponent + ";") != std::string::npos) {
-            e["find"] = std::regex_replace(find, std::regex("= " + builtin_exponent + ";"), "= " + number_text(exponent_) + ";");
-            m["message"] = std::regex_replace(m["message"].get<std::string>(), std::regex("uses " + builtin_exponent), "uses " + number_text(exponent_));
+            e["find"] = std::regex_replace(find, std::regex("= " + builtin_exponent + ";"), "= " + literal_number(exponent_) + ";");
+            m["message"] = std::regex_replace(m["message"].get<std::string>(), std::regex("uses " + builtin_exponent), "uses " + literal_number(exponent_));
           }
           const auto text = stage_text(c["reference"], e["stage"]);
           applies = applies && text && text->find(e["find"].get<std::string>()) != std::string::npos &&

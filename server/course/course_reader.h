@@ -31,6 +31,9 @@ struct FileSource {
   std::function<Expected<Read>(const std::string& path)> read;
 };
 
+// How a read file is named in a portable profile: "builtin:shaders/x.js", or its path.
+std::string source_of(const FileSource::Read& read);
+
 FileSource embedded_source(const std::string& folder);  // "courses": the built-in profile's folder
 FileSource folder_source(const std::filesystem::path& folder);
 
