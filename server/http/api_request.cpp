@@ -198,12 +198,12 @@ Status read_output(const json& f, const course::Course& course, worker::Job& job
 // Mesh: a file in this request, one of the course's meshes by name, or an uploaded id (resolved by
 // the caller).
 Status read_mesh(const RawRequest& raw, const Limits& limits, const course::Course& course, ParsedJob& out) {
-  if (auto it = raw.files.find("mesh"); it != raw.files.end()) {
-    if (it->second.content.size() > limits.max_mesh_bytes)
-      return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
-    out.mesh_upload = it->second;
-    out.job.mesh = mesh_id(it->second.content);
-    out.job.mesh_format = scene::mesh_format_of(it->second.filename);
+  auto upload = uploaded_mesh(raw, limits);
+  if (!upload) return upload.take_error();
+  if (*upload) {
+    out.mesh_upload = **upload;
+    out.job.mesh = mesh_id(out.mesh_upload.content);
+    out.job.mesh_format = scene::mesh_format_of(out.mesh_upload.filename);
     return Ok{};
   }
   auto mesh = text_field(raw.fields, "mesh", course.default_mesh);
@@ -214,6 +214,14 @@ Status read_mesh(const RawRequest& raw, const Limits& limits, const course::Cour
 }
 
 }  // namespace
+
+Expected<const UploadedFile*> uploaded_mesh(const RawRequest& raw, const Limits& limits) {
+  const auto it = raw.files.find("mesh");
+  if (it == raw.files.end()) return nullptr;
+  if (it->second.content.size() > limits.max_mesh_bytes)
+    return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
+  return &it->second;
+}
 
 Expected<const course::Course*> course_of(const RawRequest& raw, const course::CourseSet& courses) {
   auto id = text_field(raw.fields, "course", "");

@@ -59,6 +59,9 @@ Expected<RequestShaders> read_shaders(const RawRequest& raw, const Limits& limit
 // The `uniforms` object: GLSL name -> number, boolean or array of numbers.
 Expected<std::vector<render::UniformSetting>> read_uniforms(const nlohmann::json& fields);
 
+// The mesh file the request uploaded (its `mesh` part), within the limits; null when it sent none.
+Expected<const UploadedFile*> uploaded_mesh(const RawRequest& raw, const Limits& limits);
+
 // Whether a request's field is one the API reads (a render's or a grade's: one job can be sent to
 // both routes); any other is ignored with a warning.
 bool is_api_field(const std::string& name);

@@ -42,10 +42,10 @@ Status read_render_shape(const json& f, road::RenderShape& shape) {
 
 // A mesh file in this request, or a name: one of the course's meshes, or an uploaded id.
 Status read_mesh(const RawRequest& raw, const Limits& limits, ParsedCodeGrade& out) {
-  if (auto it = raw.files.find("mesh"); it != raw.files.end()) {
-    if (it->second.content.size() > limits.max_mesh_bytes)
-      return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
-    out.request.mesh.upload = {mesh_id(it->second.content), scene::mesh_format_of(it->second.filename), it->second.content};
+  auto upload = uploaded_mesh(raw, limits);
+  if (!upload) return upload.take_error();
+  if (const UploadedFile* file = *upload) {
+    out.request.mesh.upload = {mesh_id(file->content), scene::mesh_format_of(file->filename), file->content};
     return Ok{};
   }
   auto mesh = text_field(raw.fields, "mesh", "");

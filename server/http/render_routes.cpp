@@ -49,15 +49,28 @@ std::string json_body(const worker::RenderResult& r, const std::vector<std::stri
                    -1);
 }
 
-void render(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
+// The request's job of `kind`, in its course, when `viewer` may see what it draws.
+struct VisibleJob {
+  const course::Course* course;
+  ParsedJob parsed;
+};
+Expected<VisibleJob> visible_job(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, worker::JobKind kind) {
   auto raw = read_request(req);
-  if (!raw) return send_problem(res, raw.error(), req.path);
+  if (!raw) return raw.take_error();
   auto course = course_of(*raw, c.courses);
-  if (!course) return send_problem(res, course.error(), req.path);
-  auto parsed = parse_job(*raw, worker::JobKind::render, c.config.limits, **course);
-  if (!parsed) return send_problem(res, parsed.error(), req.path);
-  if (auto visible = c.may_draw(*parsed, **course, viewer); !visible) return send_problem(res, visible.error(), req.path);
-  if (parsed->job.output == worker::Output::frames) parsed->job.notice = (**course).frames_download_notice();
+  if (!course) return course.take_error();
+  auto parsed = parse_job(*raw, kind, c.config.limits, **course);
+  if (!parsed) return parsed.take_error();
+  if (auto visible = c.may_draw(*parsed, **course, viewer); !visible) return visible.take_error();
+  return VisibleJob{*course, std::move(*parsed)};
+}
+
+void render(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
+  auto visible = visible_job(c, viewer, req, worker::JobKind::render);
+  if (!visible) return send_problem(res, visible.error(), req.path);
+  const course::Course* course = visible->course;
+  auto parsed = &visible->parsed;
+  if (parsed->job.output == worker::Output::frames) parsed->job.notice = course->frames_download_notice();
   auto mesh = c.mesh_bytes(*parsed);
   if (!mesh) return send_problem(res, mesh.error(), req.path);
   worker::Message message = worker::to_message(parsed->job, std::move(*mesh));
@@ -76,7 +89,7 @@ void render(RouteContext& c, const course::Viewer& viewer, const httplib::Reques
   response.headers["Server-Timing"] = server_timing(r.timings, answered->queue_ms);
   response.headers["X-ShadeLab-Warnings"] = std::to_string(warnings.size());
   if (!constant.empty()) response.headers["X-ShadeLab-Constant-Frames"] = constant;
-  if (const std::string notice = (**course).frames_download_notice(); !notice.empty() && parsed->job.output != worker::Output::grid)
+  if (const std::string notice = course->frames_download_notice(); !notice.empty() && parsed->job.output != worker::Output::grid)
     response.headers["X-ShadeLab-Notice"] = notice;
   if (parsed->job.output == worker::Output::frames)
     response.headers["Content-Disposition"] =
@@ -92,13 +105,9 @@ void render(RouteContext& c, const course::Viewer& viewer, const httplib::Reques
 }
 
 void compile(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
-  auto raw = read_request(req);
-  if (!raw) return send_problem(res, raw.error(), req.path);
-  auto course = course_of(*raw, c.courses);
-  if (!course) return send_problem(res, course.error(), req.path);
-  auto parsed = parse_job(*raw, worker::JobKind::compile, c.config.limits, **course);
-  if (!parsed) return send_problem(res, parsed.error(), req.path);
-  if (auto visible = c.may_draw(*parsed, **course, viewer); !visible) return send_problem(res, visible.error(), req.path);
+  auto visible = visible_job(c, viewer, req, worker::JobKind::compile);
+  if (!visible) return send_problem(res, visible.error(), req.path);
+  const ParsedJob* parsed = &visible->parsed;
   auto answered = c.run<worker::CompileResult>(worker::to_message(parsed->job));
   if (!answered) return send_problem(res, answered.error(), req.path);
   const auto& r = answered->result;

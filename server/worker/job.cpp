@@ -70,6 +70,10 @@ SHADELAB_JSON_FIELDS(GradeSpec, field("referenceName", &GradeSpec::reference_nam
                      field("heatmap", &GradeSpec::heatmap, kHeatMaps), field("framesFromPage", &GradeSpec::frames_from_page),
                      field("formula", &GradeSpec::formula, When::omitted_when_empty))
 
+// A handed-in image's bytes travel in the payload, beside the JSON (worker/job.cpp's to_message).
+SHADELAB_JSON_FIELDS(HandInImage, field("file", &HandInImage::file), field("scene", &HandInImage::scene, When::null_when_empty),
+                     field("objects", &HandInImage::objects), field("problem", &HandInImage::problem))
+
 }  // namespace shadelab::grade
 
 namespace shadelab::render {
@@ -174,36 +178,39 @@ Message to_message(const SceneJob& job) {
 Message to_message(const ImagesJob& job) {
   Message m;
   std::vector<PayloadPartView> parts;
-  json images = json::array();
-  for (const auto& image : job.images) {
-    images.push_back({{"file", image.file}, {"scene", image.scene ? json(*image.scene) : json(nullptr)}, {"objects", image.objects},
-                      {"problem", image.problem}});
-    parts.push_back({image.file, image.png});
-  }
-  m.header = {{"kind", to_string(JobKind::check_images)}, {"images", images}, {"pngs", pack_parts(parts, m.payload)}};
+  for (const auto& image : job.images) parts.push_back({image.file, image.png});
+  m.header = {{"kind", to_string(JobKind::check_images)}, {"images", job.images}, {"pngs", pack_parts(parts, m.payload)}};
   return m;
 }
 
-Expected<JobKind> job_kind_of(const Message& m) {
+namespace {
+
+// What `read` makes of a message, or worker_protocol saying what was malformed in it.
+template <class Read>
+auto read_message_as(const char* what, Read read) -> decltype(read()) {
   try {
+    return read();
+  } catch (const json::exception& e) {
+    return make_error(ErrorCode::worker_protocol, std::string(what) + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+Expected<JobKind> job_kind_of(const Message& m) {
+  return read_message_as("a job without a known kind", [&]() -> Expected<JobKind> {
     JobKind kind{};
     kKinds.read(m.header.at("kind"), kind);
     return kind;
-  } catch (const json::exception& e) {
-    return make_error(ErrorCode::worker_protocol, std::string("a job without a known kind: ") + e.what());
-  }
+  });
 }
 
 Expected<Job> job_from_message(const Message& m) {
-  try {
-    return m.header.get<Job>();
-  } catch (const json::exception& e) {
-    return make_error(ErrorCode::worker_protocol, std::string("malformed job: ") + e.what());
-  }
+  return read_message_as("malformed job", [&]() -> Expected<Job> { return m.header.get<Job>(); });
 }
 
 Expected<SceneJob> scene_job_from_message(const Message& m) {
-  try {
+  return read_message_as("malformed scene job", [&]() -> Expected<SceneJob> {
     SceneJob job;
     m.header.at("scene").get_to(job.scene);
     auto parts = unpack_parts(m.header.at("meshes"), m.payload);
@@ -213,42 +220,29 @@ Expected<SceneJob> scene_job_from_message(const Message& m) {
     for (size_t i = 0; i < parts->size(); ++i)
       job.meshes.push_back({std::move((*parts)[i].name), formats[i].get<std::string>(), std::move((*parts)[i].bytes)});
     return job;
-  } catch (const json::exception& e) {
-    return make_error(ErrorCode::worker_protocol, std::string("malformed scene job: ") + e.what());
-  }
+  });
 }
 
 Expected<ImagesJob> images_job_from_message(const Message& m) {
-  try {
+  return read_message_as("malformed image check", [&]() -> Expected<ImagesJob> {
     auto pngs = unpack_parts(m.header.at("pngs"), m.payload);
     if (!pngs) return pngs.take_error();
-    const json& images = m.header.at("images");
-    if (images.size() != pngs->size()) return make_error(ErrorCode::worker_protocol, "a checked image without its bytes");
-    ImagesJob job;
-    for (size_t i = 0; i < pngs->size(); ++i) {
-      const json& image = images[i];
-      CheckedImage c{image.at("file").get<std::string>(), std::nullopt, image.at("objects").get<int>(), std::move((*pngs)[i].bytes),
-                     image.at("problem").get<std::string>()};
-      if (!image.at("scene").is_null()) c.scene = image.at("scene").get<scene::SceneDescription>();
-      job.images.push_back(std::move(c));
-    }
+    ImagesJob job{m.header.at("images").get<std::vector<CheckedImage>>()};
+    if (job.images.size() != pngs->size()) return make_error(ErrorCode::worker_protocol, "a checked image without its bytes");
+    for (size_t i = 0; i < pngs->size(); ++i) job.images[i].png = std::move((*pngs)[i].bytes);
     return job;
-  } catch (const json::exception& e) {
-    return make_error(ErrorCode::worker_protocol, std::string("malformed image check: ") + e.what());
-  }
+  });
 }
 
 Expected<FramesPayload> frames_payload_from(const Message& m) {
-  try {
+  return read_message_as("malformed frames job", [&]() -> Expected<FramesPayload> {
     auto parts = unpack_parts(m.header.at("parts"), m.payload);
     if (!parts) return parts.take_error();
     if (parts->empty() || (*parts)[0].name != "mesh") return make_error(ErrorCode::worker_protocol, "a frames job without its mesh part");
     FramesPayload out{std::move((*parts)[0].bytes), {}};
     for (size_t i = 1; i < parts->size(); ++i) out.saved.push_back({std::move((*parts)[i].name), std::move((*parts)[i].bytes)});
     return out;
-  } catch (const json::exception& e) {
-    return make_error(ErrorCode::worker_protocol, std::string("malformed frames job: ") + e.what());
-  }
+  });
 }
 
 }  // namespace shadelab::worker
