@@ -240,6 +240,39 @@ TEST_F(AccessTest, NoRouteGivesAStudentAReferencesSourceOrPixels) {
   }
 }
 
+// A class server whose students need no key (serve --api-keys FILE --students-without-keys): a
+// caller without a key is a student on every route, a staff key still sees the references, and a
+// key the file does not hold is refused, never taken for a student's absence of one.
+TEST_F(AccessTest, WithStudentsWithoutKeysACallerWithoutAKeyIsAStudentOnEveryRoute) {
+  auto config = test_config();
+  config.open_references = false;
+  config.tenants.api_keys_file = keys_->string();
+  config.tenants.students_without_keys = true;
+  RunningService keyless(config);
+  ASSERT_TRUE(keyless.ok()) << keyless.failure;
+  auto c = keyless.client();
+  for (const auto& call : student_calls()) {
+    auto r = call.send(c, {});
+    ASSERT_TRUE(r) << call.method << " " << call.route;
+    EXPECT_NE(r->status, 401) << call.method << " " << call.route;
+    EXPECT_LT(r->status, 500) << call.method << " " << call.route << ": " << r->body.substr(0, 300);
+    expect_nothing_of_a_reference(*r, call.method + " " + call.route + " without a key");
+  }
+  const json as_student = json::parse(c.Get("/api/course")->body);
+  EXPECT_EQ(as_student["viewer"]["role"], "student");
+  auto refused = c.Get("/api/render?preset=specular");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 403);
+  const json as_staff = json::parse(c.Get("/api/course", bearer(kStaff))->body);
+  EXPECT_EQ(as_staff["viewer"]["role"], "staff");
+  auto staff_render = c.Get("/api/render?preset=specular&width=32&height=24", bearer(kStaff));
+  ASSERT_TRUE(staff_render);
+  EXPECT_EQ(staff_render->status, 200);
+  auto unknown = c.Get("/api/presets", bearer("staff-0123456789abcdeX"));
+  ASSERT_TRUE(unknown);
+  EXPECT_EQ(unknown->status, 401) << "an unknown key is refused, not read as a student";
+}
+
 TEST_F(AccessTest, AReferenceAskedForByAStudentIsRefusedNamingWhatTheyMayUse) {
   auto c = server_->client();
   for (const char* url : {"/api/render?preset=specular&output=frames", "/api/render?preset=gouraud"}) {

@@ -104,6 +104,50 @@ TEST_F(KeyedService, AKeyOverItsRateGets429WithRetryAfterAndOthersDoNot) {
   EXPECT_EQ(metrics->body.find("shadelab_rate_limited_total 0"), std::string::npos);
 }
 
+// serve --api-keys FILE --students-without-keys: keyless callers share their address's bucket at
+// a rate of their own (a class behind one campus address), apart from every key's.
+TEST(TenantTest, StudentsWithoutKeysHaveTheirAddresssRateAndKeysTheirOwn) {
+  const auto keys = std::filesystem::temp_directory_path() / ("shadelab_keyless_keys_" + std::to_string(::getpid()));
+  std::ofstream(keys) << "ta-0123456789abcdef ta 600 staff\n";
+  auto config = test_config();
+  config.tenants.api_keys_file = keys.string();
+  config.tenants.students_without_keys = true;
+  config.tenants.requests_per_minute = 600;
+  config.tenants.keyless_requests_per_minute = 60;
+  config.tenants.burst = 30;  // at 600 a minute: 3 at once at the keyless rate
+  RunningService server(config);
+  std::filesystem::remove(keys);
+  ASSERT_TRUE(server.ok()) << server.failure;
+  auto c = server.client();
+  int limited = 0;
+  for (int i = 0; i < 6; ++i) {
+    auto r = c.Get("/api/presets");
+    ASSERT_TRUE(r);
+    EXPECT_NE(r->status, 401);
+    if (r->status == 429) {
+      ++limited;
+      EXPECT_NE(r->body.find("for this address"), std::string::npos) << r->body;
+    }
+  }
+  EXPECT_GE(limited, 2);
+  for (int i = 0; i < 6; ++i) {
+    auto r = c.Get("/api/presets", {{"Authorization", "Bearer ta-0123456789abcdef"}});
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200) << "a key's bucket is its own";
+  }
+  auto metrics = c.Get("/metrics");
+  ASSERT_TRUE(metrics);
+  EXPECT_NE(metrics->body.find("shadelab_keyless_requests_total 6"), std::string::npos) << metrics->body;
+}
+
+TEST(TenantTest, StudentsWithoutKeysNeedAKeysFile) {
+  auto config = test_config();
+  config.tenants.students_without_keys = true;
+  RunningService server(config);
+  EXPECT_FALSE(server.ok());
+  EXPECT_NE(server.failure.find("--api-keys"), std::string::npos) << server.failure;
+}
+
 TEST(TenantTest, WithoutKeysTheRateIsPerAddress) {
   auto config = test_config();
   config.tenants.requests_per_minute = 60;

@@ -68,6 +68,14 @@ void add_connection_flags(CLI::App* cmd, http::ConnectionLimits& c) {
 void add_tenant_flags(CLI::App* cmd, http::TenantLimits& t) {
   cmd->add_option("--api-keys", t.api_keys_file, "File of API keys (KEY NAME [REQUESTS_PER_MINUTE] [student|staff] per line); "
                   "when given, /api/ requires Authorization: Bearer KEY, and only staff keys see the references")->envname("SHADELAB_API_KEYS");
+  cmd->add_flag("--students-without-keys", t.students_without_keys,
+               "With --api-keys: a caller without a key is a student (the page opens with no key), a key gives its role, "
+               "an unknown key is refused")
+      ->envname("SHADELAB_STUDENTS_WITHOUT_KEYS");
+  cmd->add_option("--keyless-rate-limit", t.keyless_requests_per_minute,
+                  "Requests a minute per address for callers without a key (--students-without-keys): a class behind one "
+                  "address shares it (0: --rate-limit)")
+      ->envname("SHADELAB_KEYLESS_RATE_LIMIT")->capture_default_str();
   cmd->add_option("--rate-limit", t.requests_per_minute, "Requests a minute per key, or per address without keys (0: none)")
       ->envname("SHADELAB_RATE_LIMIT")->capture_default_str();
   cmd->add_option("--burst", t.burst, "Requests allowed at once over the rate (0: a tenth of a minute's, at least 5)")
@@ -111,6 +119,8 @@ int serve(const http::ServiceConfig& config) {
   std::cerr << (config.open_references
                     ? "shadelab: --open-references: every caller sees the references' source and frames (self-study; never for a class)\n"
                     : "shadelab: the references' source and frames are for staff keys only; students see the public presets\n");
+  if (config.tenants.students_without_keys)
+    std::cerr << "shadelab: --students-without-keys: a caller without a key is a student; keys give their roles; an unknown key is refused\n";
   std::thread([&service, stop_signals] {
     int sig = 0;
     sigwait(&stop_signals, &sig);

@@ -149,6 +149,9 @@ Expected<int> Service::start() {
   if (auto ranges = check_address_ranges(i.config.tenants.trusted_proxies); !ranges) return ranges.take_error();
   // The port first: a server that cannot listen starts no workers.
   std::vector<ApiKey> keys;
+  if (i.config.tenants.students_without_keys && i.config.tenants.api_keys_file.empty())
+    return make_error(ErrorCode::invalid_argument,
+                      "--students-without-keys is for a server with --api-keys (without a keys file every caller is a student already)");
   if (!i.config.tenants.api_keys_file.empty()) {
     auto read = read_api_keys(i.config.tenants.api_keys_file);
     if (!read) return read.take_error();

@@ -69,7 +69,13 @@ Tenants::Tenants(TenantLimits limits, std::vector<ApiKey> keys) : limits_(std::m
 Tenants::Verdict Tenants::admit(const std::string& authorization, const std::string& address) {
   std::string tenant = "address " + address;
   double rate = limits_.requests_per_minute;
-  if (!keys_.empty()) {
+  const bool keyless_student = !keys_.empty() && limits_.students_without_keys && authorization.empty();
+  if (keyless_student) {
+    tenant = "keyless " + address;
+    if (limits_.keyless_requests_per_minute > 0) rate = limits_.keyless_requests_per_minute;
+    std::lock_guard lock(mutex_);
+    ++keyless_requests_;
+  } else if (!keys_.empty()) {
     const auto key = keys_.find(bearer_token(authorization));
     if (key == keys_.end()) {
       std::lock_guard lock(mutex_);
@@ -87,7 +93,7 @@ Tenants::Verdict Tenants::admit(const std::string& authorization, const std::str
   const int wait = take(tenant, rate);
   if (wait == 0) return {};
   return {make_error(ErrorCode::rate_limited, "over " + std::to_string(static_cast<long>(rate)) + " requests a minute for this " +
-                                                  (keys_.empty() ? "address" : "key") + "; retry in " + std::to_string(wait) + " s"),
+                                                  (keys_.empty() || keyless_student ? "address" : "key") + "; retry in " + std::to_string(wait) + " s"),
           wait};
 }
 
@@ -123,6 +129,7 @@ std::string Tenants::render_metrics() const {
   std::ostringstream out;
   out << "# TYPE shadelab_unauthorized_total counter\nshadelab_unauthorized_total " << unauthorized_ << "\n"
       << "# TYPE shadelab_rate_limited_total counter\nshadelab_rate_limited_total " << rate_limited_ << "\n"
+      << "# TYPE shadelab_keyless_requests_total counter\nshadelab_keyless_requests_total " << keyless_requests_ << "\n"
       << "# TYPE shadelab_key_requests_total counter\n";
   for (const auto& [name, n] : requests_by_key_) out << "shadelab_key_requests_total{key=\"" << name << "\"} " << n << "\n";
   return out.str();

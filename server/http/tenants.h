@@ -25,6 +25,11 @@ struct ApiKey {
 
 struct TenantLimits {
   std::string api_keys_file;        // empty: no keys required
+  // With a keys file: a caller that sends no key is a student, rated per address at
+  // `keyless_requests_per_minute` (a class behind one campus address shares it; 0: the default
+  // rate); a key gives its role, and a key the file does not hold is still refused.
+  bool students_without_keys = false;
+  double keyless_requests_per_minute = 0;
   double requests_per_minute = 0;   // per key, or per address without keys; 0: no limit
   double burst = 0;                 // requests at once at the default rate (a key with its own rate: in proportion);
                                     // 0: a tenth of a minute's rate, at least 5
@@ -55,7 +60,7 @@ class Tenants {
   };
   // `authorization` is the request's Authorization header ("" when absent).
   Verdict admit(const std::string& authorization, const std::string& address);
-  bool keys_required() const { return !keys_.empty(); }
+  bool keys_required() const { return !keys_.empty() && !limits_.students_without_keys; }
   // The role of the key `authorization` carries: a known key's, else a student's.
   course::Role role_of(const std::string& authorization) const;
   std::string render_metrics() const;
@@ -73,7 +78,7 @@ class Tenants {
   mutable std::mutex mutex_;
   std::unordered_map<std::string, Bucket> buckets_;
   std::map<std::string, std::uint64_t> requests_by_key_;  // key names: bounded by the file
-  std::uint64_t unauthorized_ = 0, rate_limited_ = 0;
+  std::uint64_t unauthorized_ = 0, rate_limited_ = 0, keyless_requests_ = 0;
 };
 
 }  // namespace shadelab::http

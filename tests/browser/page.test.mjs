@@ -66,6 +66,32 @@ describe("the page", () => {
     }
   });
 
+  test("where students need no key, asks none; a TA enters a staff key with the header's button and sees the references", async () => {
+    const keys = path.join(mkdtempSync(path.join(os.tmpdir(), "shadelab-keys-")), "keys");
+    writeFileSync(keys, "ta-key-0123456789abcdef ta 600 staff\n");
+    const keyless = await startServer(["--api-keys", keys, "--students-without-keys"]);
+    try {
+      const asked = [];
+      const { page, context, consoleErrors } = await openPage(browser, keyless.base, {
+        onDialog: (d) => { asked.push(d.message()); d.accept("ta-key-0123456789abcdef"); },
+      });
+      await page.waitForFunction(() => document.querySelectorAll("#preset option").length > 0, null, { timeout: 30000 });
+      assert.equal(asked.length, 0, "a student is asked for no key");
+      const publicPresets = course.presets.filter((p) => p.public).length;
+      assert.equal(await page.locator("#preset option").count(), publicPresets);
+      assert.equal(await page.locator("#api-key").textContent(), "Staff key");
+      await Promise.all([page.waitForEvent("load"), page.locator("#api-key").click()]);
+      await page.waitForFunction((n) => document.querySelectorAll("#preset option").length > n, publicPresets, { timeout: 30000 });
+      assert.equal(asked.length, 1);
+      assert.equal(await page.locator("#preset option").count(), course.presets.length, "a staff key lists every preset");
+      assert.match(await page.locator("#api-key").textContent(), /forget/);
+      assert.deepEqual(consoleErrors, []);
+      await context.close();
+    } finally {
+      await keyless.stop();
+    }
+  });
+
   test("loads without console errors and draws the mesh on its own canvas", async () => {
     const { page, context, consoleErrors } = await openPage(browser, server.base);
     const lit = await page.evaluate(() => {

@@ -4,7 +4,7 @@
 import { compareImages, imageDataOf } from "./compare.js";
 import { Editor } from "./editor.js";
 import { courseUniforms, GlView } from "./gl_view.js";
-import { api } from "./api.js";
+import { api, offerKey } from "./api.js";
 import { parseObj } from "./obj.js";
 import { groupByDeliverable, saveLikeTheCoursePage } from "./saved_frames.js";
 import { glslFromFile } from "./shader_module.js";
@@ -369,4 +369,5 @@ async function init() {
   };
 }
 
+offerKey($("api-key"));
 window.shadelabReady = init().catch((e) => status("local-status", e.message, true));
