@@ -1,11 +1,8 @@
 #include "http/frames_request.h"
 
-#include <filesystem>
 #include <set>
 
 #include "core/base64.h"
-#include "core/words.h"
-#include "course/submission_files.h"
 #include "http/request_fields.h"
 
 namespace shadelab::http {
@@ -45,7 +42,7 @@ Expected<std::optional<shader::ShaderFile>> shader_of(const RawRequest& raw, con
 
 // The code's size and sources are checked where it is graded (road/submission.h): a shader
 // that cannot be sent is the code's grade, and the frames are still graded.
-Status read_code(const RawRequest& raw, road::FramesSubmission& out) {
+Status read_code(const RawRequest& raw, road::FramesRequest& out) {
   auto vertex = shader_of(raw, "vertex");
   if (!vertex) return vertex.take_error();
   auto fragment = shader_of(raw, "fragment");
@@ -57,33 +54,11 @@ Status read_code(const RawRequest& raw, road::FramesSubmission& out) {
   return Ok{};
 }
 
-// The frames in the deliverable's order, those not handed in, and warnings for the rest.
-void order_frames(const course::Course& course, const course::Checkpoint& checkpoint, std::vector<UploadedFile> files, ParsedFramesGrade& out) {
-  std::vector<std::filesystem::path> names;
-  for (const auto& f : files) names.emplace_back(std::filesystem::path(f.filename).filename());
-  const auto found = course::saved_frame_files(course, checkpoint, names);
-  out.submission.missing = found.missing(course, checkpoint);
-  std::set<std::string> used;
-  for (const auto& frame : found.frames) {
-    if (!frame) continue;
-    for (auto& f : files)
-      if (std::filesystem::path(f.filename).filename() == *frame && used.insert(frame->string()).second) {
-        out.submission.saved.push_back({frame->string(), std::move(f.content)});
-        break;
-      }
-  }
-  for (const auto& n : names)
-    if (!used.count(n.string()))
-      out.warnings.push_back(n.string() + " is not one of the " + checkpoint.name + " deliverable's frames (" +
-                             course.frame_file(checkpoint.prefix, 0, "png") + " to " +
-                             course.frame_file(checkpoint.prefix, course.frames - 1, "png") + ") and was not graded");
-}
-
 }  // namespace
 
 bool has_saved_frames(const RawRequest& raw) { return !raw.frames.empty() || raw.fields.contains("savedFrames"); }
 
-Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw, const course::Course& course) {
+Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw) {
   ParsedFramesGrade out;
   for (const auto& [k, v] : raw.fields.items())
     if (!kFramesFields.count(k)) out.warnings.push_back("field '" + k + "' is not used in a grade of saved frames and was ignored");
@@ -93,27 +68,21 @@ Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw, const cour
     return bad_request("saved frames are graded as JSON; for Gradescope's results.json of a whole HW2 folder run `shadelab autograde`");
   auto reference = text_field(raw.fields, "reference", "");
   if (!reference) return reference.take_error();
-  if (reference->empty()) return bad_request("give 'reference': the deliverable the frames are of (" + and_list(course.checkpoint_names()) + ")");
-  auto found = course.checkpoint(*reference);
-  if (!found) return found.take_error();
-  if (found->alias) out.warnings.push_back(found->alias->note);
-  out.checkpoint = found->checkpoint;
+  out.request.reference = *reference;
   auto mesh = text_field(raw.fields, "mesh", "");
   if (!mesh) return mesh.take_error();
-  out.settings.mesh = *mesh;
-  out.settings.max_score = found->checkpoint->points;
+  out.request.mesh = *mesh;
   if (raw.fields.contains("maxScore")) {
     if (!raw.fields["maxScore"].is_number() || raw.fields["maxScore"].get<double>() < 0) return bad_request("'maxScore' must be a number, not negative");
-    out.settings.max_score = raw.fields["maxScore"].get<double>();
+    out.request.max_score = raw.fields["maxScore"].get<double>();
   }
-  if (auto s = read_code(raw, out.submission); !s) return s.take_error();
-  std::vector<UploadedFile> files = raw.frames;
+  if (auto s = read_code(raw, out.request); !s) return s.take_error();
+  for (const auto& f : raw.frames) out.request.files.push_back({f.filename, f.content});
   if (raw.fields.contains("savedFrames")) {
     auto listed = json_frames(raw.fields);
     if (!listed) return listed.take_error();
-    files.insert(files.end(), listed->begin(), listed->end());
+    for (auto& f : *listed) out.request.files.push_back({std::move(f.filename), std::move(f.content)});
   }
-  order_frames(course, *found->checkpoint, std::move(files), out);
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "http/code_grade_request.h"
 #include "http/frames_request.h"
 #include "road/code_request.h"
+#include "road/frames_request.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -26,14 +27,19 @@ T field_or(const json& fields, const char* name, T fallback) {
 // missing, not a PNG or the wrong size is the frames' grade (0, the file named), as on Gradescope.
 void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& course, const httplib::Request& req,
                  httplib::Response& res) {
-  auto parsed = parse_frames_grade(raw, course);
+  auto parsed = parse_frames_grade(raw);
   if (!parsed) return send_problem(res, parsed.error(), req.path);
-  parsed->settings.reference_store = c.config.reference_places();
-  auto graded = road::grade_saved_frames(c.pool, course, *parsed->checkpoint, std::move(parsed->submission), parsed->settings);
+  auto built = road::frames_submission(course, std::move(parsed->request));
+  if (!built) return send_problem(res, built.error(), req.path);
+  built->settings.reference_store = c.config.reference_places();
+  built->settings.limits = c.config.limits.render;
+  auto graded = road::grade_saved_frames(c.pool, course, *built->checkpoint, std::move(built->submission), built->settings);
   if (!graded) return send_problem(res, graded.error(), req.path);
   auto& result = graded->result;
-  result.frames.warnings.insert(result.frames.warnings.end(), parsed->warnings.begin(), parsed->warnings.end());
-  json body = {{"deliverable", parsed->checkpoint->name}, {"frames", grade::to_json(result.frames)}, {"seconds", graded->seconds}};
+  auto& warnings = result.frames.warnings;
+  warnings.insert(warnings.end(), parsed->warnings.begin(), parsed->warnings.end());
+  warnings.insert(warnings.end(), built->warnings.begin(), built->warnings.end());
+  json body = {{"deliverable", built->checkpoint->name}, {"frames", grade::to_json(result.frames)}, {"seconds", graded->seconds}};
   if (result.code) body["code"] = grade::to_json(*result.code);
   if (!result.heatmap_png.empty()) body["heatmap"] = base64_encode(result.heatmap_png);
   send_json(res, 200, body);

@@ -1,6 +1,6 @@
 // The JSON body of POST /api/render, /api/compile and /api/grade without the HTTP around it, so
 // the fuzzer spends its time in the field checks: from_json_body, then parse_job, parse_grade_job
-// or (saved frames) parse_frames_grade with the service's limits (the selector byte picks the
+// or (saved frames) parse_frames_grade and the road's frames_submission, with the service's limits (the selector byte picks the
 // route). Invariants: every rejection says why; a job that passes is within the limits and crosses
 // the worker wire unchanged; saved frames come out in the deliverable's order, each by its own
 // name, and every frame is either handed in or named missing.
@@ -26,7 +26,7 @@ void check_job(const worker::Job& job, const http::Limits& limits) {
   fuzz::check_job_crosses_the_wire(job);
 }
 
-void check_frames(const http::ParsedFramesGrade& g, const course::Course& c) {
+void check_frames(const road::BuiltFrames& g, const course::Course& c) {
   FUZZ_CHECK(g.checkpoint != nullptr);
   FUZZ_CHECK(g.submission.saved.size() + g.submission.missing.size() == static_cast<size_t>(c.frames));
   for (size_t k = 0; k < g.submission.saved.size() && g.submission.missing.empty(); ++k)
@@ -45,9 +45,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, size_t size) {
   }
   const http::Limits limits;
   if (selector % 4 == 3) {
-    auto frames = http::parse_frames_grade(*raw, course::builtin_course());
-    if (frames) check_frames(*frames, course::builtin_course());
-    else FUZZ_CHECK(!frames.error().message.empty());
+    auto frames = http::parse_frames_grade(*raw);
+    if (!frames) {
+      FUZZ_CHECK(!frames.error().message.empty());
+      return 0;
+    }
+    auto built = road::frames_submission(course::builtin_course(), std::move(frames->request));
+    if (built) check_frames(*built, course::builtin_course());
+    else FUZZ_CHECK(!built.error().message.empty());
     return 0;
   }
   if (selector % 4 == 2) {
