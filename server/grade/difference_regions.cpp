@@ -46,7 +46,7 @@ struct Tally {
   double sum[3] = {0, 0, 0};
 };
 
-void add(Tally& t, const image::Image& student, const image::Image& reference, std::uint32_t pixel, double threshold) {
+void count_pixel(Tally& t, const image::Image& student, const image::Image& reference, std::uint32_t pixel, double threshold) {
   ++t.pixels;
   const std::uint8_t* s = student.bytes.data() + static_cast<std::size_t>(pixel) * 4;
   const std::uint8_t* r = reference.bytes.data() + static_cast<std::size_t>(pixel) * 4;
@@ -70,8 +70,8 @@ std::vector<RegionDifference> difference_regions(const std::vector<model::FrameS
   Tally tally[kRegions];
   for (std::size_t k = 0; k < surfaces.size() && k < student.size() && k < reference.size(); ++k) {
     const auto& s = surfaces[k];
-    for (std::size_t i = 0; i < s.points.size(); ++i) add(tally[region_of(s.points[i], light, o)], *student[k], *reference[k], s.pixels[i], o.threshold);
-    for (const std::uint32_t pixel : s.outline) add(tally[outline], *student[k], *reference[k], pixel, o.threshold);
+    for (std::size_t i = 0; i < s.points.size(); ++i) count_pixel(tally[region_of(s.points[i], light, o)], *student[k], *reference[k], s.pixels[i], o.threshold);
+    for (const std::uint32_t pixel : s.outline) count_pixel(tally[outline], *student[k], *reference[k], pixel, o.threshold);
   }
   std::vector<RegionDifference> out;
   for (int r = 0; r < kRegions; ++r) {

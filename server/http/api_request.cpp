@@ -31,7 +31,7 @@ Expected<std::vector<render::UniformSetting>> read_uniforms(const json& fields) 
   if (!u.is_object()) return bad_request("'uniforms' must be an object of GLSL name -> number, boolean or array of numbers");
   for (const auto& [name, value] : u.items()) {
     render::UniformSetting s{name, {}};
-    const auto add = [&](const json& v) -> Status {
+    const auto append_value = [&](const json& v) -> Status {
       if (v.is_boolean()) s.values.push_back(v.get<bool>() ? 1.0 : 0.0);
       else if (v.is_number()) s.values.push_back(v.get<double>());
       else return bad_request("uniform '" + s.name + "' must be numbers or booleans; got " + v.dump());
@@ -39,8 +39,8 @@ Expected<std::vector<render::UniformSetting>> read_uniforms(const json& fields) 
     };
     if (value.is_array()) {
       for (const auto& v : value)
-        if (auto st = add(v); !st) return st.take_error();
-    } else if (auto st = add(value); !st) {
+        if (auto st = append_value(v); !st) return st.take_error();
+    } else if (auto st = append_value(value); !st) {
       return st.take_error();
     }
     out.push_back(std::move(s));
