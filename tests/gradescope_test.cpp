@@ -18,6 +18,7 @@
 
 #include "core/base64.h"
 #include "support/files.h"
+#include "support/hand_in.h"
 #include "support/http_fixture.h"
 #include "support/run_command.h"
 #include "support/test_support.h"
@@ -50,40 +51,16 @@ class GradescopeTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(root_); }
 
-  void submit(const std::string& name, const std::string& text) const {
-    fs::create_directories((root_ / "submission" / name).parent_path());
-    std::ofstream(root_ / "submission" / name, std::ios::binary) << text;
-  }
+  void submit(const std::string& name, const std::string& text) const { shadelab::testkit::write_file_at(root_ / "submission" / name, text); }
   void submit_preset(const std::string& name, const std::string& preset, const std::string& stage) const {
-    submit(name, shadelab::testkit::read_text(kSource / "shaders" / (preset + "_" + stage + ".js")));
+    submit(name, shadelab::testkit::preset_module(preset, stage));
   }
-
-  // A deliverable's frames as the page saves them, rendered by `shadelab render` from `preset` at
-  // the angles a 60 Hz page draws them (each frame after the first a little behind its nominal
-  // angle: ShadeLab's frames at the exact angles are no hand-in) and named for `prefix`.
   void save_frames(const std::string& folder, const std::string& preset, const std::string& prefix, const std::string& more = "",
                    const std::string& angles = shadelab::testkit::kPageAngles) const {
-    fs::create_directories(root_ / "submission" / folder);
-    const auto r = shadelab::testkit::run_shadelab("render --preset " + preset + " --prefix " + prefix + " --frames-dir '" +
-                                                   (root_ / "submission" / folder).string() + "' --angles " + angles + " " + more);
-    ASSERT_EQ(r.status, 0) << r.output;
+    shadelab::testkit::save_page_frames(root_ / "submission" / folder, preset, prefix, more, angles);
   }
-  // A student's HW2 folder as the course lays it out: src/shaders/ and images/, every deliverable
-  // right unless the arguments say otherwise.
   void hand_in(const std::string& specular_frames = "specular", const std::string& specular_code = "specular") const {
-    submit_preset("HW2/src/shaders/starter_vert.js", "normals", "vert");
-    submit_preset("HW2/src/shaders/starter_frag.js", "normals", "frag");
-    submit_preset("HW2/src/shaders/phong_vert.js", specular_code, "vert");
-    submit_preset("HW2/src/shaders/phong_frag.js", specular_code, "frag");
-    submit("HW2/HW2.ipynb", "{}");
-    save_frames("HW2/images", "normals", "normals");
-    save_frames("HW2/images", "diffuse", "diffuse");
-    if (!specular_frames.empty()) save_frames("HW2/images", specular_frames, "specular");
-    // The Blender half: the dolly zoom as Blender renders the handout's cameras, and two objects on a plane in Eevee.
-    for (const char* lens : {"25", "50", "100"})
-      submit(std::string("HW2/images/camera_") + lens + ".png",
-             shadelab::testkit::read_text(kSource / "tests/blender_half" / (std::string("blender_camera_") + lens + ".png")));
-    submit("HW2/images/eevee0001.png", shadelab::testkit::read_text(kSource / "tests/blender_half/blender_two_objects_eevee.png"));
+    shadelab::testkit::write_hand_in(root_ / "submission", specular_frames, specular_code);
   }
 
   // Gradescope's run: the environment names the folders; the results file is what it reads.

@@ -7,6 +7,7 @@
 
 #include "course/submission_files.h"
 #include "road/deliverable_score.h"
+#include "road/code_grid.h"
 #include "road/hand_in_checks.h"
 #include "image/png_info.h"
 #include "render/render_request.h"
@@ -16,7 +17,6 @@
 #include "scene/scene_description.h"
 #include "road/submission.h"
 #include "worker/client.h"
-#include "worker/course_job.h"
 
 namespace shadelab::sheet {
 
@@ -31,27 +31,9 @@ const std::string& text_of(const SheetInput& input, const fs::path& path) {
   return none;
 }
 
-// A job of the course on its default mesh, with the student's shaders.
-struct CourseJob {
-  worker::Job job;
-  std::string payload;
-};
 // The course's render job with the student's pair: the grid their code draws.
-CourseJob render_job_for(const course::Course& course, const SheetInput& input, const fs::path& vert, const fs::path& frag) {
-  CourseJob out{worker::course_job(course, worker::JobKind::render), {}};
-  (void)worker::attach_course_mesh(course, course.default_mesh, out.job, out.payload);  // the default mesh is the course's own
-  out.job.request.vertex = {vert.filename().string(), text_of(input, vert)};
-  out.job.request.fragment = {frag.filename().string(), text_of(input, frag)};
-  return out;
-}
-
-// The grid the student's shaders render, as the page would save it; empty when they do not.
-Expected<std::string> grid(worker::WorkerPool& pool, CourseJob job) {
-  if (!render::check_sources(job.job.request, render::RenderLimits{})) return std::string();
-  auto rendered = worker::run<worker::RenderResult>(pool, worker::to_message(job.job, std::move(job.payload)));
-  if (rendered) return std::move(rendered->result.body);
-  if (info(rendered.error().code).submission_caused) return std::string();
-  return rendered.take_error();
+road::GridJob render_job_for(const course::Course& course, const SheetInput& input, const fs::path& vert, const fs::path& frag) {
+  return road::course_grid_job(course, {vert.filename().string(), text_of(input, vert)}, {frag.filename().string(), text_of(input, frag)});
 }
 
 // The code's grade by the grading road, as Gradescope's: the checkpoint's points, the course's mesh.
@@ -139,7 +121,7 @@ Expected<CheckpointSection> code_section(worker::WorkerPool& pool, const course:
   auto report = graded(pool, course, checkpoint, input, pair, reference_store);
   if (!report) return report.take_error();
   s.report = std::move(*report);
-  auto png = grid(pool, render_job_for(course, input, pair.first, pair.second));
+  auto png = road::render_grid(pool, render_job_for(course, input, pair.first, pair.second));
   if (!png) return png.take_error();
   s.grid_png = std::move(*png);
   s.grid_caption = "rendered from the student's code";
@@ -233,16 +215,14 @@ std::optional<std::pair<shader::ShaderFile, shader::ShaderFile>> colour_shaders(
 // The course's page drawing its default mesh with `shaders` in the colours an answer gives.
 Expected<std::string> colours_render(worker::WorkerPool& pool, const course::Course& course,
                                      const std::pair<shader::ShaderFile, shader::ShaderFile>& shaders, const AnswerColours& colours) {
-  CourseJob job{worker::course_job(course, worker::JobKind::render), {}};
-  (void)worker::attach_course_mesh(course, course.default_mesh, job.job, job.payload);
-  job.job.request = course.render_request(shaders.first, shaders.second);
+  road::GridJob job = road::course_grid_job(course, shaders.first, shaders.second);
   job.job.request.frames = 1;
   for (const auto& [role, rgb] : {std::pair{course::UniformRole::ambient, colours.ambient},
                                   {course::UniformRole::diffuse, colours.diffuse},
                                   {course::UniformRole::specular, colours.specular}})
     if (const course::PageUniform* u = course.uniform_with_role(role))
       for (const auto& name : u->names) job.job.request.uniforms.push_back({name, {rgb[0], rgb[1], rgb[2], 1.0}});
-  return grid(pool, std::move(job));
+  return road::render_grid(pool, std::move(job));
 }
 
 // Each question with the cells under it in the student's notebook; the colours a question asks

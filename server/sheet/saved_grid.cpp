@@ -1,11 +1,13 @@
 #include "sheet/saved_grid.h"
 
+#include <algorithm>
+
 #include "image/png_info.h"
 #include "sheet/cairo_png.h"
 
 namespace shadelab::sheet {
 
-Expected<std::string> saved_frames_grid(const std::vector<std::pair<std::string, std::string>>& named_pngs, int columns) {
+Expected<std::string> saved_frames_grid(const std::vector<std::pair<std::string, std::string>>& named_pngs, int columns, int cell_width) {
   if (named_pngs.empty()) return make_error(ErrorCode::invalid_argument, "no saved frames");
   std::vector<Surface> frames;
   for (const auto& [name, bytes] : named_pngs) {
@@ -19,7 +21,9 @@ Expected<std::string> saved_frames_grid(const std::vector<std::pair<std::string,
     if (!decoded) return make_error(ErrorCode::invalid_argument, name + " cannot be read as a PNG file");
     frames.push_back(std::move(decoded));
   }
-  const int w = cairo_image_surface_get_width(frames[0].get()), h = cairo_image_surface_get_height(frames[0].get());
+  const int first_w = cairo_image_surface_get_width(frames[0].get()), first_h = cairo_image_surface_get_height(frames[0].get());
+  const int w = cell_width > 0 ? cell_width : first_w;
+  const int h = cell_width > 0 ? std::max(1, static_cast<int>(static_cast<long>(first_h) * cell_width / first_w)) : first_h;
   const int count = static_cast<int>(frames.size()), rows = (count + columns - 1) / columns;
   Surface grid(cairo_image_surface_create(CAIRO_FORMAT_RGB24, std::min(count, columns) * w, rows * h), cairo_surface_destroy);
   cairo_t* cr = cairo_create(grid.get());

@@ -1,84 +1,50 @@
-#include "cli/gradescope_tests.h"
+#include "cli/hand_in_tests.h"
 
-#include <iostream>
-
-#include "cli/file_output.h"
-#include "core/base64.h"
 #include "road/deliverable_score.h"
 #include "grade/report.h"
-#include "image/encode.h"
-#include "image/png_decode.h"
 
 namespace shadelab::cli {
 
 namespace {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 using course::DeliverableTest;
 
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-json test_of(const std::string& name, double score, double max_score, bool pass, const std::string& output) {
-  return {{"name", name}, {"score", score}, {"max_score", max_score}, {"status", pass ? "passed" : "failed"},
-          {"visibility", "visible"}, {"output", output}};
+HandInTest test_of(const std::string& name, double score, double max_score, bool pass, const std::string& output) {
+  return {name, std::nullopt, score, max_score, pass, TestOutcome::judged, {}, output, nullptr, {}, {}};
 }
 
 // Nothing to grade: 0 and what was looked for.
-json absent(const std::string& name, double max_score, const std::string& why) { return test_of(name, 0, max_score, false, why + "\n"); }
-
-// The grader could not grade it: 0 on Gradescope (it has no "not graded"), and words that put it on
-// the grader, not the student.
-json ungraded(const std::string& name, double max_score, const Error& e) {
-  return absent(name, max_score, "The autograder could not grade this: " + e.message + " [" + std::string(info(e.code).name) +
-                                     "]. This is not a problem with your submission; please tell the course staff.");
-}
-
-// A report as a test worth `max_score` (its pass, not its own scale, decides the score).
-json graded(const std::string& name, const grade::Report& r, double max_score, const std::string& preface = "") {
-  json test = test_of(name, r.pass ? max_score : 0, max_score, r.pass, preface + grade::output_text(r));
-  const auto& w = r.grader_work;
-  test["extra_data"] = {{"graderWork", {{"rendered", w.rendered}, {"fromStore", w.from_store}, {"fromMemory", w.from_memory}}}};
-  if (!r.flags.empty()) test["extra_data"]["flags"] = grade::to_json(r)["flags"];
+HandInTest absent(const std::string& name, double max_score, const std::string& why) {
+  HandInTest test = test_of(name, 0, max_score, false, why + "\n");
+  test.outcome = TestOutcome::nothing_to_grade;
   return test;
 }
 
-// The heat map deflated as hard as zlib goes (level 9: ~25% smaller than the workers' fast level 1,
-// ~0.15 s for the course's 1536 x 1536 grid), for one over the embedding limit: a page's saved
-// frames, each a little off its angle, draw a busier map than ShadeLab's own did.
-std::string harder(std::string png, size_t limit) {
-  if (png.size() <= limit) return png;
-  auto image = image::decode_png(png, 8192);
-  auto again = image ? image::encode_png(*image, {.compression_level = 9}) : Expected<std::vector<std::uint8_t>>(image.error());
-  if (again && again->size() < png.size()) png.assign(again->begin(), again->end());
-  return png;
+// The grader could not grade it: 0 (neither platform has "not graded" for one test), and words
+// that put it on the grader, not the student.
+HandInTest ungraded(const std::string& name, double max_score, const Error& e) {
+  HandInTest test = absent(name, max_score, "The autograder could not grade this: " + e.message + " [" + std::string(info(e.code).name) +
+                                     "]. This is not a problem with your submission; please tell the course staff.");
+  test.outcome = TestOutcome::grader_failed;
+  test.grader_error = e.message + " [" + std::string(info(e.code).name) + "]";
+  return test;
 }
 
-// A failed test's heat map written beside results.json as `file`, and embedded when small enough.
-void attach_heatmap(json& test, const std::string& worker_png, const std::string& file, const HeatmapOutput& out) {
-  if (test["status"] == "passed" || worker_png.empty() || out.folder.empty()) return;
-  const std::string png = harder(worker_png, out.embed_limit);
-  const fs::path path = fs::path(out.folder) / (file + ".png");
-  if (auto written = write_file(path, png); !written) std::cerr << "autograde: " << written.error().message << "\n";
-  if (png.size() > out.embed_limit) {
-    test["output"] = test["output"].get<std::string>() + "difference heat map: " + path.string() + "\n";
-    return;
-  }
-  test["output_format"] = "html";
-  test["output"] = "<pre>" + html_escape(test["output"].get<std::string>()) +
-                   "</pre><p>Where your frames differ from the reference (brighter: further off):</p>"
-                   "<img alt=\"difference heat map\" style=\"max-width:100%\" src=\"data:image/png;base64," + base64_encode(png) + "\">";
+// A report as a test worth `max_score` (its pass, not its own scale, decides the score).
+HandInTest graded(const std::string& name, const grade::Report& r, double max_score, const std::string& preface = "") {
+  HandInTest test = test_of(name, r.pass ? max_score : 0, max_score, r.pass, preface + grade::output_text(r));
+  const auto& w = r.grader_work;
+  test.extra_data = {{"graderWork", {{"rendered", w.rendered}, {"fromStore", w.from_store}, {"fromMemory", w.from_memory}}}};
+  if (!r.flags.empty()) test.extra_data["flags"] = grade::to_json(r)["flags"];
+  return test;
+}
+
+// A failed test's heat map, kept for the platform to show.
+void attach_heatmap(HandInTest& test, const std::string& worker_png, const std::string& name) {
+  if (test.pass || worker_png.empty()) return;
+  test.heatmap_png = worker_png;
+  test.heatmap_name = name;
 }
 
 std::string frame_range(const course::Course& c, const course::Checkpoint& k) {
@@ -101,8 +67,7 @@ const road::TestScore* scored(const road::DeliverableScore& score, DeliverableTe
 
 std::string test_name(const course::Checkpoint& k, DeliverableTest test) { return k.title + ": " + std::string(to_string(test)); }
 
-json frames_test(const course::Course& c, const DeliverableGrades& d, const road::DeliverableScore& score, const std::vector<fs::path>& files,
-                 const HeatmapOutput& heatmaps) {
+HandInTest frames_test(const course::Course& c, const DeliverableGrades& d, const road::DeliverableScore& score, const std::vector<fs::path>& files) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::frames, d.points);
   std::string name = test_name(k, DeliverableTest::frames);
@@ -111,17 +76,15 @@ json frames_test(const course::Course& c, const DeliverableGrades& d, const road
                                  pngs_in(files));
   if (d.frames.frames[0]) name += " (" + (d.frames.frames[0]->parent_path() / c.frame_file(k.prefix, 0, "png")).string() + ", ...)";
   if (!*d.frames_grade) return ungraded(name, max, d.frames_grade->error());
-  json test = graded(name, *scored(score, DeliverableTest::frames)->report, max);
-  for (const auto& extra : d.frames.extra)
-    test["output"] = test["output"].get<std::string>() + extra.string() + " is not graded: the deliverable is " + frame_range(c, k) + "\n";
-  attach_heatmap(test, (**d.frames_grade).result.heatmap_png, k.name + "_frames", heatmaps);
+  HandInTest test = graded(name, *scored(score, DeliverableTest::frames)->report, max);
+  for (const auto& extra : d.frames.extra) test.output += extra.string() + " is not graded: the deliverable is " + frame_range(c, k) + "\n";
+  attach_heatmap(test, (**d.frames_grade).result.heatmap_png, k.name + "_frames");
   return test;
 }
 
 std::string code_files(const DeliverableGrades& d) { return d.code->first.string() + ", " + d.code->second.filename().string(); }
 
-json code_test(const course::Course& c, const DeliverableGrades& d, const road::DeliverableScore& score, const std::vector<fs::path>& files,
-               const HeatmapOutput& heatmaps) {
+HandInTest code_test(const course::Course& c, const DeliverableGrades& d, const road::DeliverableScore& score, const std::vector<fs::path>& files) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::code, d.points);
   if (!d.code)
@@ -130,12 +93,12 @@ json code_test(const course::Course& c, const DeliverableGrades& d, const road::
   const std::string name = test_name(k, DeliverableTest::code) + " (" + code_files(d) + ")";
   if (!*d.code_grade) return ungraded(name, max, d.code_grade->error());
   const std::string note = k.applies(DeliverableTest::code) ? "" : "not part of the grade: this deliverable is graded by its saved frames\n";
-  json test = graded(name, *scored(score, DeliverableTest::code)->report, max, note);
-  attach_heatmap(test, (**d.code_grade).result.heatmap_png, k.name, heatmaps);
+  HandInTest test = graded(name, *scored(score, DeliverableTest::code)->report, max, note);
+  attach_heatmap(test, (**d.code_grade).result.heatmap_png, k.name);
   return test;
 }
 
-json probe_test(const DeliverableGrades& d, const road::DeliverableScore& score) {
+HandInTest probe_test(const DeliverableGrades& d, const road::DeliverableScore& score) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::probe, d.points);
   std::string rules;
@@ -146,7 +109,7 @@ json probe_test(const DeliverableGrades& d, const road::DeliverableScore& score)
   return graded(name, *scored(score, DeliverableTest::probe)->report, max, rules);
 }
 
-json match_test(const DeliverableGrades& d, const road::DeliverableScore& score) {
+HandInTest match_test(const DeliverableGrades& d, const road::DeliverableScore& score) {
   const course::Checkpoint& k = *d.checkpoint;
   const double max = k.max_score(DeliverableTest::match, d.points);
   const std::string name = test_name(k, DeliverableTest::match);
@@ -162,8 +125,8 @@ std::string image_test_name(const std::string& title, const std::string& file) {
 
 }  // namespace
 
-std::vector<json> image_tests(const course::Course& c, const Expected<std::vector<grade::ImageCheck>>& checks) {
-  std::vector<json> tests;
+std::vector<HandInTest> image_tests(const course::Course& c, const Expected<std::vector<grade::ImageCheck>>& checks) {
+  std::vector<HandInTest> tests;
   for (const auto& image : c.images) {
     if (!image.checked()) continue;
     const std::string name = image_test_name(image.title, image.file);
@@ -180,17 +143,21 @@ std::vector<json> image_tests(const course::Course& c, const Expected<std::vecto
   return tests;
 }
 
-std::vector<json> deliverable_tests(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files,
-                                    const HeatmapOutput& heatmaps) {
+std::vector<HandInTest> deliverable_tests(const course::Course& c, const DeliverableGrades& d, const std::vector<fs::path>& files) {
   const course::Checkpoint& k = *d.checkpoint;
   const auto* code = d.code_grade && *d.code_grade ? &(**d.code_grade).result.report : nullptr;
   const auto* frames = d.frames_grade && *d.frames_grade ? &(**d.frames_grade).result : nullptr;
   const road::DeliverableScore score = road::score_deliverable(
       k, d.points, {code, frames ? &frames->frames : nullptr, frames && frames->code ? &*frames->code : nullptr});
-  std::vector<json> tests = {frames_test(c, d, score, files, heatmaps)};
-  if (k.applies(DeliverableTest::code) || d.code) tests.push_back(code_test(c, d, score, files, heatmaps));
-  if (k.applies(DeliverableTest::probe)) tests.push_back(probe_test(d, score));
-  if (k.applies(DeliverableTest::match) || (d.code && d.frames.any())) tests.push_back(match_test(d, score));
+  std::vector<HandInTest> tests;
+  const auto add = [&](DeliverableTest kind, HandInTest test) {
+    test.test = kind;
+    tests.push_back(std::move(test));
+  };
+  add(DeliverableTest::frames, frames_test(c, d, score, files));
+  if (k.applies(DeliverableTest::code) || d.code) add(DeliverableTest::code, code_test(c, d, score, files));
+  if (k.applies(DeliverableTest::probe)) add(DeliverableTest::probe, probe_test(d, score));
+  if (k.applies(DeliverableTest::match) || (d.code && d.frames.any())) add(DeliverableTest::match, match_test(d, score));
   return tests;
 }
 

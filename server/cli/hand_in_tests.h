@@ -1,6 +1,8 @@
 #pragma once
-// Gradescope's tests for one deliverable (docs/grading.md, "On Gradescope"), each worth its share
-// of the checkpoint's points (course::TestWeights):
+// The tests of a hand-in, the same on every platform that grades it (Gradescope's results.json,
+// cli/gradescope_results.h; PrairieLearn's, cli/prairielearn_results.h): for one deliverable
+// (docs/grading.md, "On Gradescope"), each worth its share of the checkpoint's points
+// (course::TestWeights):
 //
 // | test                                   | from                                           |
 // |----------------------------------------|------------------------------------------------|
@@ -30,11 +32,6 @@
 
 namespace shadelab::cli {
 
-struct HeatmapOutput {
-  std::string folder;               // written here, <name>.png; empty: not written
-  size_t embed_limit = 400 * 1024;  // embedded in the test's output up to this size
-};
-
 // What one deliverable handed in and how it was graded (empty: not graded, nothing to grade).
 struct DeliverableGrades {
   const course::Checkpoint* checkpoint = nullptr;
@@ -45,13 +42,34 @@ struct DeliverableGrades {
   std::optional<Expected<GradedFrames>> frames_grade;
 };
 
+// How a test came to its score.
+enum class TestOutcome {
+  judged,            // the grader compared what was handed in
+  nothing_to_grade,  // 0: the hand-in has nothing for it (the words say what was looked for)
+  grader_failed,     // 0: the grader's own work failed, not the student's
+};
+
+// One test as a student reads it; each platform writes it in its own format.
+struct HandInTest {
+  std::string name;
+  std::optional<course::DeliverableTest> test;  // which of a deliverable's tests; none for an image's
+  double score = 0, max_score = 0;
+  bool pass = false;
+  TestOutcome outcome = TestOutcome::judged;
+  std::string grader_error;       // what failed, when the grader did: "a render worker could not start: ..."
+  std::string output;             // plain text, one line per finding
+  nlohmann::json extra_data;      // the grader's work and the TA's flags; null when none
+  std::string heatmap_png;        // a failed test's difference heat map; empty when none
+  std::string heatmap_name;       // its file's stem: <checkpoint> or <checkpoint>_frames
+};
+
 // The deliverable's tests, in the table's order; `files` is the whole submission (for saying what
 // it held when something is missing).
-std::vector<nlohmann::json> deliverable_tests(const course::Course& course, const DeliverableGrades& d,
-                                              const std::vector<std::filesystem::path>& files, const HeatmapOutput& heatmaps);
+std::vector<HandInTest> deliverable_tests(const course::Course& course, const DeliverableGrades& d,
+                                          const std::vector<std::filesystem::path>& files);
 
 // The checked images' tests, in the course's order; each 0 with words on the grader when the
 // check could not run.
-std::vector<nlohmann::json> image_tests(const course::Course& course, const Expected<std::vector<grade::ImageCheck>>& checks);
+std::vector<HandInTest> image_tests(const course::Course& course, const Expected<std::vector<grade::ImageCheck>>& checks);
 
 }  // namespace shadelab::cli
