@@ -21,6 +21,7 @@ Command add_serve_command(CLI::App& app);
 Command add_worker_command(CLI::App& app);
 Command add_grade_command(CLI::App& app);
 Command add_autograde_command(CLI::App& app);
+Command add_prairielearn_command(CLI::App& app);
 Command add_sheet_command(CLI::App& app);
 Command add_scene_command(CLI::App& app);
 Command add_dolly_command(CLI::App& app);

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   const auto worker = shadelab::cli::add_worker_command(app);
   const auto grade = shadelab::cli::add_grade_command(app);
   const auto autograde = shadelab::cli::add_autograde_command(app);
+  const auto prairielearn = shadelab::cli::add_prairielearn_command(app);
   const auto sheet = shadelab::cli::add_sheet_command(app);
   const auto scene = shadelab::cli::add_scene_command(app);
   const auto dolly = shadelab::cli::add_dolly_command(app);
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   if (app.got_subcommand("worker")) return worker();
   if (app.got_subcommand("grade")) return grade();
   if (app.got_subcommand("autograde")) return autograde();
+  if (app.got_subcommand("prairielearn")) return prairielearn();
   if (app.got_subcommand("sheet")) return sheet();
   if (app.got_subcommand("scene")) return scene();
   if (app.got_subcommand("dolly")) return dolly();

@@ -1,0 +1,63 @@
+#include "cli/prairielearn_job.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/submission_files.h"
+#include "core/json_reader.h"
+
+namespace shadelab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+Error malformed(const std::string& why) { return make_error(ErrorCode::invalid_argument, why); }
+
+Expected<json> read_data(const fs::path& root) {
+  const fs::path file = root / "data" / "data.json";
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return malformed("the grading job has no data/data.json: PrairieLearn writes it for every job, so this job is not one of its own");
+  std::stringstream text;
+  text << in.rdbuf();
+  json data = json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+  if (data.is_discarded() || !data.is_object()) return malformed("the grading job's data/data.json is not a JSON object");
+  return data;
+}
+
+// A path inside the job: relative, without "..", so a question's params cannot point the grader
+// at the image's own files.
+bool inside_job(const fs::path& p) {
+  if (p.empty() || p.is_absolute()) return false;
+  for (const auto& part : p)
+    if (part == "..") return false;
+  return true;
+}
+
+}  // namespace
+
+Expected<PrairieLearnJob> read_prairielearn_job(const fs::path& root) {
+  auto data = read_data(root);
+  if (!data) return data.take_error();
+  PrairieLearnJob job;
+  const json& params = data->contains("params") ? (*data)["params"] : json::object();
+  if (params.is_object() && params.contains("shadelab")) {
+    std::string error;
+    const JsonReader r(params["shadelab"], "params.shadelab", &error, "params.shadelab");
+    r.only({"checkpoint", "course"});
+    job.checkpoint = r.text("checkpoint", "");
+    job.course = r.text("course", "");
+    if (!error.empty()) return malformed("the question's " + error);
+    if (!job.course.empty() && !inside_job(job.course))
+      return malformed("the question's params.shadelab.course must be a path inside the grading job (such as serverFilesCourse/shadelab/course.json), not " +
+                       job.course.string());
+  }
+  if (!fs::is_directory(root / "student") || submitted_files(root / "student").empty())
+    return malformed("no files were submitted: hand in your files and submit again");
+  return job;
+}
+
+}  // namespace shadelab::cli

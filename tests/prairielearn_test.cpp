@@ -1,0 +1,203 @@
+// prairielearn/: the external grader as PrairieLearn runs it: a job folder laid out as PrairieLearn
+// lays out /grade (student/, data/data.json, serverFilesCourse/), the image's entrypoint script
+// with the real shadelab binary and its render workers, and results/results.json read back.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "support/files.h"
+#include "support/hand_in.h"
+#include "support/run_command.h"
+#include "support/test_support.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const fs::path kSource = SHADELAB_SOURCE_DIR;
+
+class PrairieLearnTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("shadelab_prairielearn_" + std::to_string(::getpid()) + "_" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    job_ = root_ / "grade";
+    fs::create_directories(job_ / "student");
+    data({{"params", json::object()}, {"submitted_answers", json::object()}});
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  void data(const json& d) const { shadelab::testkit::write_file_at(job_ / "data/data.json", d.dump()); }
+  void params(const json& shadelab) const { data({{"params", {{"shadelab", shadelab}}}}); }
+
+  // The entrypoint as the image runs it, on this job; the references in one store for the suite,
+  // as the image's warmed store serves every student.
+  json grade(const std::string& env = "") const {
+    const fs::path store = fs::temp_directory_path() / "shadelab_prairielearn_test_references";
+    const auto r = shadelab::testkit::run_command(env + " PRAIRIELEARN_JOB='" + job_.string() + "' SHADELAB_BIN='" + SHADELAB_CLI +
+                                                  "' SHADELAB_REFERENCE_STORE='" + store.string() + "' bash '" +
+                                                  (kSource / "prairielearn/entrypoint").string() + "'");
+    EXPECT_EQ(r.status, 0) << r.output;
+    const std::string text = shadelab::testkit::read_text(job_ / "results/results.json");
+    json results = json::parse(text, nullptr, false);
+    EXPECT_FALSE(results.is_discarded()) << text << r.output;
+    EXPECT_LT(text.size(), 1000u * 1000u) << "PrairieLearn keeps a results file to 1 MB";
+    return results;
+  }
+
+  // Gradescope's results for the same hand-in, its outputs in plain text (no heat maps embedded).
+  json gradescope(const fs::path& submission) const {
+    const fs::path out = root_ / "gradescope.json";
+    const auto r = shadelab::testkit::run_shadelab("autograde '" + submission.string() + "' --results '" + out.string() +
+                                                   "' --cache-dir '" + (fs::temp_directory_path() / "shadelab_prairielearn_test_references").string() + "'");
+    EXPECT_EQ(r.status, 0) << r.output;
+    return json::parse(shadelab::testkit::read_text(out), nullptr, false);
+  }
+
+  static std::map<std::string, json> by_name(const json& tests) {
+    std::map<std::string, json> out;
+    for (const auto& t : tests) out[t["name"]] = t;
+    return out;
+  }
+  static std::string format_errors(const json& results) { return results.value("format_errors", json::array()).dump(); }
+
+  fs::path root_, job_;
+};
+
+}  // namespace
+
+// The real student's hand-in layout (their HW2 folder uploaded as it is on Gradescope), the
+// specular code wrong: every Gradescope test is a PrairieLearn test with the same words and points,
+// the failed one with its heat map, and the student's grids beside them.
+TEST_F(PrairieLearnTest, AHandInIsGradedTestForTestAsOnGradescope) {
+  shadelab::testkit::write_hand_in(job_ / "student", "specular", "diffuse");
+  const json results = grade();
+  ASSERT_TRUE(results.value("gradable", false)) << results.dump(2);
+  const json expected = gradescope(job_ / "student");
+  const auto tests = by_name(results["tests"]);
+  ASSERT_EQ(tests.size(), expected["tests"].size()) << results.dump(2);
+  double points = 0, max_points = 0;
+  for (const auto& g : expected["tests"]) {
+    ASSERT_TRUE(tests.contains(g["name"])) << g["name"] << " is not among PrairieLearn's tests";
+    const json& t = tests.at(g["name"]);
+    EXPECT_EQ(t["output"], g["output"]) << "the same words as on Gradescope";
+    EXPECT_DOUBLE_EQ(t["points"].get<double>(), g["score"].get<double>()) << g["name"];
+    EXPECT_DOUBLE_EQ(t["max_points"].get<double>(), g["max_score"].get<double>()) << g["name"];
+    EXPECT_EQ(t["message"].get<std::string>(), t["output"].get<std::string>().substr(0, t["output"].get<std::string>().find('\n')));
+    points += g["score"].get<double>();
+    max_points += g["max_score"].get<double>();
+  }
+  EXPECT_NEAR(results["score"].get<double>(), points / max_points, 1e-6);
+  EXPECT_LT(results["score"].get<double>(), 1.0);
+  // The code test fails with the specular highlight missing, and shows where.
+  const std::string code_name = expected["tests"][5]["name"];
+  const json& code = tests.at(code_name);
+  ASSERT_EQ(code["points"], 0) << code.dump(2);
+  EXPECT_NE(code["output"].get<std::string>().find("specular"), std::string::npos) << code["output"];
+  ASSERT_TRUE(code.contains("images")) << code.dump(2);
+  EXPECT_TRUE(code["images"][0]["url"].get<std::string>().starts_with("data:image/png;base64,"));
+  // Each deliverable's saved frames as a grid the student sees.
+  ASSERT_EQ(results["images"].size(), 3u) << results["output"];
+  for (const auto& image : results["images"]) {
+    EXPECT_NE(image["label"].get<std::string>().find("the frames you saved"), std::string::npos) << image["label"];
+    EXPECT_TRUE(image["url"].get<std::string>().starts_with("data:image/png;base64,"));
+  }
+  EXPECT_EQ(results["output"].get<std::string>().find("Not shown"), std::string::npos) << "everything fits in 1 MB: " << results["output"];
+}
+
+// A checkpoint question: the student edits the two shaders in the page's editors and submits code
+// alone. Graded as code (its code and hidden-light tests), with a grid of what the code draws.
+TEST_F(PrairieLearnTest, ACheckpointQuestionGradesTheCodeAlone) {
+  params({{"checkpoint", "specular"}});
+  shadelab::testkit::write_file_at(job_ / "student/phong_vert.js", shadelab::testkit::preset_module("specular", "vert"));
+  shadelab::testkit::write_file_at(job_ / "student/phong_frag.js", shadelab::testkit::preset_module("specular", "frag"));
+  const json results = grade();
+  ASSERT_TRUE(results.value("gradable", false)) << results.dump(2);
+  EXPECT_EQ(results["score"], 1.0) << results.dump(2);
+  ASSERT_EQ(results["tests"].size(), 2u) << results.dump(2);
+  EXPECT_NE(results["tests"][0]["name"].get<std::string>().find(": code (phong_vert.js, phong_frag.js)"), std::string::npos);
+  EXPECT_NE(results["tests"][1]["name"].get<std::string>().find("code under a hidden light"), std::string::npos);
+  ASSERT_EQ(results["images"].size(), 1u);
+  EXPECT_NE(results["images"][0]["label"].get<std::string>().find("what your code draws"), std::string::npos);
+}
+
+// A broken shader is the student's: gradable, 0, with the compiler's words at their line.
+TEST_F(PrairieLearnTest, AShaderThatDoesNotCompileIsAZeroWithItsReason) {
+  params({{"checkpoint", "specular"}});
+  std::string broken = shadelab::testkit::preset_module("specular", "frag");
+  const size_t at = broken.find("void main");
+  broken.replace(at, 4, "vod");
+  const long line = 1 + std::count(broken.begin(), broken.begin() + static_cast<long>(at), '\n');
+  shadelab::testkit::write_file_at(job_ / "student/phong_vert.js", shadelab::testkit::preset_module("specular", "vert"));
+  shadelab::testkit::write_file_at(job_ / "student/phong_frag.js", broken);
+  const json results = grade();
+  ASSERT_TRUE(results.value("gradable", false)) << results.dump(2);
+  EXPECT_EQ(results["score"], 0) << results.dump(2);
+  EXPECT_NE(results["tests"][0]["output"].get<std::string>().find("compile error at phong_frag.js line " + std::to_string(line) + ":"), std::string::npos)
+      << results["tests"][0]["output"];
+  EXPECT_EQ(results["images"].size(), 0u) << "a pair that does not compile draws nothing";
+}
+
+// Only a malformed job is not gradable, and each says why in words for PrairieLearn's format errors.
+TEST_F(PrairieLearnTest, AMalformedJobIsNotGradableAndSaysWhy) {
+  shadelab::testkit::write_file_at(job_ / "student/phong_vert.js", shadelab::testkit::preset_module("specular", "vert"));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{not json", "not a JSON object"},
+      {R"({"params": {"shadelab": {"checkpoint": "shiny"}}})", "shiny"},
+      {R"({"params": {"shadelab": {"checkpoint": "diffuse"}}})", "graded by its saved frames alone"},
+      {R"({"params": {"shadelab": {"course": "../../etc/course.json"}}})", "a path inside the grading job"},
+      {R"({"params": {"shadelab": {"grade": "all"}}})", "params.shadelab"},
+  };
+  for (const auto& [text, words] : cases) {
+    shadelab::testkit::write_file_at(job_ / "data/data.json", text);
+    const json results = grade();
+    EXPECT_EQ(results["gradable"], false) << text << ": " << results.dump(2);
+    EXPECT_NE(format_errors(results).find(words), std::string::npos) << text << ": " << format_errors(results);
+  }
+  fs::remove(job_ / "data/data.json");
+  EXPECT_NE(format_errors(grade()).find("no data/data.json"), std::string::npos);
+  data({{"params", json::object()}});
+  fs::remove_all(job_ / "student");
+  fs::create_directories(job_ / "student");
+  EXPECT_NE(format_errors(grade()).find("no files were submitted"), std::string::npos);
+}
+
+// The grader cannot run here (EGL finds no driver): a results file that says so, not gradable, so
+// the student is not charged an attempt.
+TEST_F(PrairieLearnTest, AGraderWithoutGLWritesWhy) {
+  shadelab::testkit::write_hand_in(job_ / "student");
+  const json results = grade("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json");
+  EXPECT_EQ(results["gradable"], false) << results.dump(2);
+  EXPECT_NE(format_errors(results).find("not a problem with your submission"), std::string::npos) << format_errors(results);
+  EXPECT_NE(format_errors(results).find("EGL"), std::string::npos) << format_errors(results);
+}
+
+// A time limit too short to grade in: the results are written before it, name what was not
+// finished, and do not count the attempt.
+TEST_F(PrairieLearnTest, AGradeCutShortByTheTimeLimitSaysWhatItDidNotFinish) {
+  params({{"checkpoint", "specular"}});
+  shadelab::testkit::write_file_at(job_ / "student/phong_vert.js", shadelab::testkit::preset_module("specular", "vert"));
+  shadelab::testkit::write_file_at(job_ / "student/phong_frag.js", shadelab::testkit::preset_module("specular", "frag"));
+  const json results = grade("SHADELAB_TIME_LIMIT_S=2");  // less than the margin kept for writing: nothing can finish
+  EXPECT_EQ(results["gradable"], false) << results.dump(2);
+  EXPECT_NE(format_errors(results).find("ran out of the time"), std::string::npos) << format_errors(results);
+  EXPECT_NE(format_errors(results).find("Not finished: Specular"), std::string::npos) << format_errors(results);
+}
+
+// The grader is missing from the image: the entrypoint still writes a results file that says so.
+TEST_F(PrairieLearnTest, AMissingGraderStillWritesResults) {
+  const auto r = shadelab::testkit::run_command("PRAIRIELEARN_JOB='" + job_.string() + "' SHADELAB_BIN=/nonexistent/shadelab bash '" +
+                                                (kSource / "prairielearn/entrypoint").string() + "'");
+  EXPECT_EQ(r.status, 0) << r.output;
+  const json results = json::parse(shadelab::testkit::read_text(job_ / "results/results.json"), nullptr, false);
+  EXPECT_EQ(results["gradable"], false) << results.dump(2);
+  EXPECT_NE(format_errors(results).find("not installed"), std::string::npos) << format_errors(results);
+}
