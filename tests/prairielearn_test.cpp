@@ -74,11 +74,14 @@ class PrairieLearnTest : public ::testing::Test {
 
 }  // namespace
 
-// The real student's hand-in layout (their HW2 folder uploaded as it is on Gradescope), the
-// specular code wrong: every Gradescope test is a PrairieLearn test with the same words and points,
-// the failed one with its heat map, and the student's grids beside them.
+// The real student's hand-in (their HW2 folder's files), uploaded as PrairieLearn's file upload
+// keeps them, without folders; the specular code wrong: every Gradescope test is a PrairieLearn
+// test with the same words and points, the failed one with its heat map, and the student's grids
+// beside them.
 TEST_F(PrairieLearnTest, AHandInIsGradedTestForTestAsOnGradescope) {
-  shadelab::testkit::write_hand_in(job_ / "student", "specular", "diffuse");
+  shadelab::testkit::write_hand_in(root_ / "HW2-folder", "specular", "diffuse");
+  for (const auto& f : fs::recursive_directory_iterator(root_ / "HW2-folder"))
+    if (f.is_regular_file()) fs::copy_file(f.path(), job_ / "student" / f.path().filename());
   const json results = grade();
   ASSERT_TRUE(results.value("gradable", false)) << results.dump(2);
   const json expected = gradescope(job_ / "student");
@@ -111,6 +114,9 @@ TEST_F(PrairieLearnTest, AHandInIsGradedTestForTestAsOnGradescope) {
     EXPECT_TRUE(image["url"].get<std::string>().starts_with("data:image/png;base64,"));
   }
   EXPECT_EQ(results["output"].get<std::string>().find("Not shown"), std::string::npos) << "everything fits in 1 MB: " << results["output"];
+  // The Blender half found without its images/ folder, and judged.
+  const json& camera = tests.at("Dolly zoom: 25 mm (images/camera_25.png)");
+  EXPECT_NE(camera["output"].get<std::string>().find("matches the handout's camera"), std::string::npos) << camera["output"];
 }
 
 // A checkpoint question: the student edits the two shaders in the page's editors and submits code

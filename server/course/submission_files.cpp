@@ -119,7 +119,11 @@ const fs::path* file_at(const std::vector<fs::path>& files, const std::string& p
     if ((p == path || p.ends_with("/" + path)) && (!found || std::distance(f.begin(), f.end()) < std::distance(found->begin(), found->end())))
       found = &f;
   }
-  return found;
+  if (found) return found;
+  const std::string name = fs::path(path).filename().generic_string();
+  for (const auto& f : files)
+    if (f.generic_string() == name) return &f;
+  return nullptr;
 }
 
 }  // namespace shadelab::course

@@ -57,7 +57,8 @@ SavedFrameFiles saved_frame_files(const Course& course, const Checkpoint& checkp
 std::string wanted_files(const Course& course, const Checkpoint& checkpoint);
 
 // The file at `path` (images/camera_25.png), or at a path ending in it, the shallowest first: a
-// student's folder may sit inside another.
+// student's folder may sit inside another. Failing those, a file of its name at the top (an
+// upload that keeps no folders, as PrairieLearn's: camera_25.png).
 const std::filesystem::path* file_at(const std::vector<std::filesystem::path>& files, const std::string& path);
 
 // "a.js, b.js and 3 more", or "nothing": what a student is told their submission held.
