@@ -2,12 +2,13 @@
 //
 //   shadelab course import HW2_DIR [--solution DIR] -o course.json   a homework folder to a profile
 //   shadelab course check course.json                                 load it and say what it holds
-//   shadelab course show [--course FILE]                              print a profile, files portable
+//   shadelab course show [--course FILE] [--as-student]               print a profile, files portable (or what a student sees)
 //   shadelab course warm [--course FILE] [--cache-dir DIR]            render its references into the store
 #include <filesystem>
 #include <iostream>
 
 #include "cli/commands.h"
+#include "http/course_facts.h"
 #include "cli/course_option.h"
 #include "cli/file_output.h"
 #include "cli/grade_runner.h"
@@ -26,6 +27,7 @@ namespace fs = std::filesystem;
 struct CourseFlags {
   course::ImportOptions import;
   std::string solution, check, show;
+  bool as_student = false;
   GradeFlags warm;
 };
 
@@ -121,6 +123,8 @@ Command add_course_command(CLI::App& app) {
   check->add_option("file", f->check, "The profile")->required();
   auto* show = cmd->add_subcommand("show", "Print a profile as JSON, its files named where they were read (builtin:... or absolute)");
   add_course_option(show, f->show);
+  show->add_flag("--as-student", f->as_student,
+                 "Print what a student sees instead (GET /api/course without a staff key: the public presets, no mistakes catalogue), for a page hosted elsewhere");
   auto* warm = cmd->add_subcommand("warm", "Render a course's references and known mistakes once into the reference store");
   add_grader_options(warm, f->warm.course, f->warm.cache_dir, f->warm.software);
   return [f, import, check, show, warm] {
@@ -130,6 +134,7 @@ Command add_course_command(CLI::App& app) {
       auto loaded = load_course(*check ? f->check : f->show);
       if (!loaded) return fail(loaded.error());
       if (*check) summarise(**loaded);
+      else if (f->as_student) std::cout << http::course_json(**loaded, course::Viewer{}).dump(2) << "\n";
       else std::cout << course::to_json(**loaded, true).dump(2) << "\n";
       return 0;
     }

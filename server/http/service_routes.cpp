@@ -3,6 +3,7 @@
 #include "core/embedded_files.h"
 #include "course/access.h"
 #include "course/course_reader.h"
+#include "http/course_facts.h"
 #include "http/route_context.h"
 
 namespace shadelab::http {
@@ -10,36 +11,6 @@ namespace shadelab::http {
 namespace {
 
 using nlohmann::json;
-
-json presets_json(const course::Course& c, const course::Viewer& viewer) {
-  json out = json::array();
-  for (const course::Preset* p : course::visible_presets(c, viewer))
-    out.push_back({{"name", p->name},
-                   {"description", p->description},
-                   {"public", p->is_public},
-                   {"vertex", {{"name", p->vertex.name}, {"source", p->vertex.text}}},
-                   {"fragment", {{"name", p->fragment.name}, {"source", p->fragment.text}}}});
-  return out;
-}
-
-// A course as the page and API clients see it: the profile's own JSON (docs/course-profile.md),
-// with what only the server uses swapped out: meshes as the URLs the page loads them from,
-// presets with their sources instead of file paths (those the caller may see: course/access.h),
-// no catalogue of mistakes (its edits quote the references), and what the page opens with.
-json course_json(const course::Course& c, const course::Viewer& viewer) {
-  json out = course::to_json(c);
-  json meshes = json::array();
-  for (const auto& m : c.meshes) meshes.push_back({{"name", m.name}, {"url", "/api/meshes/" + m.name + ".obj?course=" + c.id}});
-  out["meshes"] = std::move(meshes);
-  out["presets"] = presets_json(c, viewer);
-  out["pagePreset"] = course::page_preset(c).name;
-  if (!course::may_see(viewer, *c.preset(c.default_preset))) out["defaultPreset"] = out["pagePreset"];
-  out["viewer"] = {{"role", course::to_string(viewer.role)}, {"seesReferences", viewer.sees_references()},
-                   {"framesDownloadNotice", c.frames_download_notice()}};
-  for (auto& checkpoint : out["checkpoints"]) checkpoint.erase("mistakes");
-  out.erase("format");
-  return out;
-}
 
 void openapi(RouteContext&, const course::Viewer&, const httplib::Request&, httplib::Response& res) {
   res.set_content(std::string(*embedded_file("docs/openapi.json")), "application/json");
