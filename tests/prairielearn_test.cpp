@@ -207,3 +207,52 @@ TEST_F(PrairieLearnTest, AMissingGraderStillWritesResults) {
   EXPECT_EQ(results["gradable"], false) << results.dump(2);
   EXPECT_NE(format_errors(results).find("not installed"), std::string::npos) << format_errors(results);
 }
+
+// The two question templates, installed into a PrairieLearn course as a TA would: each a question
+// PrairieLearn can load (a fresh uuid, external grading on the image, its timeout passed to the
+// grader), the checkpoint question's editors on the public starter and its live canvas with every
+// module it imports; and nothing of a reference anywhere in the course's files.
+TEST_F(PrairieLearnTest, TheQuestionTemplatesInstallWithoutAReference) {
+  const fs::path course = root_ / "pl-course";
+  const auto r = shadelab::testkit::run_command("SHADELAB_BIN='" + std::string(SHADELAB_CLI) + "' python3 '" +
+                                                (kSource / "prairielearn/install_questions.py").string() + "' '" + course.string() +
+                                                "' --image registry.example.edu/cs148/shadelab-grader");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* name : {"shadelab-hw2-hand-in", "shadelab-hw2-specular"}) {
+    const fs::path q = course / "questions" / name;
+    const json info = json::parse(shadelab::testkit::read_text(q / "info.json"), nullptr, false);
+    ASSERT_FALSE(info.is_discarded()) << name;
+    const json template_info = json::parse(shadelab::testkit::read_text(kSource / "prairielearn/questions" /
+                                                                        (std::string(name) == "shadelab-hw2-hand-in" ? "hand-in" : "checkpoint") / "info.json"));
+    EXPECT_EQ(info["uuid"].get<std::string>().size(), 36u);
+    EXPECT_NE(info["uuid"], template_info["uuid"]) << "each installed question has its own uuid";
+    EXPECT_EQ(info["gradingMethod"], "External");
+    const json& options = info["externalGradingOptions"];
+    EXPECT_EQ(options["image"], "registry.example.edu/cs148/shadelab-grader");
+    EXPECT_EQ(options["environment"]["SHADELAB_TIME_LIMIT_S"], std::to_string(options["timeout"].get<int>())) << "the grader knows the timeout";
+    EXPECT_TRUE(fs::exists(q / "question.html"));
+  }
+  const fs::path checkpoint = course / "questions/shadelab-hw2-specular";
+  EXPECT_NE(shadelab::testkit::read_text(checkpoint / "server.py").find(R"(SHADELAB = {"checkpoint": "specular"})"), std::string::npos);
+  EXPECT_EQ(shadelab::testkit::read_text(checkpoint / "phong_vert.js"), shadelab::testkit::read_text(kSource / "shaders/starter_vert.js"));
+  EXPECT_EQ(shadelab::testkit::read_text(checkpoint / "phong_frag.js"), shadelab::testkit::read_text(kSource / "shaders/starter_frag.js"));
+  const std::string live = shadelab::testkit::read_text(checkpoint / "clientFilesQuestion/live.js");
+  for (size_t at = live.find("from \"./"); at != std::string::npos; at = live.find("from \"./", at + 1)) {
+    const std::string module = live.substr(at + 8, live.find('"', at + 8) - at - 8);
+    EXPECT_TRUE(fs::exists(checkpoint / "clientFilesQuestion" / module)) << module << " is imported by live.js";
+  }
+  EXPECT_EQ(shadelab::testkit::read_text(checkpoint / "clientFilesQuestion/bunny.obj"), shadelab::testkit::read_text(kSource / "assets/bunny.obj"));
+  const json facts = json::parse(shadelab::testkit::read_text(checkpoint / "clientFilesQuestion/course.json"));
+  EXPECT_EQ(facts["viewer"]["role"], "student");
+  for (const auto& preset : facts["presets"]) EXPECT_TRUE(preset["public"].get<bool>()) << preset["name"];
+  // No reference's shader reaches the course's files (the references' main bodies, byte for byte).
+  for (const char* reference : {"normals", "diffuse", "specular"})
+    for (const char* stage : {"vert", "frag"}) {
+      const std::string source = shadelab::testkit::preset_module(reference, stage);
+      const std::string body = source.substr(source.find("void main"));
+      for (const auto& f : fs::recursive_directory_iterator(course))
+        if (f.is_regular_file()) {
+          EXPECT_EQ(shadelab::testkit::read_text(f.path()).find(body), std::string::npos) << reference << " " << stage << " in " << f.path();
+        }
+    }
+}
