@@ -5,9 +5,11 @@
 #   tools/setup.sh          everything: building, running, every test, the cluster, fuzzing
 #   tools/setup.sh build    only what building and running the shadelab binary needs (the
 #                           Gradescope autograder's image: gradescope/setup.sh)
+#   tools/setup.sh runtime  only the libraries a built shadelab loads, and Mesa's EGL and llvmpipe
+#                           (the PrairieLearn grader image's last stage: Dockerfile)
 set -euo pipefail
 profile=${1:-all}
-[[ $profile == all || $profile == build ]] || { echo "usage: tools/setup.sh [build]" >&2; exit 2; }
+[[ $profile == all || $profile == build || $profile == runtime ]] || { echo "usage: tools/setup.sh [build|runtime]" >&2; exit 2; }
 
 build_packages=(
   # toolchain
@@ -50,7 +52,14 @@ test_packages=(
   # the fuzz targets (tools/fuzz.sh): clang with libFuzzer and its sanitizers
   clang libfuzzer-14-dev libclang-rt-14-dev
 )
+# What `ldd build/shadelab` resolves to on Debian 12, and the drivers EGL loads at run time.
+runtime_packages=(
+  libegl1 libgles2 libegl-mesa0 libgl1-mesa-dri
+  libassimp5 libbrotli1 libcairo2 libcpp-httplib0.11 libhiredis0.14 libopencolorio2.1 libopenexr-3-1-30
+  libpng16-16 libssl3 libzip4 libzstd1 zlib1g ca-certificates
+)
 packages=("${build_packages[@]}")
+[[ $profile == runtime ]] && packages=("${runtime_packages[@]}")
 [[ $profile == all ]] && packages+=("${test_packages[@]}")
 # Node.js runs the browser tests; use the machine's own if it has one, else Debian's.
 if [[ $profile == all ]] && { ! command -v node >/dev/null || ! command -v npm >/dev/null; }; then
