@@ -17,6 +17,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -24,6 +25,8 @@
 #include <utility>
 
 #include <nlohmann/json.hpp>
+
+#include "core/enum_names.h"
 
 namespace shadelab::json_fields {
 
@@ -43,25 +46,28 @@ struct AsIs {
   void read(const nlohmann::json& j, T& value) const { j.get_to(value); }
 };
 
-// An enum by its name in a table of {value, name}; a name the table does not hold is malformed.
-template <class Enum, std::size_t N>
+// An enum by its name in its table of names (core/enum_names.h); a name the table does not hold
+// is malformed.
+template <class Enum>
 struct Names {
-  std::array<std::pair<Enum, std::string_view>, N> table;
+  std::span<const EnumName<Enum>> table;
   nlohmann::json write(Enum value) const {
-    for (const auto& [v, name] : table)
-      if (v == value) return std::string(name);
+    for (const auto& row : table)
+      if (row.value == value) return std::string(row.name);
     return nullptr;
   }
   void read(const nlohmann::json& j, Enum& value) const {
     const auto name = j.get<std::string>();
-    for (const auto& [v, n] : table)
-      if (n == name) {
-        value = v;
+    for (const auto& row : table)
+      if (row.name == name) {
+        value = row.value;
         return;
       }
     throw nlohmann::json::other_error::create(501, "unknown value '" + name + "'", &j);
   }
 };
+template <class Enum, std::size_t N>
+Names(const EnumName<Enum> (&)[N]) -> Names<Enum>;
 
 // An enum by the name its to_string gives, among `values`.
 template <class Enum, std::size_t N>

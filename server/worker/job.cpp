@@ -32,7 +32,8 @@ std::string_view variant_id(model::Variant v) { return model::info(v).id; }
 constexpr json_fields::Named<model::Variant> kVariantIds{variant_id, model::variant_named};
 constexpr json_fields::Named<model::Parameter> kParameterNames{model::to_string, model::parameter_named};
 constexpr json_fields::Named<model::Terms> kTermsNames{model::to_string, model::terms_named};
-constexpr json_fields::Names<HeatMap, 3> kHeatMaps{{{{HeatMap::always, "always"}, {HeatMap::when_failing, "whenFailing"}, {HeatMap::never, "never"}}}};
+constexpr EnumName<HeatMap> kHeatMapNames[] = {{HeatMap::always, "always"}, {HeatMap::when_failing, "whenFailing"}, {HeatMap::never, "never"}};
+constexpr json_fields::Names kHeatMaps{kHeatMapNames};
 }  // namespace
 
 SHADELAB_JSON_FIELDS(FormulaReading::Value, field("parameter", &FormulaReading::Value::parameter, kParameterNames),
@@ -79,8 +80,10 @@ SHADELAB_JSON_FIELDS(HandInImage, field("file", &HandInImage::file), field("scen
 namespace shadelab::render {
 
 namespace {
-constexpr json_fields::Names<image::PixelType, 2> kPixelTypes{{{{image::PixelType::u8, "u8"}, {image::PixelType::f32, "f32"}}}};
-constexpr json_fields::Names<FloatSemantics, 2> kSemantics{{{{FloatSemantics::as_compiled, "asCompiled"}, {FloatSemantics::ieee, "ieee"}}}};
+constexpr EnumName<image::PixelType> kPixelTypeNames[] = {{image::PixelType::u8, "u8"}, {image::PixelType::f32, "f32"}};
+constexpr json_fields::Names kPixelTypes{kPixelTypeNames};
+constexpr EnumName<FloatSemantics> kSemanticsNames[] = {{FloatSemantics::as_compiled, "asCompiled"}, {FloatSemantics::ieee, "ieee"}};
+constexpr json_fields::Names kSemantics{kSemanticsNames};
 }  // namespace
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(UniformSetting, name, values)

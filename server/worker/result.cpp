@@ -1,6 +1,5 @@
 #include "worker/result.h"
 
-#include "core/json_enum.h"
 #include "core/json_fields.h"
 #include "worker/scene_json.h"
 
@@ -50,11 +49,11 @@ namespace shadelab::scene_render {
 
 namespace {
 
-constexpr auto kTransforms = {scene::ViewTransform::standard, scene::ViewTransform::filmic};
 constexpr auto kTransformNames = json_fields::by_to_string(scene::ViewTransform::standard, scene::ViewTransform::filmic);
 constexpr auto kEngineNames = json_fields::by_to_string(scene::Engine::workbench, scene::Engine::eevee);
-constexpr json_fields::Names<scene::Projection, 2> kProjections{
-    {{{scene::Projection::perspective, "perspective"}, {scene::Projection::orthographic, "orthographic"}}}};
+constexpr EnumName<scene::Projection> kProjectionNames[] = {{scene::Projection::perspective, "perspective"},
+                                                            {scene::Projection::orthographic, "orthographic"}};
+constexpr json_fields::Names kProjections{kProjectionNames};
 
 // An object's box in the image, by its corners.
 struct Corners {
@@ -70,7 +69,11 @@ PassDetail detail_from(const std::string& name, const json& d) {
   if (name == "shadow") return ShadowDetail{d.at("views"), d.at("size"), d.at("filterTaps")};
   if (name == "reflection") return ReflectionDetail{d.at("size"), d.at("levels")};
   if (name == "main") return MainDetail{d.at("objects"), d.at("ground"), d.at("samples"), d.at("shaderVariant")};
-  if (name == "view") return ViewDetail{enum_from_json(d.at("transform"), kTransforms)};
+  if (name == "view") {
+    ViewDetail view;
+    kTransformNames.read(d.at("transform"), view.transform);
+    return view;
+  }
   if (name == "readback") return ReadbackDetail{};
   if (name == "framing") return FramingDetail{d.at("guardBandRenders")};
   throw json::other_error::create(501, "unknown pass '" + name + "'", &d);
