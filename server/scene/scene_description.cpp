@@ -12,6 +12,15 @@ namespace {
 
 using nlohmann::json;
 
+// The field `key` as one of its table's names ("expected one of ..." recorded for another); the
+// fallback when it is absent or wrong.
+template <class Enum, std::size_t N>
+Enum named(const JsonReader& r, const std::string& key, Enum fallback, const EnumName<Enum> (&table)[N]) {
+  std::set<std::string> names;
+  for (const auto& row : table) names.insert(std::string(row.name));
+  return value_in(table, r.text(key, std::string(name_in(table, fallback)), names)).value_or(fallback);
+}
+
 using Reader = JsonReader;
 
 constexpr double kCoordinate = 1e7;  // metres; beyond this a float32 vertex has no precision left
@@ -51,7 +60,7 @@ Object read_object(const Reader& r, size_t index, std::string* error) {
   o.location = r.vec3("location", o.location, -kCoordinate, kCoordinate);
   o.rotation_degrees = r.vec3("rotation", o.rotation_degrees, -1e6, 1e6);
   o.scale = r.vec3("scale", o.scale, -1e6, 1e6, true);
-  o.shading = r.text("shading", "smooth", {"smooth", "flat"}) == "flat" ? Shading::flat : Shading::smooth;
+  o.shading = named(r, "shading", o.shading, kShadingNames);
   o.material = material_at(r, "material", error);
   return o;
 }
@@ -63,13 +72,11 @@ Camera read_camera(const Reader& r) {
   if (r.has("rotation") && r.has("target")) r.fail(r.at("rotation") + ": give rotation or target, not both");
   if (r.has("rotation")) c.rotation_degrees = r.vec3("rotation", {0, 0, 0}, -1e6, 1e6);
   c.target = r.vec3("target", c.target, -kCoordinate, kCoordinate);
-  c.type = r.text("type", "perspective", {"perspective", "orthographic"}) == "orthographic" ? Projection::orthographic
-                                                                                            : Projection::perspective;
+  c.type = named(r, "type", c.type, kProjectionNames);
   // Blender's own limits: lens 1 mm and up, sensor 1..100 mm, clip start > 0.
   c.lens_mm = r.number("lens", c.lens_mm, 1, 5000);
   c.sensor_width_mm = r.number("sensorWidth", c.sensor_width_mm, 1, 100);
-  const std::string fit = r.text("sensorFit", "auto", {"auto", "horizontal", "vertical"});
-  c.sensor_fit = fit == "horizontal" ? SensorFit::horizontal : fit == "vertical" ? SensorFit::vertical : SensorFit::automatic;
+  c.sensor_fit = named(r, "sensorFit", c.sensor_fit, kSensorFitNames);
   c.ortho_scale = r.number("orthoScale", c.ortho_scale, 1e-6, 1e7);
   c.clip_start = r.number("clipStart", c.clip_start, 1e-6, 1e7);
   c.clip_end = r.number("clipEnd", c.clip_end, 1e-6, 1e9);
@@ -83,8 +90,7 @@ Light read_light(const Reader& r, size_t index) {
   Light l;
   l.name = r.text("name", "Light." + std::to_string(index));
   if (!r.has("type")) r.fail(r.at("type") + ": required (point, sun, spot or area)");
-  const std::string type = r.text("type", "point", {"point", "sun", "spot", "area"});
-  l.type = type == "sun" ? LightType::sun : type == "spot" ? LightType::spot : type == "area" ? LightType::area : LightType::point;
+  l.type = named(r, "type", l.type, kLightTypeNames);
   l.color = r.vec3("color", l.color, 0, 1e3);
   l.location = r.vec3("location", l.location, -kCoordinate, kCoordinate);
   if (r.has("rotation") && r.has("target")) r.fail(r.at("rotation") + ": give rotation or target, not both");
@@ -110,9 +116,8 @@ RenderSettings read_render(const Reader& r, const SceneLimits& limits) {
   s.percentage = r.integer("resolutionPercentage", s.percentage, 1, 100);
   s.width = std::max(1, s.width * s.percentage / 100);
   s.height = std::max(1, s.height * s.percentage / 100);
-  s.engine = r.text("engine", "eevee", {"eevee", "workbench"}) == "workbench" ? Engine::workbench : Engine::eevee;
-  s.view_transform = r.text("viewTransform", "filmic", {"filmic", "standard"}) == "standard" ? ViewTransform::standard
-                                                                                          : ViewTransform::filmic;
+  s.engine = named(r, "engine", s.engine, kEngineNames);
+  s.view_transform = named(r, "viewTransform", s.view_transform, kViewTransformNames);
   s.samples = r.integer("samples", s.samples, 0, 4);
   if (s.samples == 1 || s.samples == 3) r.fail(r.at("samples") + ": expected 0, 2 or 4");
   s.shadow_map_size = r.integer("shadowMapSize", s.shadow_map_size, 64, 4096);
@@ -176,18 +181,6 @@ Expected<SceneDescription> parse_scene(const json& j, const SceneLimits& limits)
 
   if (!error.empty()) return make_error(ErrorCode::invalid_argument, error);
   return scene;
-}
-
-std::string_view to_string(Engine e) { return e == Engine::workbench ? "workbench" : "eevee"; }
-std::string_view to_string(ViewTransform v) { return v == ViewTransform::standard ? "standard" : "filmic"; }
-std::string_view to_string(LightType t) {
-  switch (t) {
-    case LightType::sun: return "sun";
-    case LightType::spot: return "spot";
-    case LightType::area: return "area";
-    case LightType::point: break;
-  }
-  return "point";
 }
 
 }  // namespace shadelab::scene

@@ -24,6 +24,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/enum_names.h"
 #include "core/expected.h"
 #include "scene/blender_convention.h"
 
@@ -131,8 +132,19 @@ struct SceneLimits {
 // Parses and validates; errors are invalid_argument with the field's path in the message.
 Expected<SceneDescription> parse_scene(const nlohmann::json& j, const SceneLimits& limits = {});
 
-std::string_view to_string(Engine e);
-std::string_view to_string(ViewTransform v);
-std::string_view to_string(LightType t);
+// Each closed set of a scene's names in one table, in its enum's order: the scene reader, to_string
+// and the worker's wire (worker/scene_json.h) read them.
+inline constexpr EnumName<Shading> kShadingNames[] = {{Shading::smooth, "smooth"}, {Shading::flat, "flat"}};
+inline constexpr EnumName<Projection> kProjectionNames[] = {{Projection::perspective, "perspective"}, {Projection::orthographic, "orthographic"}};
+inline constexpr EnumName<SensorFit> kSensorFitNames[] = {
+    {SensorFit::automatic, "auto"}, {SensorFit::horizontal, "horizontal"}, {SensorFit::vertical, "vertical"}};
+inline constexpr EnumName<LightType> kLightTypeNames[] = {
+    {LightType::point, "point"}, {LightType::sun, "sun"}, {LightType::spot, "spot"}, {LightType::area, "area"}};
+inline constexpr EnumName<Engine> kEngineNames[] = {{Engine::workbench, "workbench"}, {Engine::eevee, "eevee"}};
+inline constexpr EnumName<ViewTransform> kViewTransformNames[] = {{ViewTransform::standard, "standard"}, {ViewTransform::filmic, "filmic"}};
+
+inline std::string_view to_string(Engine e) { return name_in(kEngineNames, e); }
+inline std::string_view to_string(ViewTransform v) { return name_in(kViewTransformNames, v); }
+inline std::string_view to_string(LightType t) { return name_in(kLightTypeNames, t); }
 
 }  // namespace shadelab::scene

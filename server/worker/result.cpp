@@ -49,11 +49,9 @@ namespace shadelab::scene_render {
 
 namespace {
 
-constexpr auto kTransformNames = json_fields::by_to_string(scene::ViewTransform::standard, scene::ViewTransform::filmic);
-constexpr auto kEngineNames = json_fields::by_to_string(scene::Engine::workbench, scene::Engine::eevee);
-constexpr EnumName<scene::Projection> kProjectionNames[] = {{scene::Projection::perspective, "perspective"},
-                                                            {scene::Projection::orthographic, "orthographic"}};
-constexpr json_fields::Names kProjections{kProjectionNames};
+constexpr json_fields::Names kTransformNames{scene::kViewTransformNames};
+constexpr json_fields::Names kEngineNames{scene::kEngineNames};
+constexpr json_fields::Names kProjections{scene::kProjectionNames};
 
 // An object's box in the image, by its corners.
 struct Corners {

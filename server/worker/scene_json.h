@@ -3,11 +3,13 @@
 // their C++ names, each enum under its scene-file name. It is read only from a trusted sender that
 // validated the scene (scene::parse_scene), so it is not re-validated.
 #include <optional>
+#include <string>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/json_fields.h"
 #include "scene/scene_description.h"
 
 namespace nlohmann {
@@ -33,12 +35,18 @@ struct adl_serializer<std::optional<glm::dvec3>> {
 
 namespace shadelab::scene {
 
-NLOHMANN_JSON_SERIALIZE_ENUM(Shading, {{Shading::smooth, "smooth"}, {Shading::flat, "flat"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(Projection, {{Projection::perspective, "perspective"}, {Projection::orthographic, "orthographic"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(SensorFit, {{SensorFit::automatic, "auto"}, {SensorFit::horizontal, "horizontal"}, {SensorFit::vertical, "vertical"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(LightType, {{LightType::point, "point"}, {LightType::sun, "sun"}, {LightType::spot, "spot"}, {LightType::area, "area"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(Engine, {{Engine::workbench, "workbench"}, {Engine::eevee, "eevee"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(ViewTransform, {{ViewTransform::standard, "standard"}, {ViewTransform::filmic, "filmic"}})
+// The scene's enums by their names in scene/scene_description.h's tables; a name this build does
+// not know is malformed (nlohmann's NLOHMANN_JSON_SERIALIZE_ENUM would read it as the first value).
+#define SHADELAB_SCENE_ENUM_JSON(Enum, table)                                                              \
+  inline void to_json(nlohmann::json& j, Enum value) { j = std::string(name_in(table, value)); }          \
+  inline void from_json(const nlohmann::json& j, Enum& value) { json_fields::Names{table}.read(j, value); }
+SHADELAB_SCENE_ENUM_JSON(Shading, kShadingNames)
+SHADELAB_SCENE_ENUM_JSON(Projection, kProjectionNames)
+SHADELAB_SCENE_ENUM_JSON(SensorFit, kSensorFitNames)
+SHADELAB_SCENE_ENUM_JSON(LightType, kLightTypeNames)
+SHADELAB_SCENE_ENUM_JSON(Engine, kEngineNames)
+SHADELAB_SCENE_ENUM_JSON(ViewTransform, kViewTransformNames)
+#undef SHADELAB_SCENE_ENUM_JSON
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Material, base_color, metallic, roughness, specular, subsurface, subsurface_color,
                                    subsurface_radius, emission, emission_strength, alpha)
