@@ -2,7 +2,8 @@
 # Runs the README's test command (tools/test.sh) in a throwaway minimal Debian 12 root, the way a
 # new user's machine starts: `debootstrap --variant=minbase bookworm`, nothing else installed.
 # A green run on a developer's machine can hide a missing install step (a newer Node, a library
-# some other project installed); this cannot.
+# some other project installed); this cannot. Then PrairieLearn's grader image's stage is built and
+# run from the binary it built (tools/prairielearn_image_check.sh).
 #
 #   sudo tools/fresh_debian_check.sh [ROOT_DIR]     # default: a new folder under /tmp
 #
@@ -57,4 +58,9 @@ end=$(date +%s)
 tail -25 "$root.test.log"
 echo "fresh_debian_check: debootstrap $((bootstrapped - start)) s, set-up + build + tests $((end - bootstrapped)) s," \
      "exit status $status (full log: $root.test.log)"
+# PrairieLearn's grader image, from the binary this root built: its stage in a root of its own
+# with only the runtime packages, the entrypoint run on a job without network.
+if ((status == 0)); then
+  "$repo/tools/prairielearn_image_check.sh" "$root/root/shadelab/build/shadelab" || status=$?
+fi
 exit "$status"
