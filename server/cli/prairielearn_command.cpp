@@ -31,7 +31,7 @@ using Clock = std::chrono::steady_clock;
 
 struct PrairieLearnFlags {
   std::string root;
-  HandInFlags hand_in{.grid_side = 160};  // a 480-pixel grid: three of them and the heat maps fit in 1 MB
+  HandInFlags hand_in{.grid_side = kGridFrameWidth};
   double time_limit_s = 30;  // PrairieLearn's default timeout
 };
 

@@ -22,6 +22,11 @@
 
 namespace shadelab::cli {
 
+// Each frame's width in the grids PrairieLearn's results show (a grid of nine is 480 pixels wide):
+// small enough that every deliverable's grid and the failed tests' heat maps fit in 1 MB (the
+// built-in course's whole hand-in with one deliverable failing: ~640 KB).
+inline constexpr int kGridFrameWidth = 160;
+
 struct PrairieLearnLimits {
   size_t max_bytes = 1000 * 1000 - 16 * 1024;  // PrairieLearn's 1 MB, less room for its own framing
   int image_width = 768;                        // images wider than this are narrowed
