@@ -51,8 +51,8 @@ Clock::time_point deadline_for(Clock::time_point started, double limit_s) {
 }
 
 // The question's own course when its params name one, else the grader's; a question that names a
-// checkpoint names one whose code is graded.
-Expected<std::shared_ptr<const course::Course>> course_for(const PrairieLearnFlags& f, const PrairieLearnJob& job) {
+// checkpoint names one whose code is graded, and `job` then holds its name (an alias resolved).
+Expected<std::shared_ptr<const course::Course>> course_for(const PrairieLearnFlags& f, PrairieLearnJob& job) {
   auto loaded = load_course(job.course.empty() ? f.hand_in.grade.course : (fs::path(f.root) / job.course).string());
   if (!loaded) return make_error(ErrorCode::course_invalid, "the question's course cannot be read: " + loaded.error().message);
   if (job.checkpoint.empty()) return loaded;
@@ -61,6 +61,7 @@ Expected<std::shared_ptr<const course::Course>> course_for(const PrairieLearnFla
   if (!found->checkpoint->applies(course::DeliverableTest::code))
     return make_error(ErrorCode::course_invalid, "the question's checkpoint '" + job.checkpoint +
                                                      "' is graded by its saved frames alone: a question that takes code needs a checkpoint with code");
+  job.checkpoint = found->checkpoint->name;
   return loaded;
 }
 
@@ -78,7 +79,7 @@ int run_prairielearn(PrairieLearnFlags f) {
   if (!job) return write_results(root, prairielearn_not_gradable(job.error().message));
   auto course = course_for(f, *job);
   if (!course) return write_results(root, prairielearn_not_gradable(course.error().message + ". This is not a problem with your submission; please tell the course staff."));
-  f.hand_in.checkpoint = job->checkpoint.empty() ? "" : (*course)->checkpoint(job->checkpoint)->checkpoint->name;
+  f.hand_in.checkpoint = job->checkpoint;
   f.hand_in.deadline = deadline_for(started, f.time_limit_s);
   const HandInResults graded = grade_hand_in(**course, f.hand_in, root / "student");
   const int status = write_results(root, prairielearn_results(graded));
