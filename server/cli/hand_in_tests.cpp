@@ -24,10 +24,10 @@ HandInTest absent(const std::string& name, double max_score, const std::string& 
 // The grader could not grade it: 0 (neither platform has "not graded" for one test), and words
 // that put it on the grader, not the student.
 HandInTest ungraded(const std::string& name, double max_score, const Error& e) {
-  HandInTest test = absent(name, max_score, "The autograder could not grade this: " + e.message + " [" + std::string(info(e.code).name) +
-                                     "]. This is not a problem with your submission; please tell the course staff.");
+  const std::string what = e.message + " [" + std::string(info(e.code).name) + "]";
+  HandInTest test = absent(name, max_score, "The autograder could not grade this: " + what + ". This is not a problem with your submission; please tell the course staff.");
   test.outcome = TestOutcome::grader_failed;
-  test.grader_error = e.message + " [" + std::string(info(e.code).name) + "]";
+  test.grader_error = what;
   return test;
 }
 

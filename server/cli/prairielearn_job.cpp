@@ -1,10 +1,8 @@
 #include "cli/prairielearn_job.h"
 
-#include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
 
+#include "cli/grade_runner.h"
 #include "cli/submission_files.h"
 #include "core/json_reader.h"
 
@@ -19,11 +17,9 @@ Error malformed(const std::string& why) { return make_error(ErrorCode::invalid_a
 
 Expected<json> read_data(const fs::path& root) {
   const fs::path file = root / "data" / "data.json";
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return malformed("the grading job has no data/data.json: PrairieLearn writes it for every job, so this job is not one of its own");
-  std::stringstream text;
-  text << in.rdbuf();
-  json data = json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+  if (!fs::is_regular_file(file))
+    return malformed("the grading job has no data/data.json: PrairieLearn writes it for every job, so this job is not one of its own");
+  json data = json::parse(read_text(file), nullptr, /*allow_exceptions=*/false);
   if (data.is_discarded() || !data.is_object()) return malformed("the grading job's data/data.json is not a JSON object");
   return data;
 }
