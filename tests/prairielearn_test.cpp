@@ -39,10 +39,12 @@ class PrairieLearnTest : public ::testing::Test {
   void params(const json& shadelab) const { data({{"params", {{"shadelab", shadelab}}}}); }
 
   // The entrypoint as the image runs it, on this job; the references in one store for the suite,
-  // as the image's warmed store serves every student.
+  // as the image's warmed store serves every student. The time limit is a test's own (`env` may
+  // set another): the default 30 s is a grader host's, and a loaded test machine may grade the
+  // suite's first, cold hand-in slower than that.
   json grade(const std::string& env = "") const {
     const fs::path store = fs::temp_directory_path() / "shadelab_prairielearn_test_references";
-    const auto r = shadelab::testkit::run_command(env + " PRAIRIELEARN_JOB='" + job_.string() + "' SHADELAB_BIN='" + SHADELAB_CLI +
+    const auto r = shadelab::testkit::run_command("SHADELAB_TIME_LIMIT_S=600 " + env + " PRAIRIELEARN_JOB='" + job_.string() + "' SHADELAB_BIN='" + SHADELAB_CLI +
                                                   "' SHADELAB_REFERENCE_STORE='" + store.string() + "' bash '" +
                                                   (kSource / "prairielearn/entrypoint").string() + "'");
     EXPECT_EQ(r.status, 0) << r.output;
