@@ -114,14 +114,13 @@ struct Renderer::State {
 
     std::optional<gl::BuildFailure> failure;
     gl::Program program = gl::Program::build(vertex->glsl, fragment->glsl, kBindings, failure);
-    if (failure) return build_error(*failure, vf, ff, *vertex, *fragment, *webgl);
+    if (failure) return build_error(*failure, vf, ff, *vertex, *fragment);
     gl::Program& kept = programs.insert(std::move(key), std::move(program), 0);
     return Built{&kept, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), false, rewritten, outputs};
   }
 
   static Error build_error(const gl::BuildFailure& f, const shader::ShaderFile& vf, const shader::ShaderFile& ff,
-                           const shader::UnwrappedSource& vs, const shader::UnwrappedSource& fs,
-                           const shader::WebglChecked& webgl) {
+                           const shader::UnwrappedSource& vs, const shader::UnwrappedSource& fs) {
     Error e;
     e.driver_log = f.log;
     switch (f.stage) {
@@ -138,12 +137,6 @@ struct Renderer::State {
       case gl::BuildStage::link: {
         e.code = ErrorCode::link_failed;
         e.diagnostics = shader::parse_driver_log(f.log, "link", "", nullptr);
-        auto causes = shader::link_failure_causes(webgl, fs, ff);
-        if (!causes.empty()) {  // the cause named, then the driver's words
-          e.message = "the shaders do not link: " + causes.front().message;
-          e.diagnostics.insert(e.diagnostics.begin(), causes.begin(), causes.end());
-          return e;
-        }
         e.message = "the shaders compile but do not link";
         break;
       }

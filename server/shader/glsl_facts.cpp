@@ -11,6 +11,7 @@
 #include <cctype>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace shadelab::shader {
@@ -87,12 +88,20 @@ std::string type_words(const glslang::TType& type) {
   return words;
 }
 
-GlslVariable variable(const std::string& name, const glslang::TType& type, const glslang::TSourceLoc& loc) {
-  return {name, type_words(type), precision_of(type), point(loc)};
-}
-
 // A block's members in order; a struct member's fields as "member.field", so a precision that
 // differs inside a struct is found too.
+void add_members(const glslang::TType& type, const std::string& prefix, std::vector<GlslVariable>& out);
+
+GlslVariable variable(const std::string& name, const glslang::TType& type, const glslang::TSourceLoc& loc) {
+  const auto& q = type.getQualifier();
+  GlslVariable v{name, type_words(type), precision_of(type), point(loc)};
+  v.flat = q.flat;
+  v.invariant = q.invariant;
+  v.sampler = type.getBasicType() == glslang::EbtSampler;
+  if (type.isStruct()) add_members(type, "", v.fields);
+  return v;
+}
+
 void add_members(const glslang::TType& type, const std::string& prefix, std::vector<GlslVariable>& out) {
   for (const auto& field : *type.getStruct()) {
     const std::string name = prefix + field.type->getFieldName().c_str();
@@ -128,8 +137,24 @@ class FactsTraverser : public glslang::TIntermTraverser {
             break;
           }
     }
-    if (node->getOp() == glslang::EOpLinkerObjects) read_linker_objects(*node);
+    if (node->getOp() == glslang::EOpLinkerObjects) {
+      read_linker_objects(*node);
+      return false;  // declarations, not uses
+    }
     return true;
+  }
+
+  // A global named anywhere in the code is statically used (GLSL ES 3.00 section 4.3.4: the
+  // link's rules bind the inputs a shader so uses, called or not).
+  void visitSymbol(glslang::TIntermSymbol* node) override {
+    const auto storage = node->getType().getQualifier().storage;
+    if (storage == glslang::EvqUniform || storage == glslang::EvqVaryingIn) used_.insert(node->getName().c_str());
+  }
+
+  // Marks what the code used; called once the whole tree is read.
+  void mark_used() {
+    for (auto* list : {&facts_.inputs, &facts_.uniforms})
+      for (auto& v : *list) v.used = used_.count(v.name) > 0;
   }
 
   bool visitBinary(glslang::TVisit visit, glslang::TIntermBinary* node) override {
@@ -202,6 +227,7 @@ class FactsTraverser : public glslang::TIntermTraverser {
 
   GlslFacts& facts_;
   std::vector<std::string_view> lines_, code_lines_;
+  std::set<std::string> used_;
 };
 
 // glslang's preprocessor stops at an extension it does not know (and WebGL's list is not its
@@ -262,6 +288,35 @@ ExtensionDirective read_extension_directive(std::string_view line, int number) {
 
 namespace {
 
+// `#pragma STDGL invariant(all)` as the preprocessor prints it, spaces anywhere between tokens.
+bool is_invariant_all_pragma(std::string_view line) {
+  std::string tokens;
+  for (const char c : line)
+    if (c != ' ' && c != '\t') tokens += c;
+  return tokens == "#pragmaSTDGLinvariant(all)";
+}
+
+// GLSL ES 1.00 has no line continuation, and glslang follows it; the browser (and Mesa) join a
+// line ending in a backslash to the next in either language, comments included. For glslang the
+// joined line stands where it started and the lines it took stay, empty, so every later line
+// keeps its number.
+std::string joined_continuations(std::string_view glsl) {
+  std::string out, taken;
+  for (size_t i = 0; i < glsl.size(); ++i) {
+    if (glsl[i] == '\\' && i + 1 < glsl.size() && glsl[i + 1] == '\n') {
+      taken += '\n';
+      ++i;
+      continue;
+    }
+    out += glsl[i];
+    if (glsl[i] == '\n') {
+      out += taken;
+      taken.clear();
+    }
+  }
+  return out + taken;
+}
+
 // Directives and layout qualifiers as the preprocessor leaves them: glslang keeps every line in
 // its place (a `#line` it evaluated too), so a line of its output is the same line of the input.
 void read_preprocessed(const std::string& text, std::string_view source, GlslFacts& facts) {
@@ -278,6 +333,10 @@ void read_preprocessed(const std::string& text, std::string_view source, GlslFac
     }
     if (line.rfind("#line", 0) == 0) {
       facts.line_directives.push_back({number, line});
+      continue;
+    }
+    if (is_invariant_all_pragma(line)) {
+      facts.invariant_all_pragmas.push_back(number);
       continue;
     }
     // The preprocessor's output separates punctuation from words only where the source did, so
@@ -305,7 +364,7 @@ void read_preprocessed(const std::string& text, std::string_view source, GlslFac
 GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
   initialize_glslang_once();
   const TBuiltInResource resources = webgl2_resources(version, stage);
-  const std::string text(glsl);
+  const std::string text = version == GlslVersion::es100 ? joined_continuations(glsl) : std::string(glsl);
   const char* strings[] = {text.c_str()};
   GlslFacts facts;
 
@@ -329,6 +388,7 @@ GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
   if (facts.parsed && shader.getIntermediate() && shader.getIntermediate()->getTreeRoot()) {
     FactsTraverser traverser(text, preprocessed, facts);
     shader.getIntermediate()->getTreeRoot()->traverse(&traverser);
+    traverser.mark_used();
   }
   return facts;
 }

@@ -39,6 +39,11 @@ struct GlslVariable {
   std::string type;       // glslang's words, precision left out: "4-component vector of float"
   std::string precision;  // "highp", "mediump", "lowp" or "" (none: bool, or no default)
   GlslPoint at;
+  bool flat = false;       // `flat` (else smooth: `centroid` does not change how stages match)
+  bool invariant = false;  // `invariant`
+  bool used = false;       // statically used: named in a function, even one never called
+  bool sampler = false;    // an opaque type, whose precision the stages need not share
+  std::vector<GlslVariable> fields;  // a struct's, in order, nested structs as "field.inner"
 };
 
 struct UniformBlock {
@@ -81,6 +86,7 @@ struct GlslFacts {
   std::vector<ExtensionDirective> extensions;           // those #if left in
   std::vector<LineDirective> line_directives;            // those #if left in
   std::vector<GlslPoint> shared_or_packed;               // `shared` / `packed` inside layout(...)
+  std::vector<int> invariant_all_pragmas;                // lines of `#pragma STDGL invariant(all)`, #if left in
   std::string preprocessed;  // the preprocessor's output, each line in its place ("" when it failed)
 };
 

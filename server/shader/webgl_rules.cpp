@@ -5,6 +5,7 @@
 #include <map>
 
 #include "shader/glsl_lines.h"
+#include "shader/link_rules.h"
 #include "shader/webgl_lexical.h"
 
 namespace shadelab::shader {
@@ -37,8 +38,9 @@ Diagnostic stage_error(const StageInput& s, GlslPoint at, std::string message) {
 
 // glslang's words for the limits WebGL sets (texel offsets; Appendix A for GLSL ES 1.00) in
 // the browser's words, with where the rule is written ("limitation" or "limitations": glslang
-// spells it both ways). Any other glslang error is not a WebGL
-// rule: the driver judges that source.
+// spells it both ways). glslang's other errors stand in its own words, which are close to the
+// browser's: ANGLE's translator, which judges every WebGL shader in Chromium, grew from the same
+// 3Dlabs front end.
 struct KnownError {
   std::string_view token, glslang_message, browser_message;
 };
@@ -68,18 +70,70 @@ constexpr std::array kKnownErrors{
                "'defined' : unexpected token after conditional expression: a macro may not bring `defined` into "
                "#if or #elif; write defined(NAME) in the directive itself (GLSL ES leaves it undefined; the browser "
                "refuses it)"},
+    KnownError{"switch", "last case/default label not followed by statements",
+               "'switch' : no statement between the last case label and the end of the switch statement "
+               "(GLSL ES 3.00 section 6.2)"},
     KnownError{"texel offset", "value is out of range",
                "Texture offset value out of valid range: each component must lie in [-8, 7] "
                "(WebGL 2.0: invalid texture offsets)"},
 };
 
+// glslang counts only statements that leave a node behind, so it finds `case 0: ;`, `case 0: {}`
+// and `case 0: int;` empty where the browser sees a statement after the label. Whether any token
+// stands between the last label of the switch on `line` and its closing brace.
+bool statement_after_last_label(std::string_view code, int line) {
+  const std::vector<GlslToken> tokens = tokens_of(code);
+  size_t k = tokens.size();
+  for (size_t i = 0; i < tokens.size() && tokens[i].line <= line; ++i)
+    if (tokens[i].text == "switch") k = i;
+  while (k < tokens.size() && tokens[k].text != "{") ++k;
+  int depth = 0, ternaries = 0;
+  size_t label_end = tokens.size();
+  bool in_label = false;
+  for (; k < tokens.size(); ++k) {
+    const std::string_view t = tokens[k].text;
+    if (t == "{") ++depth;
+    if (t == "}" && --depth == 0) return label_end != tokens.size() && label_end + 1 < k;
+    if (depth != 1) continue;
+    if (t == "case" || t == "default") in_label = true, ternaries = 0;
+    else if (in_label && t == "?") ++ternaries;
+    else if (in_label && t == ":" && ternaries-- == 0) in_label = false, label_end = k;
+  }
+  return false;
+}
+
+// An error glslang finds where the browser finds none.
+bool browser_accepts(const StageInput& s, const GlslError& e) {
+  if (e.token == "switch" && e.message.rfind("last case/default label not followed by statements", 0) == 0)
+    return statement_after_last_label(s.facts.preprocessed.empty() ? s.source.glsl : s.facts.preprocessed, e.at.line);
+  return false;
+}
+
+const KnownError* known_error(const GlslError& e) {
+  for (const auto& known : kKnownErrors)
+    if (e.token.rfind(known.token, 0) == 0 && e.message.rfind(known.glslang_message, 0) == 0) return &known;
+  return nullptr;
+}
+
 std::vector<Diagnostic> known_errors(const StageInput& s) {
   std::vector<Diagnostic> out;
   for (const auto& e : s.facts.errors)
-    for (const auto& known : kKnownErrors)
-      if (e.token.rfind(known.token, 0) == 0 && e.message.rfind(known.glslang_message, 0) == 0)
-        out.push_back(stage_error(s, e.at, std::string(known.browser_message)));
+    if (const KnownError* known = known_error(e); known && !browser_accepts(s, e)) out.push_back(stage_error(s, e.at, std::string(known->browser_message)));
   return out;
+}
+
+// ShadeLab's front end judges the stage, not the driver: a driver may accept what the browser
+// refuses (NVIDIA's takes `float a; a += vec2(1.0);`), so every error glslang finds refuses the
+// stage. Its other errors come in glslang's words ("'token' : message"), after the rules' own,
+// and only on lines no rule has already named: there the rule's words are the browser's.
+void other_front_end_errors(const StageInput& s, std::vector<Diagnostic>& errors) {
+  std::vector<int> named;
+  for (const auto& d : errors) named.push_back(d.line);
+  for (const auto& e : s.facts.errors) {
+    if (known_error(e) || browser_accepts(s, e)) continue;
+    Diagnostic d = stage_error(s, e.at, "'" + e.token + "' : " + e.message);
+    if (std::find(named.begin(), named.end(), d.line) == named.end()) errors.push_back(std::move(d));
+  }
 }
 
 std::string operator_message(const OperatorUse& use) {
@@ -166,6 +220,16 @@ void extension_rules(const StageInput& s, std::vector<Diagnostic>& errors, std::
   }
 }
 
+// GLSL ES 3.00 section 4.6.1: `#pragma STDGL invariant(all)` makes a vertex shader's outputs
+// invariant; a fragment shader has no outputs it could bind, and the browser refuses it there
+// (ES 1.00 fragment shaders keep it: it binds their varyings).
+void invariant_all_rule(const StageInput& s, std::vector<Diagnostic>& errors) {
+  if (s.stage != Stage::fragment || s.source.version != GlslVersion::es300) return;
+  for (const int line : s.facts.invariant_all_pragmas)
+    errors.push_back(stage_error(s, {line, 0}, "'invariant' : #pragma STDGL invariant(all) can not be used in fragment shader "
+                                               "(GLSL ES 3.00 section 4.6.1: it binds a vertex shader's outputs)"));
+}
+
 // Every rule one stage breaks, in line order.
 std::vector<Diagnostic> stage_rules(const StageInput& s, std::vector<Diagnostic>& warnings) {
   std::vector<Diagnostic> errors = known_errors(s);
@@ -176,33 +240,16 @@ std::vector<Diagnostic> stage_rules(const StageInput& s, std::vector<Diagnostic>
     errors.push_back(stage_error(s, at, "'gl_FragData' : array index for gl_FragData must be constant zero "
                                         "(WebGL 2.0: GLSL ES 1.00 fragment shader output)"));
   extension_rules(s, errors, warnings);
+  invariant_all_rule(s, errors);
+  other_front_end_errors(s, errors);
   std::stable_sort(errors.begin(), errors.end(), [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
   return errors;
 }
 
-const UniformBlock* find_block(const GlslFacts& facts, const std::string& name) {
-  for (const auto& b : facts.uniform_blocks)
-    if (b.name == name) return &b;
-  return nullptr;
-}
-
-// GLSL ES 3.00 section 4.3.7: a block the stages share matches member for member, precisions
-// included; Mesa does not compare precisions, the browser does.
-std::vector<Diagnostic> block_precision_rules(const StageInput& vs, const StageInput& fs) {
+std::vector<Diagnostic> link_rules(const StageInput& vs, const StageInput& fs) {
   std::vector<Diagnostic> out;
-  for (const auto& fb : fs.facts.uniform_blocks) {
-    const UniformBlock* vb = find_block(vs.facts, fb.name);
-    if (!vb || vb->members.size() != fb.members.size()) continue;
-    for (size_t k = 0; k < fb.members.size(); ++k) {
-      const auto &v = vb->members[k], &f = fb.members[k];
-      if (v.name != f.name || v.type != f.type || v.precision == f.precision) continue;  // other differences: the driver's
-      out.push_back(located(fs, "link", f.at, "error",
-                            "Precisions of uniform block members differ between shaders: '" + fb.name + "." + f.name + "' is " +
-                                (v.precision.empty() ? "without precision" : v.precision) + " in the vertex shader and " +
-                                (f.precision.empty() ? "without precision" : f.precision) +
-                                " in the fragment shader (GLSL ES 3.00 section 4.3.7)"));
-    }
-  }
+  for (auto& broken : link_rule_breaks(vs.facts, fs.facts, fs.source.version))
+    out.push_back(located(broken.stage == Stage::vertex ? vs : fs, "link", broken.at, "error", std::move(broken.message)));
   return out;
 }
 
@@ -224,12 +271,30 @@ void default_to_std140(std::string& glsl, const GlslFacts& facts) {
   else glsl.insert(end + 1, insert);
 }
 
-void rewrite_for_driver(StageInput& s) {
+// Whether an extension was left out: the stage is then another program, to be judged again.
+bool rewrite_for_driver(StageInput& s) {
   evaluate_line_directives(s.source.glsl, s.facts);
+  bool left_out = false;
   for (const auto& d : s.facts.extensions)
-    if (d.name != "all" && d.behavior != "disable" && d.behavior != "require" && !extension_supported(d.name, s.source.version))
+    if (d.name != "all" && d.behavior != "disable" && d.behavior != "require" && !extension_supported(d.name, s.source.version)) {
       replace_line(s.source.glsl, d.line, "");
+      left_out = true;
+    }
   if (s.source.version == GlslVersion::es300 && !s.facts.uniform_blocks.empty()) default_to_std140(s.source.glsl, s.facts);
+  return left_out;
+}
+
+// The browser goes on without an extension it does not support, so what that extension brings
+// (ES 1.00's dFdx) is refused: the stage is judged again as the driver will get it.
+std::vector<Diagnostic> judged_without_extensions(StageInput& s) {
+  s.facts = read_glsl(s.source.glsl, s.stage, s.source.version);
+  std::vector<Diagnostic> errors;
+  other_front_end_errors(s, errors);
+  return errors;
+}
+
+std::string_view stage_breaks(Stage stage) {
+  return stage == Stage::vertex ? "the vertex shader breaks a WebGL rule" : "the fragment shader breaks a WebGL rule";
 }
 
 }  // namespace
@@ -240,48 +305,18 @@ Expected<WebglChecked> apply_webgl_rules(UnwrappedSource& vertex, UnwrappedSourc
   StageInput fs{Stage::fragment, fragment, fragment_file, read_glsl(fragment.glsl, Stage::fragment, fragment.version)};
   WebglChecked out;
   if (auto errors = stage_rules(vs, out.warnings); !errors.empty())
-    return rule_error(ErrorCode::compile_failed, "the vertex shader breaks a WebGL rule", std::move(errors));
+    return rule_error(ErrorCode::compile_failed, std::string(stage_breaks(Stage::vertex)), std::move(errors));
   if (auto errors = stage_rules(fs, out.warnings); !errors.empty())
-    return rule_error(ErrorCode::compile_failed, "the fragment shader breaks a WebGL rule", std::move(errors));
+    return rule_error(ErrorCode::compile_failed, std::string(stage_breaks(Stage::fragment)), std::move(errors));
   if (vs.facts.parsed && fs.facts.parsed)
-    if (auto errors = block_precision_rules(vs, fs); !errors.empty())
+    if (auto errors = link_rules(vs, fs); !errors.empty())
       return rule_error(ErrorCode::link_failed, "the shaders do not link", std::move(errors));
-  rewrite_for_driver(vs);
-  rewrite_for_driver(fs);
+  for (StageInput* s : {&vs, &fs})
+    if (rewrite_for_driver(*s))
+      if (auto errors = judged_without_extensions(*s); !errors.empty())
+        return rule_error(ErrorCode::compile_failed, std::string(stage_breaks(s->stage)), std::move(errors));
   out.vertex = std::move(vs.facts);
   out.fragment = std::move(fs.facts);
-  return out;
-}
-
-std::vector<Diagnostic> link_failure_causes(const WebglChecked& checked, const UnwrappedSource& fragment,
-                                            const ShaderFile& fragment_file) {
-  std::vector<Diagnostic> out;
-  const auto cause = [&](GlslPoint at, std::string message) {
-    out.push_back(located_in(fragment, fragment_file, "link", at, "error", std::move(message)));
-  };
-
-  std::map<std::string, const GlslVariable*> outputs;
-  for (const auto& o : checked.vertex.outputs) outputs[o.name] = &o;
-  for (const auto& in : checked.fragment.inputs) {
-    const auto it = outputs.find(in.name);
-    if (it == outputs.end())
-      cause(in.at, "the fragment shader's input '" + in.name + "' is not an output of the vertex shader");
-    else if (it->second->type != in.type)
-      cause(in.at, "'" + in.name + "' is " + it->second->type + " out of the vertex shader but " + in.type + " into the fragment shader");
-  }
-  std::map<std::string, const GlslVariable*> uniforms;
-  for (const auto& u : checked.vertex.uniforms) uniforms[u.name] = &u;
-  for (const auto& u : checked.fragment.uniforms)
-    if (const auto it = uniforms.find(u.name); it != uniforms.end() && it->second->type != u.type)
-      cause(u.at, "the uniform '" + u.name + "' is " + it->second->type + " in the vertex shader but " + u.type + " in the fragment shader");
-  for (const auto& fb : checked.fragment.uniform_blocks) {
-    const UniformBlock* vb = find_block(checked.vertex, fb.name);
-    if (!vb) continue;
-    bool same = vb->members.size() == fb.members.size();
-    for (size_t k = 0; same && k < fb.members.size(); ++k)
-      same = vb->members[k].name == fb.members[k].name && vb->members[k].type == fb.members[k].type;
-    if (!same) cause(fb.at, "the uniform block '" + fb.name + "' has different members in the two shaders (names, types and order must match)");
-  }
   return out;
 }
 

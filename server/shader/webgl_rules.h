@@ -5,8 +5,10 @@
 // GLSL ES 1.00 Appendix A. A grader that compiled what the browser refused would grade a program
 // the student never saw run. docs/webgl-rules.md lists every rule with its source.
 //
-// Only rules are added here: what glslang cannot parse goes to the driver unjudged, and the
-// driver's verdict stands.
+// ShadeLab's front end decides, not the driver: each stage is compiled by glslang as GLSL ES,
+// every error it finds refuses the stage, and the pair is linked by shader/link_rules.h. The
+// driver compiles only what the browser would run (a GPU driver may accept more, or refuse with
+// a log that names nothing).
 #include <string>
 #include <vector>
 
@@ -18,7 +20,7 @@
 namespace shadelab::shader {
 
 struct WebglChecked {
-  GlslFacts vertex, fragment;         // for naming a link failure's cause
+  GlslFacts vertex, fragment;
   std::vector<Diagnostic> warnings;   // the browser's warnings: extensions it does not support
 };
 
@@ -33,10 +35,5 @@ struct WebglChecked {
 // the student's file, in the browser's words.
 Expected<WebglChecked> apply_webgl_rules(UnwrappedSource& vertex, UnwrappedSource& fragment,
                                         const ShaderFile& vertex_file, const ShaderFile& fragment_file);
-
-// What the driver's refusal to link most likely means, in words, located in the fragment shader:
-// an input no output writes, types or block members that differ. Empty when none is found.
-std::vector<Diagnostic> link_failure_causes(const WebglChecked& checked, const UnwrappedSource& fragment,
-                                            const ShaderFile& fragment_file);
 
 }  // namespace shadelab::shader

@@ -11,10 +11,14 @@ export const repo = path.resolve(here, "../..");
 export const artifacts = process.env.SHADELAB_ARTIFACTS ?? path.join(repo, "build", "browser-artifacts");
 mkdirSync(artifacts, { recursive: true });
 
+// SHADELAB_SERVER_PRELOAD names a library preloaded into the server and its workers alone (the
+// browser keeps its own GL): tests/driver/accepts_all.cpp, a driver that accepts every shader.
 export async function startServer(extraArgs = []) {
   const bin = process.env.SHADELAB_BIN ?? path.join(repo, "build", "shadelab");
+  const preload = process.env.SHADELAB_SERVER_PRELOAD;
   const child = spawn(bin, ["serve", "--port", "0", "--workers", "2", "--web-root", path.join(repo, "web"), ...extraArgs], {
     stdio: ["ignore", "ignore", "pipe"],
+    env: preload ? { ...process.env, LD_PRELOAD: preload } : process.env,
   });
   const port = await new Promise((resolve, reject) => {
     let err = "";

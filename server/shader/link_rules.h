@@ -1,0 +1,30 @@
+#pragma once
+// What links a vertex shader to a fragment shader, judged by ShadeLab as the browser judges it,
+// before any driver: a GPU driver may link what the browser refuses, or refuse with a log that
+// names nothing ("Link info ---------"). The rules and their words are Chromium's (ANGLE's link),
+// probed case by case in Debian's Chromium (tests/webgl_rules/cases.json keeps them):
+//  - a fragment input the code uses needs a vertex output of its name, type, array size and
+//    interpolation (`flat` or not; `centroid` and precision may differ); in GLSL ES 1.00 its
+//    invariance too. An input the code never names binds nothing (GLSL ES 3.00 section 4.3.4);
+//  - a uniform both stages declare has one type (a struct's fields included), used or not, and
+//    one precision where both stages use it (samplers aside);
+//  - a uniform block both declare has the same members, types and precisions.
+// docs/webgl-rules.md lists them with their sources.
+#include <string>
+#include <vector>
+
+#include "shader/glsl_facts.h"
+#include "shader/shader_source.h"
+
+namespace shadelab::shader {
+
+struct LinkRuleBreak {
+  Stage stage;  // where the student reads it: the stage whose declaration is named
+  GlslPoint at;
+  std::string message;
+};
+
+// Every rule the pair breaks, in the order the fragment shader declares what breaks it.
+std::vector<LinkRuleBreak> link_rule_breaks(const GlslFacts& vertex, const GlslFacts& fragment, GlslVersion version);
+
+}  // namespace shadelab::shader
