@@ -250,6 +250,28 @@ TEST_F(GradeTest, CompileErrorsScoreZeroWithTheLine) {
   EXPECT_NE(r["messages"][0].get<std::string>().find("compile error at phong_frag.js line"), std::string::npos) << r.dump();
 }
 
+// Shaders the browser runs that this server's driver will not (Mesa refuses a uniform of two
+// precisions that only the fragment shader uses; Chromium links it) are the grader's failure,
+// answered as such, never the student's 0.
+TEST_F(GradeTest, ADriverThatRefusesWhatTheBrowserRunsGivesNoGrade) {
+  json job = submission("specular", "void main", "uniform highp vec4 uUnusedTint;\nvoid main", true);
+  std::string fragment = job["fragment"];
+  fragment.replace(fragment.find("void main"), 9, "uniform mediump vec4 uUnusedTint;\nvoid main");
+  fragment.replace(fragment.find("fragColor = color;"), 18, "fragColor = color + 0.0 * uUnusedTint;");
+  job["fragment"] = fragment;
+  job["reference"] = "specular";
+  auto r = server_->client().Post("/api/grade", job.dump(), "application/json");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 500) << r->body;
+  const json p = json::parse(r->body);
+  EXPECT_EQ(p["code"], "driver_refused") << r->body;
+  EXPECT_FALSE(p.contains("score"));
+  EXPECT_NE(p["detail"].get<std::string>().find("not the student's error"), std::string::npos) << r->body;
+  auto metrics = server_->client().Get("/metrics");
+  ASSERT_TRUE(metrics);
+  EXPECT_EQ(metrics->body.find("shadelab_driver_refusals_total 0"), std::string::npos);
+}
+
 TEST_F(GradeTest, GradescopeOutputHasEveryRequiredField) {
   json job = submission("diffuse");
   job["format"] = "gradescope";

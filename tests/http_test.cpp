@@ -229,7 +229,8 @@ TEST_F(HttpTest, PresetsHealthMetricsAndOpenApiAreServed) {
   auto metrics = client().Get("/metrics");
   ASSERT_TRUE(metrics);
   for (const char* name : {"shadelab_requests_total", "shadelab_request_duration_seconds_bucket", "shadelab_queue_depth",
-                           "shadelab_worker_crashes_total", "shadelab_cache_hits_total", "shadelab_compile_failures_total"})
+                           "shadelab_worker_crashes_total", "shadelab_cache_hits_total", "shadelab_compile_failures_total",
+                           "shadelab_driver_refusals_total"})
     EXPECT_NE(metrics->body.find(name), std::string::npos) << name;
   auto openapi = client().Get("/api/openapi.json");
   ASSERT_TRUE(openapi);

@@ -52,6 +52,7 @@ constexpr ErrorCodeInfo kCodes[] = {
     {ErrorCode::grader_failed,              "grader_failed",              500, "The grader's own work failed",                          false, false},
     {ErrorCode::frames_invalid,             "frames_invalid",             422, "A saved frame cannot be read",                          true,  false},
     {ErrorCode::reference_private,          "reference_private",          403, "The course's references are for its staff",             false, false},
+    {ErrorCode::driver_refused,             "driver_refused",             500, "This server's graphics driver refuses shaders the browser runs", false, false},
 };
 }  // namespace
 

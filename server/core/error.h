@@ -59,6 +59,7 @@ enum class ErrorCode {
   grader_failed,           // the grader's renders ran over their CPU budget, crashed or ran out of memory
   frames_invalid,          // a saved frame cannot be read: not a PNG, truncated, larger than a canvas
   reference_private,       // a reference's source or frames asked for without a staff key
+  driver_refused,          // the driver refuses shaders ShadeLab's front end (the browser's rules) accepts
 };
 
 // Everything known about a code, in one row of the table in error.cpp.

@@ -49,7 +49,12 @@ std::optional<Explanation> formula_explanation(GradeRenders& renders, const Grad
 
 Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
                                           const std::string& mesh_key, const EnterPhase& enter) {
-  const auto ungradable = [&](const Error& e) { return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}}; };
+  // What the student's shaders caused is their grade (0, with the reason); what they did not (a
+  // driver that refuses what the browser runs) is the grader's failure, never the student's 0.
+  const auto ungradable = [&](const Error& e) -> Expected<GradeOutput> {
+    if (!info(e.code).submission_caused) return e;
+    return GradeOutput{failed_submission(e, spec.reference_name, spec.options.max_score), {}};
+  };
   renders.begin(spec);
   auto compiled = renders.renderer().compile(submission.vertex, submission.fragment);
   if (!compiled) return ungradable(compiled.error());
@@ -64,7 +69,7 @@ Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, c
   r.pixel_type = image::PixelType::u8;
   r.semantics = render::FloatSemantics::ieee;
   auto student = renders.submission_under_lights(spec, r, **mesh);
-  if (!student && (student.error().code == ErrorCode::compile_failed || student.error().code == ErrorCode::link_failed)) {
+  if (!student && student.error().code == ErrorCode::driver_refused) {
     render::RenderRequest as_compiled = r;
     as_compiled.semantics = render::FloatSemantics::as_compiled;
     student = renders.submission_under_lights(spec, as_compiled, **mesh);

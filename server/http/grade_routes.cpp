@@ -34,7 +34,10 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
   built->settings.reference_store = c.config.reference_places();
   built->settings.limits = c.config.limits.render;
   auto graded = road::grade_saved_frames(c.pool, course, *built->checkpoint, std::move(built->submission), built->settings);
-  if (!graded) return send_problem(res, graded.error(), req.path);
+  if (!graded) {
+    c.count(graded.error());
+    return send_problem(res, graded.error(), req.path);
+  }
   auto& result = graded->result;
   auto& warnings = result.frames.warnings;
   warnings.insert(warnings.end(), parsed->warnings.begin(), parsed->warnings.end());
@@ -77,7 +80,10 @@ void grade(RouteContext& c, const course::Viewer& viewer, const httplib::Request
   if (!course) return send_problem(res, course.error(), req.path);
   if (has_saved_frames(*raw)) return grade_saved(c, *raw, **course, req, res);
   auto graded = graded_code(c, *raw, **course, viewer);
-  if (!graded) return send_problem(res, graded.error(), req.path);
+  if (!graded) {
+    c.count(graded.error());
+    return send_problem(res, graded.error(), req.path);
+  }
   if (field_or<std::string>(raw->fields, "format", "json") == "gradescope")
     return send_json(res, 200, grade::to_gradescope(graded->result.report, graded->seconds));
   json body = grade::to_json(graded->result.report);

@@ -64,6 +64,7 @@ std::string Metrics::render(const worker::PoolStats& pool, bool ready) const {
   histogram("shadelab_request_duration_seconds", "route", durations_);
   histogram("shadelab_phase_duration_seconds", "phase", phases_);
   out << "# TYPE shadelab_compile_failures_total counter\nshadelab_compile_failures_total " << compile_failures_ << "\n"
+      << "# TYPE shadelab_driver_refusals_total counter\nshadelab_driver_refusals_total " << driver_refusals_ << "\n"
       << "# TYPE shadelab_worker_crashes_total counter\nshadelab_worker_crashes_total " << pool.crashes << "\n"
       << "# TYPE shadelab_worker_timeouts_total counter\nshadelab_worker_timeouts_total " << pool.timeouts << "\n"
       << "# TYPE shadelab_worker_out_of_memory_total counter\nshadelab_worker_out_of_memory_total " << pool.out_of_memory << "\n"

@@ -16,6 +16,7 @@ class Metrics {
   void request(const std::string& route, int status, double seconds);
   void phase(const std::string& phase, double seconds);
   void compile_failure() { std::lock_guard l(mutex_); ++compile_failures_; }
+  void driver_refusal() { std::lock_guard l(mutex_); ++driver_refusals_; }
   void cache(bool hit) { std::lock_guard l(mutex_); ++(hit ? cache_hits_ : cache_misses_); }
   std::string render(const worker::PoolStats& pool, bool ready) const;
 
@@ -30,7 +31,7 @@ class Metrics {
   mutable std::mutex mutex_;
   std::map<std::pair<std::string, int>, std::uint64_t> requests_;
   std::map<std::string, Histogram> durations_, phases_;
-  std::uint64_t compile_failures_ = 0, cache_hits_ = 0, cache_misses_ = 0;
+  std::uint64_t compile_failures_ = 0, driver_refusals_ = 0, cache_hits_ = 0, cache_misses_ = 0;
 };
 
 // The connection layer's counters: accepted and refused connections, deadlines missed, open and

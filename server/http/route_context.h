@@ -34,13 +34,18 @@ struct RouteContext {
   Tenants& tenants;
   store::SharedStore* shared;  // null without --redis
 
+  // A compile failure, or a driver that refused what the browser runs, in the metrics.
+  void count(const Error& e) const {
+    if (e.code == ErrorCode::compile_failed || e.code == ErrorCode::link_failed) metrics.compile_failure();
+    if (e.code == ErrorCode::driver_refused) metrics.driver_refusal();
+  }
+
   // Runs a job and records its queue time (and a compile failure) in the metrics.
   template <class Result>
   Expected<worker::Answered<Result>> run(worker::Message job) {
     auto answered = worker::run<Result>(pool, std::move(job));
     if (!answered) {
-      const auto code = answered.error().code;
-      if (code == ErrorCode::compile_failed || code == ErrorCode::link_failed) metrics.compile_failure();
+      count(answered.error());
     } else {
       metrics.phase("queue", answered->queue_ms / 1000);
     }

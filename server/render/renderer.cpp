@@ -3,10 +3,11 @@
 #include "core/hash.h"
 #include "core/lru_cache.h"
 
-#include <chrono>
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdint>
+#include <iostream>
 #include <optional>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -80,6 +81,7 @@ struct Renderer::State {
     gl::Program* program;
     shader::UnwrappedSource vertex, fragment;
     std::vector<Diagnostic> webgl_warnings;  // the browser's own, which the driver does not give
+    std::vector<shader::StandIn> renamed;    // for the driver: its words get the student's names back
     bool cached;
     bool rewritten = false;  // by shader/uniform_variants.h: its runs' colours, then their census
     shader::VariantOutputs outputs{1, 0};
@@ -110,42 +112,47 @@ struct Renderer::State {
     }
     std::string key = vertex->glsl + '\0' + fragment->glsl;
     if (gl::Program* hit = programs.find(key))
-      return Built{hit, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), true, rewritten, outputs};
+      return Built{hit, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), std::move(webgl->renamed), true, rewritten,
+                   outputs};
 
     std::optional<gl::BuildFailure> failure;
     gl::Program program = gl::Program::build(vertex->glsl, fragment->glsl, kBindings, failure);
-    if (failure) return build_error(*failure, vf, ff, *vertex, *fragment);
+    if (failure) return build_error(*failure, vf, ff, *vertex, *fragment, webgl->renamed);
     gl::Program& kept = programs.insert(std::move(key), std::move(program), 0);
-    return Built{&kept, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), false, rewritten, outputs};
+    return Built{&kept, std::move(*vertex), std::move(*fragment), std::move(webgl->warnings), std::move(webgl->renamed), false, rewritten,
+                 outputs};
   }
 
+  // The front end accepted the pair, as the browser would: a driver that refuses it is this
+  // server's limit, never the student's error. The driver's words stay for the staff and the
+  // operator's log (stderr), which also counts it.
   static Error build_error(const gl::BuildFailure& f, const shader::ShaderFile& vf, const shader::ShaderFile& ff,
-                           const shader::UnwrappedSource& vs, const shader::UnwrappedSource& fs) {
+                           const shader::UnwrappedSource& vs, const shader::UnwrappedSource& fs,
+                           const std::vector<shader::StandIn>& renamed) {
     Error e;
+    e.code = ErrorCode::driver_refused;
     e.driver_log = f.log;
+    std::string what;
     switch (f.stage) {
       case gl::BuildStage::vertex:
-        e.code = ErrorCode::compile_failed;
         e.diagnostics = shader::parse_driver_log(f.log, "vertex", vf.name, &vs);
-        e.message = "the vertex shader does not compile";
+        what = "compile the vertex shader";
         break;
       case gl::BuildStage::fragment:
-        e.code = ErrorCode::compile_failed;
         e.diagnostics = shader::parse_driver_log(f.log, "fragment", ff.name, &fs);
-        e.message = "the fragment shader does not compile";
+        what = "compile the fragment shader";
         break;
-      case gl::BuildStage::link: {
-        e.code = ErrorCode::link_failed;
+      case gl::BuildStage::link:
         e.diagnostics = shader::parse_driver_log(f.log, "link", "", nullptr);
-        e.message = "the shaders compile but do not link";
+        what = "link the shaders";
         break;
-      }
     }
-    for (const auto& d : e.diagnostics)
-      if (d.severity == "error") {
-        e.message += ": " + d.message.substr(0, d.message.find('\n'));
-        break;
-      }
+    shader::restore_names(e.diagnostics, renamed);
+    shader::restore_names(e.driver_log, renamed);
+    e.message = "the shaders pass the browser's rules, but this server's graphics driver will not " + what +
+                ": ShadeLab cannot run them here (not the student's error; staff can see the driver's log)";
+    std::cerr << "shadelab: driver_refused: the driver would not " << what << " that ShadeLab's front end accepted: "
+              << e.driver_log.substr(0, e.driver_log.find('\n')) << "\n";
     return e;
   }
 
@@ -158,6 +165,7 @@ struct Renderer::State {
     auto link = shader::parse_driver_log(built.program->link_log(), "link", "", nullptr);
     out.insert(out.end(), fragment.begin(), fragment.end());
     out.insert(out.end(), link.begin(), link.end());
+    shader::restore_names(out, built.renamed);
     return out;
   }
 

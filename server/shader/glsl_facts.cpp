@@ -98,7 +98,10 @@ GlslVariable variable(const std::string& name, const glslang::TType& type, const
   v.flat = q.flat;
   v.invariant = q.invariant;
   v.sampler = type.getBasicType() == glslang::EbtSampler;
-  if (type.isStruct()) add_members(type, "", v.fields);
+  if (type.isStruct()) {
+    v.struct_name = type.getTypeName().c_str();
+    add_members(type, "", v.fields);
+  }
   return v;
 }
 

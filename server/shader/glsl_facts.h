@@ -43,6 +43,7 @@ struct GlslVariable {
   bool invariant = false;  // `invariant`
   bool used = false;       // statically used: named in a function, even one never called
   bool sampler = false;    // an opaque type, whose precision the stages need not share
+  std::string struct_name;           // a struct's type name ("Light"); "" for any other type
   std::vector<GlslVariable> fields;  // a struct's, in order, nested structs as "field.inner"
 };
 

@@ -24,6 +24,24 @@ std::string_view type_difference(std::string_view vertex, std::string_view fragm
   return "Types";
 }
 
+// Types as the stages must share them: precision aside, a struct by its name and its fields'
+// names and types in order (glslang's words for a struct spell its fields' precisions).
+bool same_type(const GlslVariable& a, const GlslVariable& b) {
+  if (a.fields.empty() || b.fields.empty()) return a.type == b.type;
+  if (a.struct_name != b.struct_name || a.fields.size() != b.fields.size() || is_array(a.type) != is_array(b.type) ||
+      a.type.substr(0, a.type.find("structure")) != b.type.substr(0, b.type.find("structure")))
+    return false;
+  for (size_t k = 0; k < a.fields.size(); ++k)
+    if (a.fields[k].name != b.fields[k].name || !same_type(a.fields[k], b.fields[k])) return false;
+  return true;
+}
+
+// How the stages name a type in a message: a struct by its name.
+std::string type_named(const GlslVariable& v) {
+  if (v.fields.empty()) return v.type;
+  return v.type.substr(0, v.type.find("structure")) + "struct " + v.struct_name;
+}
+
 std::string both(std::string_view vertex, std::string_view fragment) {
   return ": " + std::string(vertex) + " in the vertex shader, " + std::string(fragment) + " in the fragment shader";
 }
@@ -39,8 +57,9 @@ void match_input(const GlslVariable& in, const GlslVariable* out, GlslVersion ve
            "that name (GLSL ES 3.00 section 4.3.4)");
     return;
   }
-  if (out->type != in.type)
-    broken(std::string(type_difference(out->type, in.type)) + " of " + varying + std::string(kBetween) + both(out->type, in.type));
+  if (!same_type(*out, in))
+    broken(std::string(type_difference(out->type, in.type)) + " of " + varying + std::string(kBetween) +
+           both(type_named(*out), type_named(in)));
   else if (out->flat != in.flat)
     broken("Interpolation types of " + varying + std::string(kBetween) +
            both(out->flat ? "flat" : "smooth", in.flat ? "flat" : "smooth") +
@@ -67,10 +86,10 @@ void match_precision(const GlslVariable& vertex, const GlslVariable& fragment, c
 }
 
 void match_uniform(const GlslVariable& vertex, const GlslVariable& fragment, std::vector<LinkRuleBreak>& breaks) {
-  if (vertex.type != fragment.type) {
+  if (!same_type(vertex, fragment)) {
     breaks.push_back({Stage::fragment, fragment.at,
                       std::string(type_difference(vertex.type, fragment.type)) + " of uniform '" + fragment.name + "'" +
-                          std::string(kBetween) + both(vertex.type, fragment.type)});
+                          std::string(kBetween) + both(type_named(vertex), type_named(fragment))});
     return;
   }
   if (vertex.used && fragment.used) match_precision(vertex, fragment, fragment.name, fragment.at, breaks);

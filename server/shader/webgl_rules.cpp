@@ -6,6 +6,7 @@
 
 #include "shader/glsl_lines.h"
 #include "shader/link_rules.h"
+#include "shader/stand_in_names.h"
 #include "shader/webgl_lexical.h"
 
 namespace shadelab::shader {
@@ -73,6 +74,16 @@ constexpr std::array kKnownErrors{
     KnownError{"switch", "last case/default label not followed by statements",
                "'switch' : no statement between the last case label and the end of the switch statement "
                "(GLSL ES 3.00 section 6.2)"},
+    KnownError{"sampler/image", "type requires declaration of default precision qualifier",
+               "No precision specified: a sampler other than sampler2D and samplerCube has no default precision; "
+               "give it one, as in `uniform mediump sampler3D s;` (GLSL ES 3.00 section 4.5.4)"},
+    KnownError{"texel offset", "argument must be compile-time constant",
+               "Texture offset must be a constant expression (GLSL ES 3.00 section 8.8)"},
+    KnownError{"invariant", "can only apply to an output",
+               "'invariant' : Cannot be qualified as invariant: only a vertex shader's outputs can be "
+               "(GLSL ES 3.00 section 4.6.1)"},
+    KnownError{"variable indexing sampler array", "not supported for this version",
+               "'[' : array index for samplers must be constant integral expressions (GLSL ES 3.00 section 4.1.7.1)"},
     KnownError{"texel offset", "value is out of range",
                "Texture offset value out of valid range: each component must lie in [-8, 7] "
                "(WebGL 2.0: invalid texture offsets)"},
@@ -301,20 +312,26 @@ std::string_view stage_breaks(Stage stage) {
 
 Expected<WebglChecked> apply_webgl_rules(UnwrappedSource& vertex, UnwrappedSource& fragment, const ShaderFile& vertex_file,
                                         const ShaderFile& fragment_file) {
+  WebglChecked out;
+  out.renamed = rename_reserved_names(vertex.glsl, fragment.glsl, NamesFor::front_end);
+  const auto refused = [&](ErrorCode code, std::string_view what, std::vector<Diagnostic> errors) {
+    restore_names(errors, out.renamed);
+    return rule_error(code, std::string(what), std::move(errors));
+  };
   StageInput vs{Stage::vertex, vertex, vertex_file, read_glsl(vertex.glsl, Stage::vertex, vertex.version)};
   StageInput fs{Stage::fragment, fragment, fragment_file, read_glsl(fragment.glsl, Stage::fragment, fragment.version)};
-  WebglChecked out;
   if (auto errors = stage_rules(vs, out.warnings); !errors.empty())
-    return rule_error(ErrorCode::compile_failed, std::string(stage_breaks(Stage::vertex)), std::move(errors));
+    return refused(ErrorCode::compile_failed, stage_breaks(Stage::vertex), std::move(errors));
   if (auto errors = stage_rules(fs, out.warnings); !errors.empty())
-    return rule_error(ErrorCode::compile_failed, std::string(stage_breaks(Stage::fragment)), std::move(errors));
+    return refused(ErrorCode::compile_failed, stage_breaks(Stage::fragment), std::move(errors));
   if (vs.facts.parsed && fs.facts.parsed)
-    if (auto errors = link_rules(vs, fs); !errors.empty())
-      return rule_error(ErrorCode::link_failed, "the shaders do not link", std::move(errors));
+    if (auto errors = link_rules(vs, fs); !errors.empty()) return refused(ErrorCode::link_failed, "the shaders do not link", std::move(errors));
   for (StageInput* s : {&vs, &fs})
     if (rewrite_for_driver(*s))
       if (auto errors = judged_without_extensions(*s); !errors.empty())
-        return rule_error(ErrorCode::compile_failed, std::string(stage_breaks(s->stage)), std::move(errors));
+        return refused(ErrorCode::compile_failed, stage_breaks(s->stage), std::move(errors));
+  for (auto& r : rename_reserved_names(vertex.glsl, fragment.glsl, NamesFor::driver)) out.renamed.push_back(std::move(r));
+  restore_names(out.warnings, out.renamed);
   out.vertex = std::move(vs.facts);
   out.fragment = std::move(fs.facts);
   return out;

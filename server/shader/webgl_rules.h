@@ -16,12 +16,14 @@
 #include "core/expected.h"
 #include "shader/glsl_facts.h"
 #include "shader/shader_source.h"
+#include "shader/stand_in_names.h"
 
 namespace shadelab::shader {
 
 struct WebglChecked {
   GlslFacts vertex, fragment;
   std::vector<Diagnostic> warnings;   // the browser's warnings: extensions it does not support
+  std::vector<StandIn> renamed;       // names the browser runs and glslang or the driver reserve
 };
 
 // Checks both stages and what links them; then rewrites each stage's GLSL where WebGL's defaults
