@@ -104,7 +104,7 @@ TEST_F(HttpTest, MultipartCompileErrorPointsAtTheUploadedFilesLine) {
   const auto d = body_json(r)["diagnostics"].at(0);
   EXPECT_EQ(d["file"], "phong_frag.js");
   EXPECT_EQ(d["line"], 4);
-  EXPECT_FALSE(body_json(r)["driverLog"].get<std::string>().empty());
+  EXPECT_FALSE(body_json(r).contains("driverLog"));  // ShadeLab's front end refused it, no driver
   testkit::expect_conforms(*r, "/api/render", "post");
 }
 

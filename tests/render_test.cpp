@@ -103,7 +103,7 @@ TEST(RenderTest, CompileErrorInJsModulePointsAtTheStudentsLine) {
   EXPECT_EQ(d.line, 9);
   EXPECT_GT(d.column, 0);
   EXPECT_NE(d.message.find("uAmbientColr"), std::string::npos);
-  EXPECT_FALSE(r.error().driver_log.empty());
+  EXPECT_TRUE(r.error().driver_log.empty());  // the front end's verdict: no driver saw it
 }
 
 TEST(RenderTest, VertexSyntaxErrorAndMissingMainAreCompileErrors) {
@@ -119,7 +119,8 @@ TEST(RenderTest, VertexSyntaxErrorAndMissingMainAreCompileErrors) {
   request.fragment.text = "#version 300 es\nprecision highp float;\nout vec4 c;\n";
   r = render_frames(request, bunny());
   ASSERT_FALSE(r);
-  EXPECT_TRUE(r.error().code == ErrorCode::compile_failed || r.error().code == ErrorCode::link_failed);
+  EXPECT_EQ(r.error().code, ErrorCode::compile_failed);  // as the browser says it: "Missing main()"
+  EXPECT_NE(r.error().diagnostics.at(0).message.find("Missing main()"), std::string::npos) << r.error().format();
 }
 
 TEST(RenderTest, VaryingMismatchIsALinkError) {
@@ -128,8 +129,9 @@ TEST(RenderTest, VaryingMismatchIsALinkError) {
   auto r = render_frames(request, bunny());
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::link_failed);
-  EXPECT_FALSE(r.error().driver_log.empty());
+  EXPECT_TRUE(r.error().driver_log.empty());  // found by ShadeLab's link, before the driver
   EXPECT_NE(r.error().message.find("link"), std::string::npos);
+  EXPECT_NE(r.error().message.find("FRAGMENT varying vColour does not match any VERTEX varying"), std::string::npos);
 }
 
 TEST(RenderTest, OneMegabyteSourceIsRejectedBeforeTheDriver) {

@@ -73,6 +73,62 @@ std::vector<GlslError> read_info_log(const char* log) {
   return out;
 }
 
+// "f(f1;" -> "f": glslang names a function by its mangled signature.
+std::string function_name(std::string_view mangled) { return std::string(mangled.substr(0, mangled.find('('))); }
+
+// Where a function is first named with its parenthesis (its declaration or definition).
+GlslPoint function_at(std::string_view text, std::string_view name) {
+  const std::vector<std::string_view> lines = lines_of(text);
+  for (size_t k = 0; k < lines.size(); ++k) {
+    const size_t at = whole_word(lines[k], name);
+    if (at == std::string_view::npos) continue;
+    const size_t after = lines[k].find_first_not_of(" \t", at + name.size());
+    if (after != std::string_view::npos && lines[k][after] == '(') return {static_cast<int>(k) + 1, static_cast<int>(at) + 1};
+  }
+  return {};
+}
+
+// The errors glslang finds only when it links a stage alone, which the browser's compile finds:
+// no main, recursion, a function called and never defined. glslang prints the function on the
+// line after the error ("ERROR: Linking fragment stage: Recursion detected:" then
+// "    f(f1; calling f(f1;"): the error takes the function's name and the line it is declared on.
+std::vector<GlslError> read_link_log(const char* log, std::string_view text) {
+  std::vector<GlslError> out;
+  std::istringstream in(log ? log : "");
+  bool naming = false;  // the last error waits for its function on the next line
+  for (std::string line; std::getline(in, line);) {
+    if (naming && line.rfind("    ", 0) == 0 && !out.empty()) {
+      GlslError& e = out.back();
+      e.token = function_name(std::string_view(line).substr(line.find_first_not_of(' ')));
+      e.at = function_at(text, e.token);
+      e.message = e.message.rfind("Recursive", 0) == 0
+                      ? "Recursive function call in the following call chain: " + e.token +
+                            " (GLSL ES 3.00 section 6.1: no function may call itself, directly or through others)"
+                      : "Function " + e.token + "() is called but never defined (declared with no body)";
+      naming = false;
+      continue;
+    }
+    naming = false;
+    if (line.rfind("ERROR: ", 0) != 0) continue;
+    const size_t stage = line.find(" stage: ");
+    const std::string message = stage == std::string::npos ? line.substr(7) : line.substr(stage + 8);
+    GlslError e;
+    if (message.rfind("Missing entry point", 0) == 0) {
+      e.message = "Missing main(): the shader has no `void main()`, where it starts";
+    } else if (message.rfind("Recursion detected", 0) == 0) {
+      e.message = "Recursive function call";
+      naming = true;
+    } else if (message.rfind("No function definition (body) found", 0) == 0) {
+      e.message = "Function called but never defined";
+      naming = true;
+    } else {
+      e.message = message;
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
 std::string precision_of(const glslang::TType& type) {
   switch (type.getQualifier().precision) {
     case glslang::EpqHigh: return "highp";
@@ -392,6 +448,9 @@ GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
     FactsTraverser traverser(text, preprocessed, facts);
     shader.getIntermediate()->getTreeRoot()->traverse(&traverser);
     traverser.mark_used();
+    glslang::TProgram program;  // declared after the shader: destroyed first
+    program.addShader(&shader);
+    if (!program.link(EShMsgDefault)) facts.errors = read_link_log(program.getInfoLog(), text);
   }
   return facts;
 }

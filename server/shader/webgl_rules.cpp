@@ -133,6 +133,15 @@ std::vector<Diagnostic> known_errors(const StageInput& s) {
   return out;
 }
 
+// glslang gives a line, not a column: the column is where the token it quotes first stands on
+// that line (a name as a whole word), so the student's editor can point at it.
+GlslPoint at_its_token(const StageInput& s, const GlslError& e) {
+  if (e.at.column > 0 || e.token.empty() || e.at.line < 1) return e.at;
+  const std::string_view line = line_of(s.source.glsl, e.at.line);
+  const size_t at = identifier_start(e.token[0]) ? whole_word(line, e.token) : line.find(e.token);
+  return at == std::string_view::npos ? e.at : GlslPoint{e.at.line, static_cast<int>(at) + 1};
+}
+
 // ShadeLab's front end judges the stage, not the driver: a driver may accept what the browser
 // refuses (NVIDIA's takes `float a; a += vec2(1.0);`), so every error glslang finds refuses the
 // stage. Its other errors come in glslang's words ("'token' : message"), after the rules' own,
@@ -142,7 +151,7 @@ void other_front_end_errors(const StageInput& s, std::vector<Diagnostic>& errors
   for (const auto& d : errors) named.push_back(d.line);
   for (const auto& e : s.facts.errors) {
     if (known_error(e) || browser_accepts(s, e)) continue;
-    Diagnostic d = stage_error(s, e.at, "'" + e.token + "' : " + e.message);
+    Diagnostic d = stage_error(s, at_its_token(s, e), "'" + e.token + "' : " + e.message);
     if (std::find(named.begin(), named.end(), d.line) == named.end()) errors.push_back(std::move(d));
   }
 }
