@@ -22,8 +22,8 @@
 
 namespace shadelab::cli {
 
-// Each frame's width in the grids PrairieLearn's results show (a grid of nine is 480 pixels wide):
-// small enough that every deliverable's grid and the failed tests' heat maps fit in 1 MB (the
+// Each frame's width in the grids PrairieLearn's results show: small enough that every
+// deliverable's grid and the failed tests' heat maps fit in PrairieLearn's 1 MB (measured on the
 // built-in course's whole hand-in with one deliverable failing: ~640 KB).
 inline constexpr int kGridFrameWidth = 160;
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 
 #include "shader/glsl_lines.h"
 #include "shader/link_rules.h"
@@ -129,7 +128,8 @@ const KnownError* known_error(const GlslError& e) {
 std::vector<Diagnostic> known_errors(const StageInput& s) {
   std::vector<Diagnostic> out;
   for (const auto& e : s.facts.errors)
-    if (const KnownError* known = known_error(e); known && !browser_accepts(s, e)) out.push_back(stage_error(s, e.at, std::string(known->browser_message)));
+    if (const KnownError* known = known_error(e); known && !browser_accepts(s, e))
+      out.push_back(stage_error(s, e.at, std::string(known->browser_message)));
   return out;
 }
 
