@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "http/api_request.h"
-#include "http/code_grade_request.h"
+#include "http/grade_request.h"
 #include "road/code_request.h"
 #include "course/course_reader.h"
 

@@ -24,30 +24,6 @@ json form_value(const std::string& text) {
 
 }  // namespace
 
-Expected<std::vector<render::UniformSetting>> read_uniforms(const json& fields) {
-  std::vector<render::UniformSetting> out;
-  if (!fields.contains("uniforms")) return out;
-  const json& u = fields["uniforms"];
-  if (!u.is_object()) return bad_request("'uniforms' must be an object of GLSL name -> number, boolean or array of numbers");
-  for (const auto& [name, value] : u.items()) {
-    render::UniformSetting s{name, {}};
-    const auto append_value = [&](const json& v) -> Status {
-      if (v.is_boolean()) s.values.push_back(v.get<bool>() ? 1.0 : 0.0);
-      else if (v.is_number()) s.values.push_back(v.get<double>());
-      else return bad_request("uniform '" + s.name + "' must be numbers or booleans; got " + v.dump());
-      return Ok{};
-    };
-    if (value.is_array()) {
-      for (const auto& v : value)
-        if (auto st = append_value(v); !st) return st.take_error();
-    } else if (auto st = append_value(value); !st) {
-      return st.take_error();
-    }
-    out.push_back(std::move(s));
-  }
-  return out;
-}
-
 namespace {
 
 const std::set<std::string> kApiFields = {"course", "vertex",  "fragment", "vertexName", "fragmentName", "preset",
@@ -150,25 +126,14 @@ Status read_job_shaders(const RawRequest& raw, worker::JobKind kind, const Limit
 }
 
 // Size, frames, rotation, samples and uniform values.
-Status read_render_settings(const json& f, render::RenderRequest& r) {
-  auto width = integer_field(f, "width", r.width);
-  auto height = integer_field(f, "height", r.height);
-  auto frames = integer_field(f, "frames", r.frames);
-  auto msaa = integer_field(f, "msaa", r.msaa);
-  auto degrees = number_field(f, "degreesPerFrame", r.degrees_per_frame);
-  for (const Error* e : {width ? nullptr : &width.error(), height ? nullptr : &height.error(),
-                         frames ? nullptr : &frames.error(), msaa ? nullptr : &msaa.error(), degrees ? nullptr : &degrees.error()})
-    if (e) return *e;
-  r.width = *width;
-  r.height = *height;
-  r.frames = *frames;
-  r.msaa = *msaa;
-  r.degrees_per_frame = *degrees;
-  auto u = read_uniforms(f);
-  if (!u) return u.take_error();
-  r.uniforms = std::move(*u);
-  return Ok{};
-}
+const RequestFields<render::RenderRequest> kRenderFields = {
+    field("width", &render::RenderRequest::width),
+    field("height", &render::RenderRequest::height),
+    field("frames", &render::RenderRequest::frames),
+    field("msaa", &render::RenderRequest::msaa),
+    field("degreesPerFrame", &render::RenderRequest::degrees_per_frame),
+    field("uniforms", &render::RenderRequest::uniforms),
+};
 
 // What comes back and how: fit, prefix, output and format.
 Status read_output(const json& f, const course::Course& course, worker::Job& job) {
@@ -235,7 +200,7 @@ Expected<ParsedJob> parse_job(const RawRequest& raw, worker::JobKind kind, const
   for (const auto& [k, v] : raw.fields.items())
     if (!is_api_field(k)) out.warnings.push_back("field '" + k + "' is not part of the API and was ignored");
   if (auto s = read_job_shaders(raw, kind, limits, course, out); !s) return s.take_error();
-  if (auto s = read_render_settings(raw.fields, out.job.request); !s) return s.take_error();
+  if (auto s = read_fields(raw.fields, kRenderFields, out.job.request); !s) return s.take_error();
   if (auto s = read_output(raw.fields, course, out.job); !s) return s.take_error();
   if (auto s = read_mesh(raw, limits, course, out); !s) return s.take_error();
   if (kind != worker::JobKind::mesh_check) {

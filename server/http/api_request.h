@@ -56,9 +56,6 @@ struct RequestShaders {
 };
 Expected<RequestShaders> read_shaders(const RawRequest& raw, const Limits& limits);
 
-// The `uniforms` object: GLSL name -> number, boolean or array of numbers.
-Expected<std::vector<render::UniformSetting>> read_uniforms(const nlohmann::json& fields);
-
 // The mesh file the request uploaded (its `mesh` part), within the limits; null when it sent none.
 Expected<const UploadedFile*> uploaded_mesh(const RawRequest& raw, const Limits& limits);
 

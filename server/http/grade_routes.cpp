@@ -2,12 +2,11 @@
 // road (road/submission.h). This file parses the request and formats the report; the road
 // decides.
 #include "core/base64.h"
-#include "road/submission.h"
-#include "http/code_grade_request.h"
-#include "http/frames_request.h"
+#include "http/grade_request.h"
+#include "http/route_context.h"
 #include "road/code_request.h"
 #include "road/frames_request.h"
-#include "http/route_context.h"
+#include "road/submission.h"
 
 namespace shadelab::http {
 
@@ -51,11 +50,14 @@ void grade_saved(RouteContext& c, const RawRequest& raw, const course::Course& c
 // The code's grade: the road's answer for what parsed, or, when a field could not be read, the
 // student's source when that is what is wrong (labelled with the checkpoint and points the request
 // named, read leniently: a source problem is the student's grade even beside a mistyped field).
-Expected<road::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, const course::Course& course, const course::Viewer& viewer) {
+// `format` is the result's, as the request asked.
+Expected<road::CodeGrade> graded_code(RouteContext& c, const RawRequest& raw, const course::Course& course, const course::Viewer& viewer,
+                                      std::string& format) {
   const render::RenderLimits& limits = c.config.limits.render;
   auto parsed = parse_code_grade(raw, c.config.limits);
   if (parsed)
     if (auto s = c.find_uploaded_mesh(parsed->request.mesh, course); !s) parsed = s.take_error();
+  format = parsed ? parsed->result_format : field_or<std::string>(raw.fields, "format", "json");
   if (!parsed) {
     auto shaders = read_shaders(raw, c.config.limits);
     return road::grade_misread(parsed.error(), shaders ? shaders->code : std::nullopt, field_or<std::string>(raw.fields, "reference", "custom"),
@@ -79,13 +81,13 @@ void grade(RouteContext& c, const course::Viewer& viewer, const httplib::Request
   auto course = course_of(*raw, c.courses);
   if (!course) return send_problem(res, course.error(), req.path);
   if (has_saved_frames(*raw)) return grade_saved(c, *raw, **course, req, res);
-  auto graded = graded_code(c, *raw, **course, viewer);
+  std::string format = "json";
+  auto graded = graded_code(c, *raw, **course, viewer, format);
   if (!graded) {
     c.count(graded.error());
     return send_problem(res, graded.error(), req.path);
   }
-  if (field_or<std::string>(raw->fields, "format", "json") == "gradescope")
-    return send_json(res, 200, grade::to_gradescope(graded->result.report, graded->seconds));
+  if (format == "gradescope") return send_json(res, 200, grade::to_gradescope(graded->result.report, graded->seconds));
   json body = grade::to_json(graded->result.report);
   if (!graded->result.heatmap_png.empty()) body["heatmap"] = base64_encode(graded->result.heatmap_png);
   send_json(res, 200, body);

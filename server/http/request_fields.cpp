@@ -6,31 +6,79 @@ namespace shadelab::http {
 
 using nlohmann::json;
 
+namespace {
+
+std::string quoted(std::string_view key) { return "'" + std::string(key) + "'"; }
+
+}  // namespace
+
 Error bad_request(std::string message) { return make_error(ErrorCode::invalid_argument, std::move(message)); }
 
-Expected<int> integer_field(const json& fields, const char* name, int fallback) {
-  if (!fields.contains(name)) return fallback;
-  const json& v = fields[name];
+Status read_value(const json& v, std::string_view key, int& to) {
   if (!v.is_number() || (v.is_number_float() && std::trunc(v.get<double>()) != v.get<double>()))
-    return bad_request(std::string("'") + name + "' must be a whole number; got " + v.dump());
+    return bad_request(quoted(key) + " must be a whole number; got " + v.dump());
   const double d = v.get<double>();
-  if (d < -1e9 || d > 1e9) return bad_request(std::string("'") + name + "' is out of range");
-  return static_cast<int>(d);
+  if (d < -1e9 || d > 1e9) return bad_request(quoted(key) + " is out of range");
+  to = static_cast<int>(d);
+  return Ok{};
+}
+
+Status read_value(const json& v, std::string_view key, double& to) {
+  if (!v.is_number()) return bad_request(quoted(key) + " must be a number; got " + v.dump());
+  to = v.get<double>();
+  return Ok{};
+}
+
+Status read_value(const json& v, std::string_view key, bool& to) {
+  if (!v.is_boolean()) return bad_request(quoted(key) + " must be true or false");
+  to = v.get<bool>();
+  return Ok{};
+}
+
+Status read_value(const json& v, std::string_view key, std::string& to) {
+  if (!v.is_string()) return bad_request(quoted(key) + " must be a string; got " + v.dump().substr(0, 80));
+  to = v.get<std::string>();
+  return Ok{};
+}
+
+Status read_value(const json& u, std::string_view key, std::vector<render::UniformSetting>& to) {
+  if (!u.is_object()) return bad_request(quoted(key) + " must be an object of GLSL name -> number, boolean or array of numbers");
+  to.clear();
+  for (const auto& [name, value] : u.items()) {
+    render::UniformSetting s{name, {}};
+    const auto append_value = [&](const json& v) -> Status {
+      if (v.is_boolean()) s.values.push_back(v.get<bool>() ? 1.0 : 0.0);
+      else if (v.is_number()) s.values.push_back(v.get<double>());
+      else return bad_request("uniform '" + s.name + "' must be numbers or booleans; got " + v.dump());
+      return Ok{};
+    };
+    if (value.is_array()) {
+      for (const auto& v : value)
+        if (auto st = append_value(v); !st) return st.take_error();
+    } else if (auto st = append_value(value); !st) {
+      return st.take_error();
+    }
+    to.push_back(std::move(s));
+  }
+  return Ok{};
+}
+
+Expected<int> integer_field(const json& fields, const char* name, int fallback) {
+  if (auto s = fields.contains(name) ? read_value(fields[name], name, fallback) : Status(Ok{}); !s) return s.take_error();
+  return fallback;
 }
 
 Expected<double> number_field(const json& fields, const char* name, double fallback) {
-  if (!fields.contains(name)) return fallback;
-  if (!fields[name].is_number()) return bad_request(std::string("'") + name + "' must be a number; got " + fields[name].dump());
-  return fields[name].get<double>();
+  if (auto s = fields.contains(name) ? read_value(fields[name], name, fallback) : Status(Ok{}); !s) return s.take_error();
+  return fallback;
 }
 
 Expected<std::string> text_field(const json& fields, const char* name, const std::string& fallback, std::size_t max) {
-  if (!fields.contains(name)) return fallback;
-  const json& v = fields[name];
-  if (!v.is_string()) return bad_request(std::string("'") + name + "' must be a string; got " + v.dump().substr(0, 80));
-  if (v.get_ref<const std::string&>().size() > max)
-    return make_error(ErrorCode::payload_too_large, std::string("'") + name + "' is more than " + std::to_string(max) + " bytes");
-  return v.get<std::string>();
+  std::string out = fallback;
+  if (auto s = fields.contains(name) ? read_value(fields[name], name, out) : Status(Ok{}); !s) return s.take_error();
+  if (out.size() > max)
+    return make_error(ErrorCode::payload_too_large, quoted(name) + " is more than " + std::to_string(max) + " bytes");
+  return out;
 }
 
 }  // namespace shadelab::http

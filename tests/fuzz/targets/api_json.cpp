@@ -10,8 +10,8 @@
 #include "wire_round_trip.h"
 #include "course/course_reader.h"
 #include "http/api_request.h"
-#include "http/code_grade_request.h"
-#include "http/frames_request.h"
+#include "http/grade_request.h"
+#include "http/grade_request.h"
 
 namespace {
 

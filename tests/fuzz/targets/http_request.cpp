@@ -13,7 +13,7 @@
 #include "http/memory_stream.h"
 #include "http/request_framing.h"
 #include "http/request_reader.h"
-#include "http/code_grade_request.h"
+#include "http/grade_request.h"
 #include "course/course_reader.h"
 
 namespace {
