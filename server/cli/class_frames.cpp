@@ -58,10 +58,9 @@ void ClassFrames::check(const Student& student, StudentGrade& grade) const {
 
 Expected<std::vector<std::string>> reference_frames(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint) {
   const course::Preset& reference = *course.preset(checkpoint.reference);
-  worker::Job job = worker::course_job(course, worker::JobKind::render);
+  worker::Job job = worker::course_job(course, worker::JobKind::render, reference.vertex, reference.fragment);
   std::string payload;
   if (auto attached = worker::attach_course_mesh(course, course.default_mesh, job, payload); !attached) return attached.take_error();
-  job.request = course.render_request(reference.vertex, reference.fragment);
   job.output = worker::Output::json;
   auto rendered = worker::run<worker::RenderResult>(pool, worker::to_message(job, std::move(payload)));
   if (!rendered) return rendered.take_error();

@@ -47,10 +47,6 @@ void attach_heatmap(HandInTest& test, const std::string& worker_png, const std::
   test.heatmap_name = name;
 }
 
-std::string frame_range(const course::Course& c, const course::Checkpoint& k) {
-  return c.frame_file(k.prefix, 0, "png") + " to " + c.frame_file(k.prefix, c.frames - 1, "png");
-}
-
 std::string pngs_in(const std::vector<fs::path>& files) {
   std::vector<fs::path> pngs;
   for (const auto& f : files)
@@ -72,12 +68,12 @@ HandInTest frames_test(const course::Course& c, const DeliverableGrades& d, cons
   const double max = k.max_score(DeliverableTest::frames, d.points);
   std::string name = test_name(k, DeliverableTest::frames);
   if (!d.frames.any() || !d.frames_grade)
-    return absent(name, max, "no saved frames: expected " + frame_range(c, k) + ", saved from the page (its Save button names them so) into images/; the submission has these PNGs: " +
+    return absent(name, max, "no saved frames: expected " + c.saved_frame_range(k) + ", saved from the page (its Save button names them so) into images/; the submission has these PNGs: " +
                                  pngs_in(files));
   if (d.frames.frames[0]) name += " (" + (d.frames.frames[0]->parent_path() / c.frame_file(k.prefix, 0, "png")).string() + ", ...)";
   if (!*d.frames_grade) return ungraded(name, max, d.frames_grade->error());
   HandInTest test = graded(name, *scored(score, DeliverableTest::frames)->report, max);
-  for (const auto& extra : d.frames.extra) test.output += extra.string() + " is not graded: the deliverable is " + frame_range(c, k) + "\n";
+  for (const auto& extra : d.frames.extra) test.output += extra.string() + " is not graded: the deliverable is " + c.saved_frame_range(k) + "\n";
   attach_heatmap(test, (**d.frames_grade).result.heatmap_png, k.name + "_frames");
   return test;
 }

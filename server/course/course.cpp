@@ -128,6 +128,10 @@ std::string Course::frame_file(std::string_view prefix, int k, std::string_view 
   return render::frame_file_name(frame_name, prefix, k, extension);
 }
 
+std::string Course::saved_frame_range(const Checkpoint& checkpoint) const {
+  return frame_file(checkpoint.prefix, 0, "png") + " to " + frame_file(checkpoint.prefix, frames - 1, "png");
+}
+
 std::vector<std::string> Course::light_position_names() const {
   const PageUniform* light = uniform_with_role(UniformRole::light_position);
   return light ? light->names : std::vector<std::string>{};

@@ -245,6 +245,9 @@ struct Course {
   grade::GradeSpec frames_grade_spec(const Checkpoint& checkpoint, const grade::GradeOptions& options) const;
   // Frame k's file name under `prefix`, with `extension` ("png"): hw2_specular_3.png.
   std::string frame_file(std::string_view prefix, int k, std::string_view extension) const;
+  // A checkpoint's saved frames, first to last, as a student reads them: "hw2_specular_0.png to
+  // hw2_specular_8.png".
+  std::string saved_frame_range(const Checkpoint& checkpoint) const;
   // The names the page feeds the light's position by (what a probe light moves).
   std::vector<std::string> light_position_names() const;
   grade::ProbeUniform light_color_uniform() const;  // empty names: no uniform has the role

@@ -10,10 +10,8 @@
 namespace shadelab::road {
 
 GridJob course_grid_job(const course::Course& course, shader::ShaderFile vertex, shader::ShaderFile fragment, int frame_side) {
-  GridJob out{worker::course_job(course, worker::JobKind::render), {}};
+  GridJob out{worker::course_job(course, worker::JobKind::render, std::move(vertex), std::move(fragment)), {}};
   (void)worker::attach_course_mesh(course, course.default_mesh, out.job, out.payload);  // the default mesh is the course's own
-  out.job.request.vertex = std::move(vertex);
-  out.job.request.fragment = std::move(fragment);
   if (frame_side > 0 && out.job.request.width > 0) {
     const double scale = static_cast<double>(frame_side) / out.job.request.width;
     out.job.request.width = frame_side;

@@ -18,9 +18,8 @@ Expected<ShaderPair> shaders_of(const course::Course& c, const CodeRequest& requ
 }
 
 // The course's request with the client's changes.
-Status shape_render(const course::Course& c, const RenderShape& shape, ShaderPair shaders, worker::Job& job) {
+Status shape_render(const course::Course& c, const RenderShape& shape, worker::Job& job) {
   auto& r = job.request;
-  r = c.render_request(std::move(shaders.vertex), std::move(shaders.fragment));
   r.width = shape.width.value_or(r.width);
   r.height = shape.height.value_or(r.height);
   r.frames = shape.frames.value_or(r.frames);
@@ -83,10 +82,12 @@ Status apply_tolerance(const ToleranceShape& t, grade::GradeOptions& options) {
 
 Expected<BuiltCode> code_submission(const course::Course& c, CodeRequest request, const course::Viewer& viewer,
                                     const render::RenderLimits& limits) {
-  BuiltCode out{{worker::course_job(c, worker::JobKind::grade), {}, {}, limits}, {}};
-  auto shaders = shaders_of(c, request, viewer, out.warnings);
+  std::vector<std::string> warnings;
+  auto shaders = shaders_of(c, request, viewer, warnings);
   if (!shaders) return shaders.take_error();
-  if (auto s = shape_render(c, request.render, std::move(*shaders), out.submission.render); !s) return s.take_error();
+  BuiltCode out{{worker::course_job(c, worker::JobKind::grade, std::move(shaders->vertex), std::move(shaders->fragment)), {}, {}, limits},
+                std::move(warnings)};
+  if (auto s = shape_render(c, request.render, out.submission.render); !s) return s.take_error();
   if (auto s = attach_mesh(c, std::move(request.mesh), out.submission); !s) return s.take_error();
   if (auto valid = render::validate(out.submission.render.request, limits); !valid) return valid.take_error();
   auto spec = spec_of(c, request, out.warnings);

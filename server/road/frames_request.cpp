@@ -27,9 +27,8 @@ void order_frames(const course::Course& course, const course::Checkpoint& checkp
   }
   for (const auto& n : names)
     if (!used.count(n.string()))
-      out.warnings.push_back(n.string() + " is not one of the " + checkpoint.name + " deliverable's frames (" +
-                             course.frame_file(checkpoint.prefix, 0, "png") + " to " +
-                             course.frame_file(checkpoint.prefix, course.frames - 1, "png") + ") and was not graded");
+      out.warnings.push_back(n.string() + " is not one of the " + checkpoint.name + " deliverable's frames (" + course.saved_frame_range(checkpoint) +
+                             ") and was not graded");
 }
 
 }  // namespace

@@ -27,8 +27,7 @@ FramesGrade unsendable(const course::Course& c, const course::Checkpoint& checkp
                        bool with_code) {
   const Error e = make_error(ErrorCode::frames_invalid, why);
   FramesGrade out{{grade::failed_submission(e, checkpoint.name, s.max_score), std::nullopt, {}}, 0};
-  out.result.frames.messages.push_back("the deliverable is " + c.frame_file(checkpoint.prefix, 0, "png") + " to " +
-                                       c.frame_file(checkpoint.prefix, c.frames - 1, "png") + ", as the page saves them");
+  out.result.frames.messages.push_back("the deliverable is " + c.saved_frame_range(checkpoint) + ", as the page saves them");
   if (with_code) out.result.code = grade::failed_submission(make_error(ErrorCode::frames_invalid, "not compared: " + why), checkpoint.name, s.max_score);
   return out;
 }
@@ -36,14 +35,14 @@ FramesGrade unsendable(const course::Course& c, const course::Checkpoint& checkp
 // The frames' job: the course's, on its mesh, with the code when there is some.
 Expected<worker::Job> frames_job(const course::Course& c, const course::Checkpoint& checkpoint, const FramesSettings& s,
                                  const FramesSubmission& submission, std::string& mesh_bytes) {
-  worker::Job job = worker::course_job(c, worker::JobKind::grade_frames);
+  worker::Job job = submission.code ? worker::course_job(c, worker::JobKind::grade_frames, submission.code->first, submission.code->second)
+                                    : worker::course_job(c, worker::JobKind::grade_frames);
   if (auto a = worker::attach_course_mesh(c, s.mesh.empty() ? c.default_mesh : s.mesh, job, mesh_bytes); !a) return a.take_error();
   grade::GradeOptions options = c.grade_options(checkpoint);
   options.max_score = s.max_score;
   job.grade = c.frames_grade_spec(checkpoint, options);
   job.grade.reference_store = s.reference_store;
   job.grade.heatmap = s.heatmap;
-  job.request = submission.code ? c.render_request(submission.code->first, submission.code->second) : c.render_request({}, {});
   return job;
 }
 
@@ -93,11 +92,11 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
 
 Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
                                      const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
-  CodeSubmission out{worker::course_job(c, worker::JobKind::grade), {}, c.grade_spec(checkpoint, options), render.limits};
+  CodeSubmission out{worker::course_job(c, worker::JobKind::grade, std::move(vertex), std::move(fragment)), {}, c.grade_spec(checkpoint, options),
+                     render.limits};
   if (auto s = worker::attach_course_mesh(c, render.mesh.empty() ? c.default_mesh : render.mesh, out.render, out.mesh_bytes); !s)
     return s.take_error();
   auto& r = out.render.request;
-  r = c.render_request(std::move(vertex), std::move(fragment));
   r.width = render.width.value_or(r.width);
   r.height = render.height.value_or(r.height);
   r.frames = render.frames.value_or(r.frames);

@@ -2,10 +2,10 @@
 
 namespace shadelab::worker {
 
-Job course_job(const course::Course& c, JobKind kind) {
+Job course_job(const course::Course& c, JobKind kind, shader::ShaderFile vertex, shader::ShaderFile fragment) {
   Job job;
   job.kind = kind;
-  job.request = c.render_request({}, {});
+  job.request = c.render_request(std::move(vertex), std::move(fragment));
   job.frame_name = c.frame_name;
   return job;
 }

@@ -11,7 +11,6 @@
 #include "course/course_reader.h"
 #include "http/api_request.h"
 #include "http/grade_request.h"
-#include "http/grade_request.h"
 
 namespace {
 
