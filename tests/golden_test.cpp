@@ -2,6 +2,8 @@
 // tests/golden/ (named PRESET_MESH.png).
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "image/grid.h"
 #include "support/golden.h"
 #include "support/test_support.h"
@@ -20,6 +22,7 @@ TEST_P(GoldenTest, GridMatchesTheApprovedImage) {
   ASSERT_TRUE(r) << r.error().format();
   const auto grid = image::compose_grid(image::GridLayout::for_frames(request.frames, request.width, request.height), r->frames);
   const auto result = testkit::compare_with_golden(preset + "_" + mesh, grid);
+  std::cout << preset << "_" << mesh << ": " << result.message << "\n";  // the fidelity figure, read by tools/gpu_check/run.sh
   EXPECT_TRUE(result.passed) << result.message;
 }
 

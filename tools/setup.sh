@@ -35,6 +35,8 @@ build_packages=(
   libcairo2-dev fonts-dejavu-core
 )
 test_packages=(
+  # the GPU check's bundle is packed as .tar.xz (tools/gpu_check/pack.sh; readelf is binutils')
+  xz-utils
   # the tests and benchmarks read ShadeLab's PNG and EXR outputs back with OpenImageIO
   libopenimageio-dev
   # the Kubernetes manifests' test (YAML)

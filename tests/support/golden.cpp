@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "image/encode.h"
+#include "support/files.h"
 #include "support/test_support.h"
 
 namespace shadelab::testkit {
@@ -13,7 +14,11 @@ namespace shadelab::testkit {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path failures_dir() { return fs::canonical("/proc/self/exe").parent_path() / "golden_failures"; }
+// Beside the test binary, or SHADELAB_GOLDEN_FAILURES (a packed build's binaries may be read-only).
+fs::path failures_dir() {
+  const char* chosen = std::getenv("SHADELAB_GOLDEN_FAILURES");
+  return chosen && *chosen ? fs::path(chosen) : fs::canonical("/proc/self/exe").parent_path() / "golden_failures";
+}
 
 void write(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
   fs::create_directories(path.parent_path());
@@ -22,7 +27,7 @@ void write(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
 }  // namespace
 
 GoldenResult compare_with_golden(const std::string& name, const image::Image& actual, const GoldenTolerance& tol) {
-  const fs::path golden = fs::path(SHADELAB_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
+  const fs::path golden = source_dir() / "tests" / "golden" / (name + ".png");
   auto encoded = image::encode_png(actual);
   if (!encoded) return {false, encoded.error().format()};
 
