@@ -22,9 +22,9 @@
 
 namespace shadelab::cli {
 
-// Each frame's width in the grids PrairieLearn's results show: small enough that every
-// deliverable's grid and the failed tests' heat maps fit in PrairieLearn's 1 MB (measured on the
-// built-in course's whole hand-in with one deliverable failing: ~640 KB).
+// Each frame's width in the grids PrairieLearn's results show: small enough that every grid of a
+// hand-in and the failed tests' heat maps fit in PrairieLearn's 1 MB (the built-in course's whole
+// hand-in with one test failing measured ~640 KB).
 inline constexpr int kGridFrameWidth = 160;
 
 struct PrairieLearnLimits {
