@@ -262,14 +262,19 @@ int main(int argc, char** argv) {
     });
   for (auto& t : warmers) t.join();
   std::vector<double> scenes;
+  int failed_scenes = 0;
+  std::string first_failure;  // the server's own words
   for (int i = 0; i < per_level; ++i) {
     const std::string body = fresh_scene();
     const auto t = Clock::now();
     auto r = client.Post("/api/scene", body, "application/json");
     scenes.push_back(ms(Clock::now() - t));
-    if (!r || r->status != 200) std::printf("scene failed!\n");
+    if (r && r->status == 200) continue;
+    if (failed_scenes++ == 0) first_failure = r ? std::to_string(r->status) + " " + r->body.substr(0, 400) : httplib::to_string(r.error());
   }
-  std::printf("two-objects scene, warm: p50 %.0f ms, p99 %.0f ms\n", percentile(scenes, 0.5), percentile(scenes, 0.99));
+  std::printf("two-objects scene, warm: p50 %.0f ms, p99 %.0f ms%s\n", percentile(scenes, 0.5), percentile(scenes, 0.99),
+              failed_scenes ? (" (" + std::to_string(failed_scenes) + " failed!)").c_str() : "");
+  if (failed_scenes) std::printf("the first failed scene: %s\n", first_failure.c_str());
 
   std::vector<double> replaced;
   for (int i = 0; i < std::max(5, per_level / 2); ++i)

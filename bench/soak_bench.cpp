@@ -202,22 +202,31 @@ struct Outcome {
   std::map<int, int> statuses;  // 0: no response
   std::vector<double> latencies;
   int unexpected = 0;
+  std::string first_unexpected;  // its status and the start of its body: what went wrong, in the server's words
 };
 
-// One request of a kind; returns its status (0: no response) and whether that status is expected.
-std::pair<int, bool> request(httplib::Client& c, Kind kind, unsigned serial, int nth, const json& scene) {
+// One request's status (0: no response), whether that status is expected for its kind, its body.
+struct Answer {
+  int status = 0;
+  bool expected = false;
+  std::string body;
+};
+
+Answer answer(const httplib::Result& r, int expected_status) {
+  return {r ? r->status : 0, r && r->status == expected_status, r ? r->body.substr(0, 400) : httplib::to_string(r.error())};
+}
+
+Answer request(httplib::Client& c, Kind kind, unsigned serial, int nth, const json& scene) {
   if (kind == Kind::render || kind == Kind::grade) {
     const auto [v, f] = fresh_shaders(serial);
     json job{{"vertex", v}, {"fragment", f}, {"mesh", shadelab::bench::canonical_course().default_mesh}};
     if (kind == Kind::grade) job["reference"] = "specular";
-    auto r = c.Post(kind == Kind::grade ? "/api/grade" : "/api/render", job.dump(), "application/json");
-    return {r ? r->status : 0, r && r->status == 200};
+    return answer(c.Post(kind == Kind::grade ? "/api/grade" : "/api/render", job.dump(), "application/json"), 200);
   }
   if (kind == Kind::scene) {
     json s = scene;
     s["objects"][0]["material"]["baseColor"][0] = 0.8 - (serial % 1000) * 1e-4;
-    auto r = c.Post("/api/scene", s.dump(), "application/json");
-    return {r ? r->status : 0, r && r->status == 200};
+    return answer(c.Post("/api/scene", s.dump(), "application/json"), 200);
   }
   // Hostile: alternately a shader that does not compile and one that never ends.
   const bool hang = nth % 2 == 1;
@@ -225,8 +234,9 @@ std::pair<int, bool> request(httplib::Client& c, Kind kind, unsigned serial, int
   const auto [v, f] = fresh_shaders(serial, hang ? "\n    float s = gl_FragCoord.x; while (true) { s = sin(s); if (s > 2.0) break; }"
                                                    "\n    if (s > 1.5) discard;"
                                                  : "\n    this is not GLSL;");
-  auto r = c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", shadelab::bench::canonical_course().default_mesh}}.dump(), "application/json");
-  return {r ? r->status : 0, r && r->status == 422};
+  return answer(c.Post("/api/render", json{{"vertex", v}, {"fragment", f}, {"mesh", shadelab::bench::canonical_course().default_mesh}}.dump(),
+                       "application/json"),
+                422);
 }
 
 void print_soak(int seconds, const std::map<Kind, Outcome>& outcomes, const std::array<Memory, 4>& memory) {
@@ -238,6 +248,8 @@ void print_soak(int seconds, const std::map<Kind, Outcome>& outcomes, const std:
     std::printf("| %s | %zu | %s | %d | %.0f | %.0f |\n", name(kind), o.latencies.size(), by.c_str(), o.unexpected,
                 percentile(o.latencies, 0.5), percentile(o.latencies, 0.99));
   }
+  for (const auto& [kind, o] : outcomes)
+    if (!o.first_unexpected.empty()) std::printf("\nthe first unexpected %s answer: %s\n", name(kind), o.first_unexpected.c_str());
   std::printf("\n| memory of the server and its workers | start | peak | end | 5 s later |\n| --- | --- | --- | --- | --- |\n");
   std::printf("| resident sets summed (MiB) | %zu | %zu | %zu | %zu |\n", memory[0].rss >> 20, memory[1].rss >> 20, memory[2].rss >> 20, memory[3].rss >> 20);
   std::printf("| proportional sets summed (MiB) | %zu | %zu | %zu | %zu |\n", memory[0].pss >> 20, memory[1].pss >> 20, memory[2].pss >> 20, memory[3].pss >> 20);
@@ -282,12 +294,13 @@ void soak(const Server& server, int seconds, std::atomic<unsigned>& serial) {
       const Kind kind = i < 3 ? Kind::render : i < 5 ? Kind::grade : i < 7 ? Kind::scene : Kind::hostile;
       for (int nth = 0; Clock::now() < until; ++nth) {
         const auto t = Clock::now();
-        const auto [status, expected] = request(c, kind, serial++, nth, scene);
+        const Answer a = request(c, kind, serial++, nth, scene);
         std::lock_guard lock(m);
         auto& o = outcomes[kind];
-        ++o.statuses[status];
+        ++o.statuses[a.status];
         o.latencies.push_back(ms(Clock::now() - t));
-        o.unexpected += !expected;
+        o.unexpected += !a.expected;
+        if (!a.expected && o.first_unexpected.empty()) o.first_unexpected = std::to_string(a.status) + " " + a.body;
       }
     });
   for (auto& t : clients) t.join();

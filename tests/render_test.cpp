@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "egl/device_survey.h"
+#include "egl/headless_context.h"
 #include "gl/mesh_buffer.h"
 #include "image/encode.h"
 #include "image/grid.h"
@@ -40,6 +42,21 @@ TEST(RenderTest, ContextIsOpenGlEs3) {
   EXPECT_NE(info.gl_version.find("OpenGL ES 3"), std::string::npos) << info.gl_version;
   EXPECT_FALSE(info.gl_renderer.empty());
   EXPECT_GE(info.max_samples, 4);
+}
+
+// The server sizes its pool by what a child process finds (serve's workers_for_this_machine): the
+// child must answer, and say what this process finds when it lists the devices itself.
+TEST(RenderTest, DeviceSurveyInAChildAgreesWithTheDevicesListedHere) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto in_child = egl::survey_devices_in_child(std::chrono::seconds(30));
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_NE(in_child, egl::DeviceSurvey::unanswered);
+  const auto devices = egl::enumerate_devices();
+  const bool hardware = std::any_of(devices.begin(), devices.end(), [](const auto& d) { return !d.software; });
+  const auto expected = hardware ? egl::DeviceSurvey::hardware : egl::DeviceSurvey::software;
+  EXPECT_EQ(in_child, expected);
+  EXPECT_EQ(egl::survey_devices(std::chrono::seconds(30)), expected);  // /dev's nodes looked at first
+  std::printf("survey: %s in %.1f ms\n", hardware ? "hardware" : "software", ms);
 }
 
 TEST(RenderTest, SameRequestTwiceGivesIdenticalBytes) {

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdlib>
 
+#include "shader/glsl_lines.h"
+#include "shader/webgl_rules.h"
 #include "support/files.h"
 #include "support/test_support.h"
 
@@ -104,6 +106,29 @@ TEST(WebglRulesTest, AViolationInAJsModuleIsLocatedInTheModule) {
   EXPECT_EQ(d.file, "phong_frag.js");
   EXPECT_EQ(d.line, 5);
   EXPECT_EQ(d.column, 51);  // the `?`
+}
+
+// `case 0: int;` is a label's statement to the browser and none to NVIDIA's driver: the driver is
+// given `case 0: ;`, the same program with every column in place. Elsewhere the words stay.
+TEST(WebglRulesTest, AnEmptyDeclarationAfterALabelReachesTheDriverAsAnEmptyStatement) {
+  const std::string vertex_text = "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n";
+  const std::string fragment_text =
+      "#version 300 es\nprecision mediump float;\nout vec4 color;\nuniform int u;\nvoid main() {\n"
+      "  int;\n  switch (u) {\n    case 0:\n      highp int;\n    case 1: vec3;\n    default: float x; x = 1.0; /* c */ float;\n  }\n"
+      "  color = vec4(1.0);\n}\n";
+  const shader::ShaderFile vertex_file{"v.glsl", vertex_text}, fragment_file{"f.glsl", fragment_text};
+  auto vertex = shader::unwrap(vertex_file, shader::Stage::vertex);
+  auto fragment = shader::unwrap(fragment_file, shader::Stage::fragment);
+  ASSERT_TRUE(vertex && fragment);
+  const auto checked = shader::apply_webgl_rules(*vertex, *fragment, vertex_file, fragment_file);
+  ASSERT_TRUE(checked) << checked.error().format();
+  const auto lines = shader::lines_of(fragment->glsl);
+  ASSERT_GE(lines.size(), 11u);
+  EXPECT_EQ(lines[5], "  int;");                  // not after a label: a declaration where one may stand
+  EXPECT_EQ(lines[8], "               ;");        // `highp int;` blanked, the `;` in its column
+  EXPECT_EQ(lines[9], "    case 1:     ;");
+  EXPECT_EQ(lines[10], "    default: float x; x = 1.0; /* c */ float;");  // not after a label
+  EXPECT_TRUE(compile_fragment("f.glsl", fragment_text)) << "the browser runs it";
 }
 
 // A stage with a uniform block gets WebGL's std140 default before the driver sees it; the

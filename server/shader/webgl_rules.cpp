@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <regex>
+#include <span>
 
 #include "shader/glsl_lines.h"
 #include "shader/link_rules.h"
@@ -291,8 +293,48 @@ void default_to_std140(std::string& glsl, const GlslFacts& facts) {
   else glsl.insert(end + 1, insert);
 }
 
+bool basic_type_word(std::string_view w) {
+  static const std::regex type(R"((float|int|uint|bool|[ibu]?vec[234]|mat[234](x[234])?|[iu]?sampler\w+))");
+  return std::regex_match(w.begin(), w.end(), type);
+}
+
+// `case 0: int;` as a label's last statement: the browser takes the empty declaration as the
+// statement a label needs, NVIDIA's driver refuses it ("no statement at the end of a switch
+// block"; measured on an H100, docs/webgl-rules.md). After a label, inside a function, the
+// declaration declares nothing, so its words are blanked and `case 0: ;` is the same program,
+// every column kept. Read from the preprocessor's output (no comments, #if resolved); a form
+// a macro made is not on the source line and is left as it is.
+bool same_words(std::span<const GlslToken> a, std::span<const GlslToken> b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const GlslToken& x, const GlslToken& y) { return x.text == y.text; });
+}
+
+void blank_empty_declarations_after_labels(std::string& glsl, const GlslFacts& facts) {
+  const auto tokens = tokens_of(facts.preprocessed);
+  for (size_t i = 1; i + 1 < tokens.size(); ++i) {
+    if (tokens[i - 1].text != ":") continue;
+    size_t type = i;
+    if (tokens[i].text == "lowp" || tokens[i].text == "mediump" || tokens[i].text == "highp") ++type;
+    if (type + 1 >= tokens.size() || !basic_type_word(tokens[type].text) || tokens[type + 1].text != ";") continue;
+    const int line = tokens[i].line;
+    if (tokens[type + 1].line != line) continue;
+    // The same words on the student's line (glslang's output spaces them its own way), or a macro
+    // or a comment is in the way and the line is left alone.
+    const auto first = std::find_if(tokens.begin(), tokens.end(), [&](const GlslToken& t) { return t.line == line; });
+    const auto last = std::find_if(first, tokens.end(), [&](const GlslToken& t) { return t.line != line; });
+    const std::string_view source_line = line_of(glsl, line);
+    const auto source_tokens = tokens_of(source_line);
+    if (!same_words({first, last}, source_tokens)) continue;
+    const size_t line_start = static_cast<size_t>(source_line.data() - glsl.data());
+    for (size_t t = i; t <= type; ++t) {
+      const GlslToken& word = source_tokens[t - static_cast<size_t>(first - tokens.begin())];
+      glsl.replace(line_start + static_cast<size_t>(word.column - 1), word.text.size(), word.text.size(), ' ');
+    }
+  }
+}
+
 // Whether an extension was left out: the stage is then another program, to be judged again.
 bool rewrite_for_driver(StageInput& s) {
+  if (s.facts.parsed) blank_empty_declarations_after_labels(s.source.glsl, s.facts);
   evaluate_line_directives(s.source.glsl, s.facts);
   bool left_out = false;
   for (const auto& d : s.facts.extensions)

@@ -32,7 +32,9 @@ struct WebglChecked {
 //    and its default; the driver's default is `shared`, so a block declared std140 in one stage
 //    and without a layout in the other would not link);
 //  - an extension the browser does not support, enabled (not required), is left out, as the
-//    browser goes on without it.
+//    browser goes on without it;
+//  - an empty declaration right after a label (`case 0: int;`) loses its words (`case 0: ;`),
+//    which NVIDIA's driver needs to see a statement there.
 // A stage's rule -> compile_failed, a rule between the stages -> link_failed; each diagnostic in
 // the student's file, in the browser's words.
 Expected<WebglChecked> apply_webgl_rules(UnwrappedSource& vertex, UnwrappedSource& fragment,

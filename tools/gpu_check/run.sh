@@ -6,15 +6,17 @@
 #   sl/run.sh [OUT_DIR=./gpu_check_out]
 #   GPU_CHECK_REQUESTS  requests per level of the load benchmark (default 24)
 #   GPU_CHECK_SOAK_S    seconds of the 8-client soak (default 30; 0 skips it)
-#   GPU_CHECK_WORKERS   GL worker counts the load benchmark also runs at (default "1 2 4 8";
-#                       empty skips the sweep)
+#   GPU_CHECK_WORKERS   GL worker counts the load benchmark also runs at (default "1 2 4 8" and
+#                       one per core; empty skips the sweep)
 # About 8 minutes on a GPU; longer on llvmpipe, where it runs too. Exits non-zero when a test
 # step fails; the figures are written either way.
 set -uo pipefail
 SL=$(cd "$(dirname "$0")" && pwd)
 OUT=$(realpath -m "${1:-./gpu_check_out}"); mkdir -p "$OUT"
 BIN=$SL/bin DATA=$SL/data
-REQUESTS=${GPU_CHECK_REQUESTS:-24} SOAK_S=${GPU_CHECK_SOAK_S:-30} WORKERS=${GPU_CHECK_WORKERS-1 2 4 8}
+CORES=$(nproc)
+REQUESTS=${GPU_CHECK_REQUESTS:-24} SOAK_S=${GPU_CHECK_SOAK_S:-30}
+WORKERS=${GPU_CHECK_WORKERS-$(printf '%s\n' 1 2 4 8 "$CORES" | sort -nu | tr '\n' ' ')}
 
 # The bundle's libraries; glvnd's dispatchers only where the machine has none of its own.
 export LD_LIBRARY_PATH=$SL/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
@@ -51,14 +53,20 @@ grep -E "^\[  (PASSED|FAILED)|tests ran" "$OUT/verdicts.txt" >>"$OUT/summary.txt
 
 # 4. The service: launch, a fresh course job over HTTP at 1-16 clients, where its time goes.
 step service "$BIN/load_bench" "$BIN/shadelab" "$REQUESTS" || failed=1
-grep -E "^start to|^renderer.*cores|^\| [0-9]|^where|^against|^cache|^two-objects|^worker" "$OUT/service.txt" >>"$OUT/summary.txt"
+grep -E "^start to|^renderer.*cores|^\| [0-9]|^where|^against|^cache|^two-objects|^the first failed|^worker" "$OUT/service.txt" >>"$OUT/summary.txt"
 for w in $WORKERS; do
   step "service_workers_$w" "$BIN/load_bench" "$BIN/shadelab" "$REQUESTS" --workers "$w" || failed=1
   grep -E "^start to|^\| [0-9]" "$OUT/service_workers_$w.txt" | sed "s/^/workers $w: /" >>"$OUT/summary.txt"
 done
+# The soak with the server's own pool (sized to the device), and with one GL worker per core.
 if [ "$SOAK_S" -gt 0 ]; then
-  step soak "$BIN/soak_bench" "$BIN/shadelab" "$SOAK_S" || failed=1
-  grep -E "^\| (kind|render|grade|scene|hostile|resident|proportional) " "$OUT/soak.txt" | awk '!seen[$0]++' >>"$OUT/summary.txt"
+  for pool in default per_core; do
+    if [ $pool = per_core ]; then export SHADELAB_WORKERS=$CORES; fi
+    step "soak_$pool" "$BIN/soak_bench" "$BIN/shadelab" "$SOAK_S" || failed=1
+    grep -E "^\| (kind|render|grade|scene|hostile|resident|proportional) |^the first unexpected" "$OUT/soak_$pool.txt" | awk '!seen[$0]++' |
+      sed "s/^/$pool pool: /" >>"$OUT/summary.txt"
+  done
+  unset SHADELAB_WORKERS
 fi
 
 cat "$OUT/summary.txt"
