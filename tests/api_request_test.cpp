@@ -97,7 +97,9 @@ TEST(ApiRequestTest, AnUploadedMeshIsNamedByItsContentAndFormat) {
   ASSERT_TRUE(parsed) << parsed.error().message;
   EXPECT_EQ(parsed->job.mesh, http::mesh_id("glTF-bytes"));
   EXPECT_EQ(parsed->job.mesh_format, "GLB");
-  EXPECT_EQ(parsed->mesh_upload.content, "glTF-bytes");
+  ASSERT_TRUE(parsed->mesh_upload);
+  EXPECT_EQ(parsed->mesh_upload->bytes, "glTF-bytes");
+  EXPECT_EQ(parsed->mesh_upload->id, parsed->job.mesh);
   EXPECT_EQ(http::mesh_id("glTF-bytes"), http::mesh_id("glTF-bytes"));
   EXPECT_NE(http::mesh_id("glTF-bytes"), http::mesh_id("glTF-bytez"));
 }

@@ -71,18 +71,22 @@ std::string prefix_of(const course::Course& c, const course::Preset& p) {
 
 }  // namespace
 
+Expected<shader::ShaderFile> shader_file(const RawRequest& raw, const char* field, std::string name) {
+  if (auto it = raw.files.find(field); it != raw.files.end())
+    return shader::ShaderFile{it->second.filename.empty() ? std::move(name) : it->second.filename, it->second.content};
+  auto text = text_field(raw.fields, field, "");
+  if (!text) return text.take_error();
+  return shader::ShaderFile{std::move(name), std::move(*text)};
+}
+
 Expected<RequestShaders> read_shaders(const RawRequest& raw, const Limits& limits) {
   const json& f = raw.fields;
   auto preset = text_field(f, "preset", "");
   if (!preset) return preset.take_error();
   const auto source = [&](const char* field, const char* name_field) -> Expected<shader::ShaderFile> {
-    if (auto it = raw.files.find(field); it != raw.files.end())
-      return shader::ShaderFile{it->second.filename.empty() ? std::string(field) : it->second.filename, it->second.content};
-    auto t = text_field(f, field, "");
-    if (!t) return t.take_error();
-    auto n = text_field(f, name_field, std::string(field) + ".glsl");
-    if (!n) return n.take_error();
-    return shader::ShaderFile{*n, *t};
+    auto name = text_field(f, name_field, std::string(field) + ".glsl");
+    if (!name) return name.take_error();
+    return shader_file(raw, field, std::move(*name));
   };
   auto vertex = source("vertex", "vertexName");
   if (!vertex) return vertex.take_error();
@@ -166,9 +170,9 @@ Status read_mesh(const RawRequest& raw, const Limits& limits, const course::Cour
   auto upload = uploaded_mesh(raw, limits);
   if (!upload) return upload.take_error();
   if (*upload) {
-    out.mesh_upload = **upload;
-    out.job.mesh = mesh_id(out.mesh_upload.content);
-    out.job.mesh_format = scene::mesh_format_of(out.mesh_upload.filename);
+    out.job.mesh = (*upload)->id;
+    out.job.mesh_format = (*upload)->format;
+    out.mesh_upload = std::move(*upload);
     return Ok{};
   }
   auto mesh = text_field(raw.fields, "mesh", course.default_mesh);
@@ -180,12 +184,13 @@ Status read_mesh(const RawRequest& raw, const Limits& limits, const course::Cour
 
 }  // namespace
 
-Expected<const UploadedFile*> uploaded_mesh(const RawRequest& raw, const Limits& limits) {
+Expected<std::optional<road::MeshChoice::Upload>> uploaded_mesh(const RawRequest& raw, const Limits& limits) {
   const auto it = raw.files.find("mesh");
-  if (it == raw.files.end()) return nullptr;
-  if (it->second.content.size() > limits.max_mesh_bytes)
+  if (it == raw.files.end()) return std::optional<road::MeshChoice::Upload>();
+  const UploadedFile& file = it->second;
+  if (file.content.size() > limits.max_mesh_bytes)
     return make_error(ErrorCode::payload_too_large, "the mesh file is larger than " + std::to_string(limits.max_mesh_bytes) + " bytes");
-  return &it->second;
+  return std::optional(road::MeshChoice::Upload{mesh_id(file.content), scene::mesh_format_of(file.filename), file.content});
 }
 
 Expected<const course::Course*> course_of(const RawRequest& raw, const course::CourseSet& courses) {

@@ -29,7 +29,7 @@ struct RawRequest {
 
 struct ParsedJob {
   worker::Job job;
-  UploadedFile mesh_upload;       // a mesh sent with the request (content empty when none)
+  std::optional<road::MeshChoice::Upload> mesh_upload;  // a mesh sent with the request
   std::string course_mesh_bytes;  // a course's own mesh, when the job names one (embedded ones travel by path)
   std::vector<std::string> warnings;
   // The course's preset the job draws, when it names one: the route asks whether the caller may
@@ -55,9 +55,13 @@ struct RequestShaders {
   std::optional<road::ShaderPair> code;
 };
 Expected<RequestShaders> read_shaders(const RawRequest& raw, const Limits& limits);
+// A shader the request sent as an uploaded file (named as uploaded) or as the field's text (named
+// `name`, as is an upload without a file name).
+Expected<shader::ShaderFile> shader_file(const RawRequest& raw, const char* field, std::string name);
 
-// The mesh file the request uploaded (its `mesh` part), within the limits; null when it sent none.
-Expected<const UploadedFile*> uploaded_mesh(const RawRequest& raw, const Limits& limits);
+// The mesh file the request uploaded (its `mesh` part), within the limits, with its content
+// address and format; none when it sent none.
+Expected<std::optional<road::MeshChoice::Upload>> uploaded_mesh(const RawRequest& raw, const Limits& limits);
 
 // Whether a request's field is one the API reads (a render's or a grade's: one job can be sent to
 // both routes); any other is ignored with a warning.

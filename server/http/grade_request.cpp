@@ -35,23 +35,15 @@ const RequestFields<ParsedCodeGrade> kCodeFields = {
     field("spatialTolerance", &ParsedCodeGrade::request, &CodeRequest::tolerance, &ToleranceShape::spatial_tolerance),
 };
 
-// A shader the request sent as an uploaded file or as the field's text, named `name` then.
-Expected<shader::ShaderFile> file_or_field(const RawRequest& raw, const char* field, std::string name) {
-  if (auto it = raw.files.find(field); it != raw.files.end()) return shader::ShaderFile{it->second.filename, it->second.content};
-  auto text = text_field(raw.fields, field, "");
-  if (!text) return text.take_error();
-  return shader::ShaderFile{std::move(name), std::move(*text)};
-}
-
 // The files a code grade may upload: its mesh (else `mesh` names one) and the page's own reference.
 Status read_code_files(const RawRequest& raw, const Limits& limits, CodeRequest& request) {
   auto upload = uploaded_mesh(raw, limits);
   if (!upload) return upload.take_error();
-  if (const UploadedFile* file = *upload) request.mesh.upload = {mesh_id(file->content), scene::mesh_format_of(file->filename), file->content};
+  request.mesh.upload = std::move(*upload);
   if (!raw.files.count("referenceVertex") && !raw.fields.contains("referenceVertex")) return Ok{};
-  auto vertex = file_or_field(raw, "referenceVertex", "referenceVertex");
+  auto vertex = shader_file(raw, "referenceVertex", "referenceVertex");
   if (!vertex) return vertex.take_error();
-  auto fragment = file_or_field(raw, "referenceFragment", "referenceFragment");
+  auto fragment = shader_file(raw, "referenceFragment", "referenceFragment");
   if (!fragment) return fragment.take_error();
   request.own_reference = road::ShaderPair{std::move(*vertex), std::move(*fragment)};
   return Ok{};
@@ -89,7 +81,7 @@ Status json_frames(const json& list, std::vector<road::HandedInFile>& out) {
 Expected<std::optional<shader::ShaderFile>> shader_beside(const RawRequest& raw, const std::string& stage) {
   auto name = text_field(raw.fields, (stage + "Name").c_str(), stage);
   if (!name) return name.take_error();
-  auto shader = file_or_field(raw, stage.c_str(), name->empty() ? stage : *name);
+  auto shader = shader_file(raw, stage.c_str(), name->empty() ? stage : *name);
   if (!shader) return shader.take_error();
   if (shader->text.empty() && !raw.files.count(stage)) return std::optional<shader::ShaderFile>();
   return std::optional(std::move(*shader));

@@ -31,7 +31,7 @@ void send_json(httplib::Response& res, int status, const json& body) {
 }
 
 Expected<std::string> RouteContext::mesh_bytes(ParsedJob& parsed) const {
-  if (!parsed.mesh_upload.content.empty()) return parsed.mesh_upload.content;
+  if (parsed.mesh_upload) return parsed.mesh_upload->bytes;
   if (!parsed.job.mesh_embedded.empty()) return std::string();
   if (!parsed.course_mesh_bytes.empty()) return std::move(parsed.course_mesh_bytes);
   auto stored = meshes.get(parsed.job.mesh);
