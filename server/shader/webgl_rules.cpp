@@ -298,17 +298,18 @@ bool basic_type_word(std::string_view w) {
   return std::regex_match(w.begin(), w.end(), type);
 }
 
+bool same_words(std::span<const GlslToken> a, std::span<const GlslToken> b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const GlslToken& x, const GlslToken& y) { return x.text == y.text; });
+}
+
 // `case 0: int;` as a label's last statement: the browser takes the empty declaration as the
 // statement a label needs, NVIDIA's driver refuses it ("no statement at the end of a switch
 // block"; measured on an H100, docs/webgl-rules.md). After a label, inside a function, the
 // declaration declares nothing, so its words are blanked and `case 0: ;` is the same program,
 // every column kept. Read from the preprocessor's output (no comments, #if resolved); a form
 // a macro made is not on the source line and is left as it is.
-bool same_words(std::span<const GlslToken> a, std::span<const GlslToken> b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const GlslToken& x, const GlslToken& y) { return x.text == y.text; });
-}
-
 void blank_empty_declarations_after_labels(std::string& glsl, const GlslFacts& facts) {
+  if (facts.preprocessed.find("switch") == std::string::npos) return;  // no label, and no tokens to read on every compile
   const auto tokens = tokens_of(facts.preprocessed);
   for (size_t i = 1; i + 1 < tokens.size(); ++i) {
     if (tokens[i - 1].text != ":") continue;
