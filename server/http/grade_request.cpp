@@ -87,6 +87,25 @@ Expected<std::optional<shader::ShaderFile>> shader_beside(const RawRequest& raw,
   return std::optional(std::move(*shader));
 }
 
+// A field's value where it has the fallback's type, else the fallback: what a request that could
+// not be read still says about itself.
+template <class T>
+T lenient_field(const json& fields, const char* name, T fallback) {
+  if (!fields.contains(name)) return fallback;
+  const json& v = fields[name];
+  if constexpr (std::is_same_v<T, std::string>) return v.is_string() ? v.get<std::string>() : fallback;
+  else return v.is_number() ? v.get<T>() : fallback;
+}
+
+// A code grade with a field that could not be read: the sources, and the labels of its report.
+ParsedGrade misread_code_grade(const RawRequest& raw, const Limits& limits, Error unread) {
+  road::CodeRequest request;
+  request.reference = lenient_field<std::string>(raw.fields, "reference", "");
+  request.tolerance.max_score = lenient_field<double>(raw.fields, "maxScore", 1.0);
+  if (auto shaders = read_shaders(raw, limits)) request.code = std::move(shaders->code);
+  return ParsedGrade{{std::move(request), std::move(unread), {}}, lenient_field<std::string>(raw.fields, "format", "json")};
+}
+
 // The code's size and sources are checked where it is graded (road/submission.h): a shader
 // that cannot be sent is the code's grade, and the frames are still graded.
 Status read_code_beside(const RawRequest& raw, road::FramesRequest& out) {
@@ -134,6 +153,17 @@ Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw) {
   if (raw.fields.contains("savedFrames"))
     if (auto s = json_frames(raw.fields["savedFrames"], out.request.files); !s) return s.take_error();
   return out;
+}
+
+Expected<ParsedGrade> parse_grade(const RawRequest& raw, const Limits& limits) {
+  if (has_saved_frames(raw)) {
+    auto frames = parse_frames_grade(raw);
+    if (!frames) return frames.take_error();
+    return ParsedGrade{{std::move(frames->request), std::nullopt, std::move(frames->warnings)}};
+  }
+  auto code = parse_code_grade(raw, limits);
+  if (!code) return misread_code_grade(raw, limits, code.take_error());
+  return ParsedGrade{{std::move(code->request), std::nullopt, std::move(code->warnings)}, std::move(code->result_format)};
 }
 
 }  // namespace shadelab::http

@@ -17,8 +17,7 @@
 
 #include "core/expected.h"
 #include "http/api_request.h"
-#include "road/code_request.h"
-#include "road/frames_request.h"
+#include "road/client_grade.h"
 
 namespace shadelab::http {
 
@@ -37,5 +36,15 @@ struct ParsedFramesGrade {
   std::vector<std::string> warnings;  // fields the grade does not use
 };
 Expected<ParsedFramesGrade> parse_frames_grade(const RawRequest& raw);
+
+// Either grade, by whether the request carries saved frames, for the road's one call
+// (road/client_grade.h). A code grade's field that cannot be read is no error here: it is the
+// grade's `unread`, beside the student's sources and the `reference`, `maxScore` and `format` as
+// far as they can be read, because the road decides whether the sources are then the grade.
+struct ParsedGrade {
+  road::ClientGrade grade;
+  std::string result_format = "json";  // json, or gradescope for a code grade
+};
+Expected<ParsedGrade> parse_grade(const RawRequest& raw, const Limits& limits);
 
 }  // namespace shadelab::http
