@@ -1,0 +1,303 @@
+#include "grade/repair_edits.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "grade/live_statements.h"
+#include "shader/glsl_lines.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+using shader::GlslToken;
+
+bool one_of(std::string_view s, std::initializer_list<std::string_view> words) {
+  return std::find(words.begin(), words.end(), s) != words.end();
+}
+
+// Tokens that may stand before a unary operator or an operand's start: never an operand's end.
+bool before_operand(std::string_view s) {
+  return one_of(s, {"(", ",", "=", "+=", "-=", "*=", "/=", "+", "-", "*", "/", "?", ":", "return", "{", ";", "<", ">", "<=", ">=", "==",
+                    "!=", "&&", "||", "!"});
+}
+
+// One stage's tokens, with the spans they cover in its GLSL.
+struct Stage {
+  std::string_view glsl;
+  std::vector<GlslToken> t;
+  shader::Stage stage;
+
+  size_t size() const { return t.size(); }
+  bool is(size_t i, std::string_view s) const { return i < t.size() && t[i].text == s; }
+  bool identifier(size_t i) const { return i < t.size() && t[i].kind == GlslToken::Kind::identifier; }
+  bool number(size_t i) const { return i < t.size() && t[i].kind == GlslToken::Kind::number; }
+  size_t begin(size_t i) const { return static_cast<size_t>(t[i].text.data() - glsl.data()); }
+  size_t end(size_t i) const { return begin(i) + t[i].text.size(); }
+  // Tokens first..last, inclusive, as written (their spaces and comments included).
+  std::string_view text(size_t first, size_t last) const { return glsl.substr(begin(first), end(last) - begin(first)); }
+
+  // The `)` that closes the `(` at `open`; size() when none does.
+  size_t close_of(size_t open) const {
+    int depth = 0;
+    for (size_t i = open; i < t.size(); ++i) {
+      if (is(i, "(") || is(i, "[")) ++depth;
+      if ((is(i, ")") || is(i, "]")) && --depth == 0) return i;
+    }
+    return t.size();
+  }
+  // The last token of the expression that starts at `first`: before the `;`, `,` or closing
+  // bracket at its own depth.
+  size_t expression_last(size_t first) const {
+    int depth = 0;
+    for (size_t i = first; i < t.size(); ++i) {
+      if (is(i, "(") || is(i, "[")) ++depth;
+      if (is(i, ")") || is(i, "]") || is(i, "}")) {
+        if (depth == 0) return i - 1;
+        --depth;
+      }
+      if (depth == 0 && (is(i, ";") || is(i, ","))) return i - 1;
+    }
+    return t.size() - 1;
+  }
+  // The last token of the operand that starts at `first`: a name or a number, a call, a
+  // parenthesis, each with its fields (`.xyz`) and indices after it.
+  size_t operand_last(size_t first) const {
+    size_t i = first;
+    if (is(i, "(")) i = close_of(i);
+    else if (identifier(i) && is(i + 1, "(")) i = close_of(i + 1);
+    while (i + 2 < t.size() && (is(i + 1, ".") || is(i + 1, "["))) i = is(i + 1, ".") ? i + 2 : close_of(i + 1);
+    return std::min(i, t.size() - 1);
+  }
+  // The arguments of the call whose `(` is at `open`: each as its first and last token.
+  std::vector<std::pair<size_t, size_t>> arguments(size_t open) const {
+    std::vector<std::pair<size_t, size_t>> out;
+    const size_t close = close_of(open);
+    for (size_t i = open + 1; i < close;) {
+      const size_t last = expression_last(i);
+      out.emplace_back(i, last);
+      i = last + 2;
+    }
+    return out;
+  }
+  // The name of the call an argument at `i` is inside, or "".
+  std::string_view enclosing_call(size_t i) const {
+    int depth = 0;
+    for (size_t k = i; k-- > 0;) {
+      if (is(k, ")")) ++depth;
+      if (is(k, "(") && depth-- == 0) return identifier(k - 1) && k > 0 ? t[k - 1].text : std::string_view();
+    }
+    return {};
+  }
+
+  RepairEdit edit(RepairKind kind, size_t first_byte, size_t end_byte, std::string with, size_t at, std::string_view subject) const {
+    RepairEdit e;
+    e.stage = stage;
+    e.kind = kind;
+    e.begin = first_byte;
+    e.end = end_byte;
+    e.with = std::move(with);
+    e.line = t[at].line;
+    e.subject = std::string(subject);
+    return e;
+  }
+  RepairEdit replace(RepairKind kind, size_t first, size_t last, std::string with, std::string_view subject) const {
+    return edit(kind, begin(first), end(last), std::move(with), first, subject);
+  }
+};
+
+// The type each declared name has: `vec3 L`, `uniform vec4 uDiffuseColor`, `in vec3 vNormal`.
+std::map<std::string, std::string, std::less<>> declared_types(const Stage& s) {
+  std::map<std::string, std::string, std::less<>> types;
+  for (size_t i = 0; i + 1 < s.size(); ++i)
+    if (one_of(s.t[i].text, {"float", "vec2", "vec3", "vec4", "mat3", "mat4"}) && s.identifier(i + 1) && !s.is(i + 2, "("))
+      types.emplace(std::string(s.t[i + 1].text), std::string(s.t[i].text));
+  return types;
+}
+
+// A name a stage reads but does not write: a uniform or an input.
+std::map<std::string, std::string, std::less<>> read_only_names(const Stage& s) {
+  std::map<std::string, std::string, std::less<>> names;
+  for (size_t i = 0; i + 2 < s.size(); ++i) {
+    if (!one_of(s.t[i].text, {"uniform", "in", "attribute", "varying"})) continue;
+    if (s.stage == shader::Stage::vertex && s.is(i, "varying")) continue;  // a vertex stage writes its varyings
+    size_t k = i + 1;
+    if (one_of(s.t[k].text, {"lowp", "mediump", "highp", "flat", "smooth"})) ++k;
+    if (s.identifier(k) && s.identifier(k + 1) && s.is(k + 2, ";")) names.emplace(std::string(s.t[k + 1].text), std::string(s.t[k].text));
+  }
+  return names;
+}
+
+// `-X` for an operand, `-(X)` for anything longer.
+std::string negated(const Stage& s, size_t first, size_t last) {
+  const std::string text(s.text(first, last));
+  return s.operand_last(first) == last ? "-" + text : "-(" + text + ")";
+}
+
+// vec3 L = X;  and  L = X;  for a vec3 L: normalise X, or negate it.
+void vector_values(const Stage& s, const std::map<std::string, std::string, std::less<>>& types, std::vector<RepairEdit>& out) {
+  for (size_t i = 1; i + 2 < s.size(); ++i) {
+    const bool declared = s.is(i - 1, "vec3") && s.identifier(i) && s.is(i + 1, "=");
+    const auto type = types.find(s.t[i].text);
+    const bool assigned = !declared && s.identifier(i) && s.is(i + 1, "=") && (s.is(i - 1, ";") || s.is(i - 1, "{") || s.is(i - 1, "}")) &&
+                          type != types.end() && type->second == "vec3";
+    if (!declared && !assigned) continue;
+    const size_t first = i + 2, last = s.expression_last(first);
+    if (last < first) continue;
+    const std::string_view name = s.t[i].text, value = s.text(first, last);
+    if (!(s.is(first, "normalize") && s.close_of(first + 1) == last))
+      out.push_back(s.replace(RepairKind::normalised, first, last, "normalize(" + std::string(value) + ")", name));
+    if (!s.is(first, "-")) out.push_back(s.replace(RepairKind::negation_added, first, last, negated(s, first, last), name));
+  }
+}
+
+// Calls: normalize(X) -> X; dot(A, B) -> max(0.0, dot(A, B)) where nothing clamps it;
+// vec4(n, 1.0) <-> vec4(n, 0.0); reflect(L, N) -> reflect(-L, N).
+void calls(const Stage& s, std::vector<RepairEdit>& out) {
+  for (size_t i = 0; i + 1 < s.size(); ++i) {
+    if (!s.identifier(i) || !s.is(i + 1, "(")) continue;
+    const size_t close = s.close_of(i + 1);
+    if (close >= s.size()) continue;
+    const auto args = s.arguments(i + 1);
+    const std::string_view name = s.t[i].text;
+    if (name == "normalize" && args.size() == 1)
+      out.push_back(s.replace(RepairKind::unnormalised, i, close, std::string(s.text(args[0].first, args[0].second)), s.text(i, close)));
+    if (name == "dot" && !one_of(s.enclosing_call(i), {"max", "clamp"}))
+      out.push_back(s.replace(RepairKind::clamped, i, close, "max(0.0, " + std::string(s.text(i, close)) + ")", s.text(i, close)));
+    if (name == "vec4" && args.size() >= 2 && args.back().first == args.back().second && s.number(args.back().first)) {
+      const std::string_view w = s.t[args.back().first].text;
+      const bool one = one_of(w, {"1.0", "1.", "1"}), zero = one_of(w, {"0.0", "0.", "0"});
+      if (one || zero) {
+        RepairEdit e = s.replace(RepairKind::direction_w, args.back().first, args.back().first, zero ? "1.0" : "0.0",
+                                 s.text(args[0].first, args[args.size() - 2].second));
+        e.other = e.with;
+        out.push_back(std::move(e));
+      }
+    }
+    if (name == "reflect" && args.size() == 2 && !s.is(args[0].first, "-"))
+      out.push_back(s.replace(RepairKind::negation_added, args[0].first, args[0].second, negated(s, args[0].first, args[0].second),
+                              s.text(args[0].first, args[0].second)));
+  }
+}
+
+// -X -> X; 0.5 * X -> X; X * 2.0 -> X; M * P -> P for a matrix M; X + vec3(0.0, 4.0, 0.0) -> X.
+void operators(const Stage& s, const std::map<std::string, std::string, std::less<>>& types, std::vector<RepairEdit>& out) {
+  for (size_t i = 1; i + 1 < s.size(); ++i) {
+    const std::string_view op = s.t[i].text;
+    const bool unary = before_operand(s.t[i - 1].text);
+    if (op == "-" && unary && (s.identifier(i + 1) || s.is(i + 1, "(") || s.number(i + 1))) {
+      const size_t last = s.operand_last(i + 1);
+      out.push_back(s.replace(RepairKind::negation_removed, i, last, std::string(s.text(i + 1, last)), s.text(i + 1, last)));
+    }
+    if (op == "*" && !unary) {
+      const bool left_starts = i >= 2 && before_operand(s.t[i - 2].text);
+      const auto type = types.find(s.t[i - 1].text);
+      const bool matrix = type != types.end() && type->second.starts_with("mat");
+      if (left_starts && (s.number(i - 1) || (s.identifier(i - 1) && matrix)))
+        out.push_back(s.edit(RepairKind::factor_removed, s.begin(i - 1), s.begin(i + 1), "", i - 1, s.t[i - 1].text));
+      if (s.number(i + 1) && (i + 2 >= s.size() || one_of(s.t[i + 2].text, {";", ")", ",", "+", "-"})))
+        out.push_back(s.edit(RepairKind::factor_removed, s.end(i - 1), s.end(i + 1), "", i + 1, s.t[i + 1].text));
+    }
+    if ((op == "+" || op == "-") && !unary) {
+      size_t last = i + 1;
+      if (s.identifier(i + 1) && s.t[i + 1].text.starts_with("vec") && s.is(i + 2, "(")) {
+        last = s.close_of(i + 2);
+        bool literal = last < s.size();
+        for (size_t k = i + 3; literal && k < last; ++k) literal = s.number(k) || s.is(k, ",") || s.is(k, "-");
+        if (!literal) continue;
+      } else if (!s.number(i + 1)) {
+        continue;
+      }
+      RepairEdit e = s.edit(RepairKind::term_removed, s.end(i - 1), s.end(last), "", i, s.text(i, last));
+      e.nodes = 1 + static_cast<int>(s.arguments(i + 2).size());
+      out.push_back(std::move(e));
+    }
+  }
+}
+
+// A uniform or an input read where another of its type was meant.
+void names(const Stage& s, std::vector<RepairEdit>& out) {
+  const auto readable = read_only_names(s);
+  std::set<size_t> declarations;
+  for (size_t i = 1; i < s.size(); ++i)
+    if (s.identifier(i) && s.identifier(i - 1) && readable.count(s.t[i].text)) declarations.insert(i);
+  for (size_t i = 0; i < s.size(); ++i) {
+    const auto found = s.identifier(i) ? readable.find(s.t[i].text) : readable.end();
+    if (found == readable.end() || declarations.count(i) || (i > 0 && s.is(i - 1, "."))) continue;
+    for (const auto& [other, type] : readable) {
+      if (other == found->first || type != found->second) continue;
+      RepairEdit e = s.replace(RepairKind::name_replaced, i, i, other, found->first);
+      e.other = other;
+      out.push_back(std::move(e));
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage) {
+  const Stage s{glsl, shader::tokens_of(glsl), stage};
+  const auto types = declared_types(s);
+  std::vector<RepairEdit> out;
+  vector_values(s, types, out);
+  calls(s, out);
+  operators(s, types, out);
+  names(s, out);
+  std::stable_sort(out.begin(), out.end(), smaller);
+  return out;
+}
+
+std::vector<RepairEdit> program_repair_edits(std::string_view vertex, std::string_view fragment) {
+  const StageLiveness fragment_live = fragment_liveness(fragment);
+  const StageLiveness vertex_live = vertex_liveness(vertex, fragment_live.live_names);
+  std::vector<RepairEdit> out;
+  for (auto& e : repair_edits(vertex, shader::Stage::vertex))
+    if (!vertex_live.dead(e.begin)) out.push_back(std::move(e));
+  for (auto& e : repair_edits(fragment, shader::Stage::fragment))
+    if (!fragment_live.dead(e.begin)) out.push_back(std::move(e));
+  std::stable_sort(out.begin(), out.end(), smaller);
+  return out;
+}
+
+bool smaller(const RepairEdit& a, const RepairEdit& b) {
+  return std::tuple(a.nodes, a.kind, a.stage, a.begin) < std::tuple(b.nodes, b.kind, b.stage, b.begin);
+}
+
+std::string with_edit(std::string_view glsl, const RepairEdit& edit) {
+  std::string out(glsl.substr(0, edit.begin));
+  out += edit.with;
+  out += glsl.substr(edit.end);
+  return out;
+}
+
+std::string edited_line(std::string_view glsl, const RepairEdit& edit) {
+  const std::string edited = with_edit(glsl, edit);
+  const size_t start = edited.rfind('\n', edit.begin == 0 ? 0 : edit.begin - 1);
+  const size_t from = start == std::string::npos || edit.begin == 0 ? 0 : start + 1;
+  const size_t to = edited.find('\n', edit.begin + edit.with.size());
+  std::string line = edited.substr(from, to == std::string::npos ? std::string::npos : to - from);
+  const size_t indent = line.find_first_not_of(" \t");
+  return indent == std::string::npos ? std::string() : line.substr(indent);
+}
+
+std::string repair_words(const RepairEdit& e) {
+  const std::string x = "`" + e.subject + "`";
+  switch (e.kind) {
+    case RepairKind::normalised: return x + " is not normalised: a direction must be a unit vector";
+    case RepairKind::unnormalised: return x + " is normalised where the homework uses its length as it is";
+    case RepairKind::clamped: return x + " is not clamped at 0: a cosine below 0 must count as 0, max(0.0, ...)";
+    case RepairKind::direction_w:
+      return e.other == "0.0" ? x + " is a direction, so its w must be 0: with w = 1 the matrix's translation moves it"
+                              : x + " is a point, so its w must be 1: with w = 0 the matrix's translation is lost";
+    case RepairKind::negation_removed:
+    case RepairKind::negation_added: return x + " has the wrong sign";
+    case RepairKind::factor_removed: return x + " should not multiply here: the homework uses the value as it is";
+    case RepairKind::term_removed: return x + " should not be there: it moves the value away from the homework's";
+    case RepairKind::name_replaced: return x + " is not the value the homework uses here";
+  }
+  return x + " differs from the homework";
+}
+
+}  // namespace shadelab::grade

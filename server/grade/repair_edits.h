@@ -1,0 +1,73 @@
+#pragma once
+// The edits a repair search tries on a student's program (docs/grading.md, "Repairs"): each one
+// span of one stage's GLSL replaced, the inverse of a mistake a Phong homework is made of (a
+// vector not normalised, a cosine not clamped, a direction transformed as a point, a sign, a
+// uniform or a matrix mixed up, a term or a factor too many). Reading tokens only: whether an
+// edit repairs anything is for a render to say (road/repair_search.h), never for this file.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/enum_names.h"
+#include "shader/shader_source.h"
+
+namespace shadelab::grade {
+
+// What an edit does, in the order "smallest" breaks its ties (docs/grading.md, "Repairs").
+enum class RepairKind {
+  normalised,        // vec3 L = X;  ->  vec3 L = normalize(X);
+  unnormalised,      // normalize(X)  ->  X
+  clamped,           // dot(V, R)  ->  max(0.0, dot(V, R))
+  direction_w,       // vec4(n, 1.0)  ->  vec4(n, 0.0), and the other way
+  negation_removed,  // -X  ->  X
+  negation_added,    // reflect(L, N)  ->  reflect(-L, N); vec3 V = X  ->  vec3 V = -X
+  factor_removed,    // 0.5 * uLightPosition  ->  uLightPosition; M * P  ->  P for a matrix M
+  term_removed,      // uLightPosition + vec3(0.0, 4.0, 0.0)  ->  uLightPosition
+  name_replaced,     // uDiffuseColor  ->  uSpecularColor (a uniform or an input of the same type)
+};
+inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
+    {RepairKind::normalised, "normalised"},
+    {RepairKind::unnormalised, "unnormalised"},
+    {RepairKind::clamped, "clamped"},
+    {RepairKind::direction_w, "direction_w"},
+    {RepairKind::negation_removed, "negation_removed"},
+    {RepairKind::negation_added, "negation_added"},
+    {RepairKind::factor_removed, "factor_removed"},
+    {RepairKind::term_removed, "term_removed"},
+    {RepairKind::name_replaced, "name_replaced"},
+};
+
+struct RepairEdit {
+  shader::Stage stage = shader::Stage::fragment;
+  RepairKind kind = RepairKind::normalised;
+  size_t begin = 0, end = 0;  // the bytes of the stage's GLSL replaced
+  std::string with;
+  int line = 0;         // the GLSL line `begin` is on (1-based)
+  std::string subject;  // what the edit changes, as the student wrote it: "L", "dot(V, R)", "uDiffuseColor"
+  std::string other;    // name_replaced: the name put in its place; direction_w: the new w
+  int nodes = 1;        // syntax nodes the edit changes: "smallest" is fewest
+};
+
+// Every edit of the kinds above that applies to `glsl` (one stage, as the driver gets it),
+// smallest first.
+std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage);
+
+// Both stages' edits, smallest first, less those in an assignment that cannot reach what the
+// program draws (grade/live_statements.h): the candidates a repair search tries, in its order.
+std::vector<RepairEdit> program_repair_edits(std::string_view vertex, std::string_view fragment);
+
+// "Smaller": fewer nodes, then the kind's order above, then the vertex stage before the fragment,
+// then the place in the stage.
+bool smaller(const RepairEdit& a, const RepairEdit& b);
+
+// `glsl` with `edit` made.
+std::string with_edit(std::string_view glsl, const RepairEdit& edit);
+
+// The line `edit` is on, as it reads after the edit.
+std::string edited_line(std::string_view glsl, const RepairEdit& edit);
+
+// What the edit says is wrong, in the homework's words, without the repaired text:
+// "L is not normalised: a direction must be a unit vector".
+std::string repair_words(const RepairEdit& edit);
+
+}  // namespace shadelab::grade

@@ -1,0 +1,123 @@
+// The repair search's edits (grade/repair_edits.h) on the mistakes a Phong homework is made of:
+// for each, the course's reference with the mistake typed in, an edit that undoes it is among
+// those the search's budget reaches.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "course/course_reader.h"
+#include "grade/live_statements.h"
+#include "grade/repair_edits.h"
+#include "road/repair_search.h"
+#include "shader/shader_source.h"
+
+using namespace shadelab;
+
+namespace {
+
+std::string glsl_of(const std::string& preset, shader::Stage stage) {
+  const course::Course& c = course::builtin_course();
+  const course::Preset* p = c.preset(preset);
+  EXPECT_NE(p, nullptr) << preset;
+  auto unwrapped = shader::unwrap(stage == shader::Stage::vertex ? p->vertex : p->fragment, stage);
+  EXPECT_TRUE(static_cast<bool>(unwrapped));
+  return unwrapped->glsl;
+}
+
+std::string typed(std::string text, const std::string& find, const std::string& replace) {
+  const size_t at = text.find(find);
+  EXPECT_NE(at, std::string::npos) << find;
+  return text.replace(at, find.size(), replace);
+}
+
+// A mistake typed into the reference, and the lines an edit may leave that draw as the reference's.
+struct Mistake {
+  const char* name;
+  shader::Stage stage;
+  const char* find;
+  const char* replace;
+  std::vector<std::string> repaired;
+};
+
+const Mistake kMistakes[] = {
+    {"L not normalised", shader::Stage::fragment, "vec3 L = normalize(uLightPosition - vPosition);", "vec3 L = uLightPosition - vPosition;",
+     {"vec3 L = normalize(uLightPosition - vPosition);"}},
+    {"pow without max", shader::Stage::fragment, "pow(max(0.0, dot(V, R)), specularAlpha)", "pow(dot(V, R), specularAlpha)",
+     {"color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);"}},
+    {"light moved", shader::Stage::fragment, "normalize(uLightPosition - vPosition)", "normalize(uLightPosition + vec3(0.0, 4.0, 0.0) - vPosition)",
+     {"vec3 L = normalize(uLightPosition - vPosition);"}},
+    {"light halved", shader::Stage::fragment, "normalize(uLightPosition - vPosition)", "normalize(0.5 * uLightPosition - vPosition)",
+     {"vec3 L = normalize(uLightPosition - vPosition);"}},
+    {"specular colour from the diffuse", shader::Stage::fragment, "color += uSpecularColor", "color += uDiffuseColor",
+     {"color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);"}},
+    {"reflect(L, N)", shader::Stage::fragment, "reflect(-L, N)", "reflect(L, N)", {"vec3 R = reflect(-L, N);"}},
+    {"view vector away", shader::Stage::fragment, "normalize(-vPosition)", "normalize(vPosition)",
+     {"vec3 V = normalize(-vPosition);", "vec3 V = -normalize(vPosition);"}},
+    {"N.L not clamped", shader::Stage::fragment, "max(0.0, NdotL)", "NdotL", {"float NdotL = max(0.0, dot(N, L));"}},
+    {"normal with the translation", shader::Stage::vertex, "(uMeshToWorldRotMatrix * aVertexNormal).xyz", "(uMeshToWorldMatrix * vec4(aVertexNormal.xyz, 1.0)).xyz",
+     {"vNormal = (uMeshToWorldMatrix * vec4(aVertexNormal.xyz, 0.0)).xyz;"}},
+    {"position in clip space", shader::Stage::vertex, "vPosition = (uMeshToWorldMatrix * aVertexPosition).xyz;",
+     "vPosition = (uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition).xyz;", {"vPosition = (uMeshToWorldMatrix * aVertexPosition).xyz;"}},
+};
+
+}  // namespace
+
+// Each mistake is undone (to the reference's line, or one that draws as it) by an edit within the
+// search's budget of candidates, counted over both stages as the search counts them.
+TEST(RepairEditsTest, EachMistakeIsUndoneByAnEditOfItsOwnLineWithinTheBudget) {
+  for (const Mistake& m : kMistakes) {
+    std::string vertex = glsl_of("specular", shader::Stage::vertex), fragment = glsl_of("specular", shader::Stage::fragment);
+    std::string& wrong = m.stage == shader::Stage::vertex ? vertex : fragment;
+    wrong = typed(wrong, m.find, m.replace);
+    const auto edits = grade::program_repair_edits(vertex, fragment);
+    size_t found = edits.size();
+    for (size_t i = 0; i < edits.size() && found == edits.size(); ++i)
+      if (edits[i].stage == m.stage && std::count(m.repaired.begin(), m.repaired.end(), grade::edited_line(wrong, edits[i]))) found = i;
+    ASSERT_LT(found, edits.size()) << m.name << ": no edit undoes it";
+    EXPECT_LT(found, static_cast<size_t>(road::RepairBudget{}.candidates)) << m.name << ": candidate " << found << " of " << edits.size();
+  }
+}
+
+// No candidate where an edit cannot change what is drawn: a fragment stage that writes one colour
+// leaves the vertex stage's varyings and its own lighting dead, and only gl_Position and the
+// colour's own line are searched.
+TEST(RepairEditsTest, AnAssignmentThatCannotReachTheOutputGetsNoCandidate) {
+  const std::string vertex = glsl_of("specular", shader::Stage::vertex);
+  const std::string fragment = typed(glsl_of("specular", shader::Stage::fragment), "fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);");
+  const auto edits = grade::program_repair_edits(vertex, fragment);
+  ASSERT_FALSE(edits.empty());
+  for (const auto& e : edits) {
+    const std::string line = grade::edited_line(e.stage == shader::Stage::vertex ? vertex : fragment, e);
+    if (e.stage == shader::Stage::vertex) EXPECT_EQ(line.rfind("gl_Position", 0), 0u) << line;
+    else EXPECT_EQ(line.rfind("fragColor", 0), 0u) << line;
+  }
+  const auto all = grade::program_repair_edits(vertex, glsl_of("specular", shader::Stage::fragment));
+  EXPECT_GT(all.size(), 3 * edits.size()) << "the whole program has candidates everywhere";
+}
+
+// An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.
+TEST(RepairEditsTest, AnEditChangesItsSpanAloneAndSaysWhatIsWrong) {
+  const std::string glsl = "void main() {\n    vec3 L = uLightPosition - vPosition;\n}\n";
+  const auto edits = grade::repair_edits(glsl, shader::Stage::fragment);
+  ASSERT_FALSE(edits.empty());
+  const grade::RepairEdit& first = edits.front();
+  EXPECT_EQ(first.kind, grade::RepairKind::normalised);
+  EXPECT_EQ(first.line, 2);
+  EXPECT_EQ(grade::with_edit(glsl, first), "void main() {\n    vec3 L = normalize(uLightPosition - vPosition);\n}\n");
+  EXPECT_EQ(grade::repair_words(first), "`L` is not normalised: a direction must be a unit vector");
+}
+// A condition is live where its block, or an else block after it, is: the names it reads reach
+// the output through the branch taken.
+TEST(LiveStatementsTest, AConditionIsLiveWhereAnyOfItsBranchesIs) {
+  const std::string glsl =
+      "out vec4 fragColor;\nin vec3 vN;\nvoid main() {\n  float c = vN.x;\n  float unused = 2.0;\n  float d = vN.y;\n"
+      "  if (c > 0.0) { d += 1.0; } else { fragColor = vec4(1.0); }\n  if (unused > 1.0) { d = 0.0; }\n}\n";
+  const grade::StageLiveness live = grade::fragment_liveness(glsl);
+  EXPECT_TRUE(live.live_names.count("c")) << "read by a condition whose else block writes the output";
+  EXPECT_TRUE(live.live_names.count("vN"));
+  EXPECT_FALSE(live.live_names.count("unused")) << "read only by a condition whose block is dead";
+  EXPECT_FALSE(live.live_names.count("d"));
+  EXPECT_TRUE(live.dead(glsl.find("float unused")));
+  EXPECT_TRUE(live.dead(glsl.find("float d")));
+  EXPECT_FALSE(live.dead(glsl.find("float c")));
+}
