@@ -243,6 +243,39 @@ TEST_F(AccessTest, NoRouteGivesAStudentAReferencesSourceOrPixels) {
 // A class server whose students need no key (serve --api-keys FILE --students-without-keys): a
 // caller without a key is a student on every route, a staff key still sees the references, and a
 // key the file does not hold is refused, never taken for a student's absence of one.
+// A failing grade's repair (road/repair_search.h): a student reads what is wrong and where, never
+// the repaired line (which is the reference's line, however short: the rule above that looks for
+// the references' lines of 24 characters or more would miss `N = normalize(N);`); a staff key
+// reads it too.
+TEST_F(AccessTest, AStudentReadsWhereARepairIsAndNeverTheRepairedLine) {
+  const std::string right = "vec3 L = normalize(uLightPosition - vPosition);";
+  std::string fragment = shader_text("specular", "fragment");
+  fragment.replace(fragment.find(right), right.size(), "vec3 L = uLightPosition - vPosition;");
+  const json job = {{"vertex", shader_text("specular", "vertex")}, {"fragment", fragment}, {"vertexName", "phong_vert.js"},
+                    {"fragmentName", "phong_frag.js"}, {"width", 96}, {"height", 96}, {"reference", "specular"}};
+  auto c = server_->client();
+  for (const auto& key : {kStudent, kStaff}) {
+    const auto r = c.Post("/api/grade", bearer(key), job.dump(), "application/json");
+    ASSERT_TRUE(r && r->status == 200) << (r ? r->body : "no response");
+    const json report = json::parse(r->body);
+    EXPECT_FALSE(report["pass"]);
+    const json& found = report["repairSearch"]["found"];
+    ASSERT_TRUE(found.is_object()) << report.dump();
+    EXPECT_EQ(found["kind"], "normalised");
+    EXPECT_EQ(found["file"], "phong_frag.js");
+    EXPECT_EQ(found["line"], 20);
+    const std::string said = report["messages"].dump();
+    EXPECT_NE(said.find("phong_frag.js line 20: `L` is not normalised"), std::string::npos) << said;
+    EXPECT_EQ(said.find("cannot say why"), std::string::npos) << "a confirmed repair is not 'cannot say why': " << said;
+    if (key == kStaff) {
+      EXPECT_EQ(found["repairedLine"], right);
+    } else {
+      EXPECT_FALSE(found.contains("repairedLine")) << report.dump();
+      EXPECT_EQ(r->body.find("normalize(uLightPosition - vPosition)"), std::string::npos) << "a student was given the repaired line";
+    }
+  }
+}
+
 TEST_F(AccessTest, WithStudentsWithoutKeysACallerWithoutAKeyIsAStudentOnEveryRoute) {
   auto config = test_config();
   config.open_references = false;

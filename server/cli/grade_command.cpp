@@ -180,6 +180,11 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--retry-for-s", f->retry_for_s, "Batch with --server: how long to keep retrying one submission, then stop")
       ->capture_default_str();
   cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission, in CPU time (a timeout is retried once)")->capture_default_str();
+  cmd->add_option("--repair-candidates", f->repair_candidates,
+                  "A failing grade's repair search: edits of the student's program tried, at most (0: no search)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  f->show_repaired_line = true;  // a TA's machine: the repaired line too
   return [f] {
     auto loaded = load_course(f->course);
     if (!loaded) return fail(loaded.error());

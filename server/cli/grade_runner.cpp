@@ -54,6 +54,8 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
   if (!submission) return submission.take_error();
   submission->spec.reference_store.folder = f.cache_dir;
   submission->spec.heatmap = f.heatmaps;
+  submission->repair.candidates = f.repair_candidates;
+  submission->show_repaired_line = f.show_repaired_line;
   return submission;
 }
 

@@ -88,13 +88,23 @@ SHADELAB_JSON_FIELDS(Explanation, field("explained", &Explanation::explained), f
                      field("alsoFits", &Explanation::also_fits), field("parameters", &Explanation::parameters),
                      field("residual", &Explanation::residual), field("text", &Explanation::text), field("label", &Explanation::label))
 
+constexpr json_fields::Names kRepairKinds{kRepairKindNames};
+
+SHADELAB_JSON_FIELDS(Repair, field("kind", &Repair::kind, kRepairKinds), field("file", &Repair::file), field("line", &Repair::line),
+                     field("text", &Repair::text), field("repairedLine", &Repair::repaired_line, When::omitted_when_empty))
+
+SHADELAB_JSON_FIELDS(RepairSearch, field("found", &RepairSearch::found, When::omitted_when_empty),
+                     field("candidates", &RepairSearch::candidates), field("confirmations", &RepairSearch::confirmations),
+                     field("budgetSpent", &RepairSearch::budget_spent))
+
 SHADELAB_JSON_FIELDS(Report, field("checkpoint", &Report::checkpoint), field("pass", &Report::pass), field("score", &Report::score),
                      field("maxScore", &Report::max_score), field("diagnosis", &Report::diagnosis), field("messages", &Report::messages),
                      field("frames", &Report::frames, NumberedFrames{}), field("diagnostics", &Report::diagnostics),
                      field("warnings", &Report::warnings), field("flags", &Report::flags, When::default_when_missing),
                      field("attempts", &Report::attempts, When::default_when_missing),
                      field("graderWork", &Report::grader_work, When::default_when_missing),
-                     field("explanation", &Report::explanation, When::omitted_when_empty))
+                     field("explanation", &Report::explanation, When::omitted_when_empty),
+                     field("repairSearch", &Report::repair_search, When::omitted_when_empty))
 
 json to_json(const Report& r) { return r; }
 

@@ -18,6 +18,8 @@
 // | flags[]      | {id, message} for the TA: saved frames ShadeLab made, frames with no lag   |
 // |              | (grade/provenance.h)                                                       |
 // | graderWork   | the grader's own sets of frames: rendered, fromStore (disk/Redis), fromMemory    |
+// | repairSearch | a failing code grade's repair: the line to change, what is wrong, counts    |
+// |              | (road/repair_search.h)                                                      |
 // | explanation  | a failing grade's reading by the checkpoint's formula (grade/formula_explanation.h): |
 // |              | the change that reproduces the frames, the values it fits, the residual     |
 #include <optional>
@@ -28,6 +30,7 @@
 
 #include "core/expected.h"
 #include "core/json_fields.h"
+#include "grade/repair_edits.h"
 #include "grade/grader.h"
 #include "grade/provenance.h"
 
@@ -58,6 +61,26 @@ struct Explanation {
   std::string label;    // a few words, to count a class by: "light used as a direction", "not explained"
 };
 
+// A failing code grade's repair (road/repair_search.h): the smallest edit of the student's own
+// program that makes it draw what the reference draws, confirmed on every frame the grade draws.
+struct Repair {
+  RepairKind kind = RepairKind::normalised;
+  std::string file;  // the student's file: phong_frag.js
+  int line = 0;      // in that file (1-based)
+  std::string text;  // what is wrong there, in the homework's words
+  // The line as the repair writes it: only for whoever may see the references (a TA, an open
+  // server); none for a student.
+  std::optional<std::string> repaired_line;
+};
+
+// What the repair search of a failing code grade tried, counted (not timed): the same on any machine.
+struct RepairSearch {
+  std::optional<Repair> found;
+  int candidates = 0;     // edits screened, each its own worker job on a small canvas
+  int confirmations = 0;  // screened passes rendered again at the grade's own frames
+  bool budget_spent = false;  // every candidate the budget allows was tried and none was confirmed
+};
+
 struct Report {
   std::string checkpoint;
   bool pass = false;
@@ -75,6 +98,7 @@ struct Report {
     int rendered = 0, from_store = 0, from_memory = 0;
   } grader_work;
   std::optional<Explanation> explanation;  // a failing grade's, where the checkpoint has a formula
+  std::optional<RepairSearch> repair_search;  // a failing code grade's that nothing else explained
 };
 
 // A graded result; `lights` names the light of each run of frames_per_light frames, in order.
@@ -95,6 +119,8 @@ SHADELAB_JSON_DECLARE(Flag);
 SHADELAB_JSON_DECLARE(Report::GraderWork);
 SHADELAB_JSON_DECLARE(Explanation::Parameter);
 SHADELAB_JSON_DECLARE(Explanation);
+SHADELAB_JSON_DECLARE(Repair);
+SHADELAB_JSON_DECLARE(RepairSearch);
 SHADELAB_JSON_DECLARE(Report);
 
 nlohmann::json to_json(const Report& report);

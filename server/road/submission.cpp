@@ -77,10 +77,13 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   if (auto sources = render::check_sources(job.request, submission.limits); !sources)
     return grade_unreadable(sources.error(), spec.reference_name, spec.options.max_score);
   const auto start = std::chrono::steady_clock::now();
-  auto a = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(job, std::move(submission.mesh_bytes)));
+  auto a = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(job, submission.mesh_bytes));
   if (a.answered) {
-    note_attempts(a.answered->result.report, a.attempts(), a.retried());
-    return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
+    grade::Report& report = a.answered->result.report;
+    note_attempts(report, a.attempts(), a.retried());
+    if (submission.repair.candidates == 0 || !wants_repair(report)) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
+    search_repair(pool, job, submission.mesh_bytes, submission.show_repaired_line, report, submission.repair);
+    return CodeGrade{std::move(a.answered->result), seconds_since(start)};
   }
   auto failed = grade_unreadable(a.answered.error(), spec.reference_name, spec.options.max_score);
   if (failed) {

@@ -21,6 +21,7 @@
 #include "core/expected.h"
 #include "course/course.h"
 #include "grade/report.h"
+#include "road/repair_search.h"
 #include "worker/job.h"
 #include "worker/pool.h"
 #include "worker/result.h"
@@ -38,6 +39,10 @@ struct CodeSubmission {
   std::string mesh_bytes;  // the mesh's bytes, when they travel with the job
   grade::GradeSpec spec;
   render::RenderLimits limits;  // the caller's: its sources are checked against them, once, on the road
+  // A failing grade's repair (road/repair_search.h) with the repaired line: for whoever may see
+  // the references; a student reads what is wrong and where.
+  bool show_repaired_line = false;
+  RepairBudget repair;  // 0 candidates: no search
 };
 
 struct CodeGrade {

@@ -1,0 +1,39 @@
+#pragma once
+// The repair search of a failing code grade (docs/grading.md, "Repairs"): the smallest edit of
+// the student's own program (grade/repair_edits.h) that makes it draw what the reference draws,
+// under every light the grade uses and within its tolerance.
+//
+// Each candidate is a grade of its own in a worker, killable like any: one that does not pass
+// ShadeLab's compile verdict, hangs, crashes or draws NaN fails its own grade and is passed over,
+// never the student's grade's failure. Candidates are screened on a small canvas, smallest first;
+// a screened pass is rendered again at the grade's own frames, and only that render states a
+// repair. The budget is counted, never timed, so the answer is the same on a busy or an idle
+// machine and on any GPU; it lives on the road because only the road may run more jobs.
+#include <string>
+
+#include "grade/report.h"
+#include "worker/job.h"
+#include "worker/pool.h"
+
+namespace shadelab::road {
+
+struct RepairBudget {
+  int candidates = 64;    // edits screened, at most
+  int confirmations = 2;  // screened passes rendered again at the grade's frames, at most
+  int screen_size = 64;   // the screening canvas's longer side, in pixels
+  int wave = 2;           // candidates screened at once, or one a worker: the machine's speed, never the answer
+};
+
+// Whether a report is one the search is for: a failing grade that drew its frames and that
+// neither the formula nor the course's catalogue explained.
+bool wants_repair(const grade::Report& report);
+
+// Searches the program `failed` drew (a grade job), and writes into `report` what it tried
+// (`repair_search`) and, when a repair is confirmed, what is wrong and where among its messages;
+// `show_repaired_line`: the repaired line too (for whoever may see the references). When the
+// service cannot run a candidate (the queue full, no worker) the search stops, says so in a
+// warning and writes no `repair_search`: the service's trouble is never a different answer.
+void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, bool show_repaired_line,
+                   grade::Report& report, const RepairBudget& budget = {});
+
+}  // namespace shadelab::road
