@@ -19,9 +19,9 @@ bool one_of(std::string_view s, std::initializer_list<std::string_view> words) {
 }
 
 // Tokens that may stand before a unary operator or an operand's start: never an operand's end.
+// Punctuation is one character a token (shader/glsl_lines.h): `+=` is `+` then `=`.
 bool before_operand(std::string_view s) {
-  return one_of(s, {"(", ",", "=", "+=", "-=", "*=", "/=", "+", "-", "*", "/", "?", ":", "return", "{", ";", "<", ">", "<=", ">=", "==",
-                    "!=", "&&", "||", "!"});
+  return one_of(s, {"(", ",", "=", "+", "-", "*", "/", "?", ":", "return", "{", ";", "<", ">", "!"});
 }
 
 // One stage's tokens, with the spans they cover in its GLSL.
@@ -87,7 +87,7 @@ struct Stage {
     int depth = 0;
     for (size_t k = i; k-- > 0;) {
       if (is(k, ")")) ++depth;
-      if (is(k, "(") && depth-- == 0) return identifier(k - 1) && k > 0 ? t[k - 1].text : std::string_view();
+      if (is(k, "(") && depth-- == 0) return k > 0 && identifier(k - 1) ? t[k - 1].text : std::string_view();
     }
     return {};
   }
