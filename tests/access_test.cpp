@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base64.h"
+#include "course/course_reader.h"
+#include "course/course_set.h"
 #include "image/png_decode.h"
 #include "support/files.h"
 #include "support/http_fixture.h"
@@ -27,6 +29,7 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 const std::string kStaff = "staff-0123456789abcdef", kStudent = "student-0123456789ab";
+const std::string kRightLine = "vec3 L = normalize(uLightPosition - vPosition);";  // the specular reference's line 20
 
 httplib::Headers bearer(const std::string& key) { return {{"Authorization", "Bearer " + key}}; }
 
@@ -247,17 +250,31 @@ TEST_F(AccessTest, NoRouteGivesAStudentAReferencesSourceOrPixels) {
 // the repaired line (which is the reference's line, however short: the rule above that looks for
 // the references' lines of 24 characters or more would miss `N = normalize(N);`); a staff key
 // reads it too.
-TEST_F(AccessTest, AStudentReadsWhereARepairIsAndNeverTheRepairedLine) {
-  const std::string right = "vec3 L = normalize(uLightPosition - vPosition);";
+// The specular reference with L left unnormalised at phong_frag.js line 20: a mistake the formula
+// does not explain and the repair search does. `course`: the id of the course to grade it in.
+json unnormalised_light(const std::string& course = "") {
   std::string fragment = shader_text("specular", "fragment");
-  fragment.replace(fragment.find(right), right.size(), "vec3 L = uLightPosition - vPosition;");
-  const json job = {{"vertex", shader_text("specular", "vertex")}, {"fragment", fragment}, {"vertexName", "phong_vert.js"},
-                    {"fragmentName", "phong_frag.js"}, {"width", 96}, {"height", 96}, {"reference", "specular"}};
-  auto c = server_->client();
+  fragment.replace(fragment.find(kRightLine), kRightLine.size(), "vec3 L = uLightPosition - vPosition;");
+  json job = {{"vertex", shader_text("specular", "vertex")}, {"fragment", fragment}, {"vertexName", "phong_vert.js"},
+              {"fragmentName", "phong_frag.js"}, {"width", 96}, {"height", 96}, {"reference", "specular"}};
+  if (!course.empty()) job["course"] = course;
+  return job;
+}
+
+// The report of `job` graded over HTTP with `key`; a student's never holds the repaired line.
+json graded(testkit::RunningService& server, const json& job, const std::string& key) {
+  const auto r = server.client().Post("/api/grade", bearer(key), job.dump(), "application/json");
+  EXPECT_TRUE(r && r->status == 200) << (r ? r->body : "no response");
+  if (!r || r->status != 200) return json::object();
+  if (key == kStudent) {
+    EXPECT_EQ(r->body.find("normalize(uLightPosition - vPosition)"), std::string::npos) << "a student was given the repaired line";
+  }
+  return json::parse(r->body);
+}
+
+TEST_F(AccessTest, AStudentReadsWhereARepairIsAndNeverTheRepairedLine) {
   for (const auto& key : {kStudent, kStaff}) {
-    const auto r = c.Post("/api/grade", bearer(key), job.dump(), "application/json");
-    ASSERT_TRUE(r && r->status == 200) << (r ? r->body : "no response");
-    const json report = json::parse(r->body);
+    const json report = graded(*server_, unnormalised_light(), key);
     EXPECT_FALSE(report["pass"]);
     const json& found = report["repairSearch"]["found"];
     ASSERT_TRUE(found.is_object()) << report.dump();
@@ -268,12 +285,50 @@ TEST_F(AccessTest, AStudentReadsWhereARepairIsAndNeverTheRepairedLine) {
     EXPECT_NE(said.find("phong_frag.js line 20: `L` is not normalised"), std::string::npos) << said;
     EXPECT_EQ(said.find("cannot say why"), std::string::npos) << "a confirmed repair is not 'cannot say why': " << said;
     if (key == kStaff) {
-      EXPECT_EQ(found["repairedLine"], right);
+      EXPECT_EQ(found["repairedLine"], kRightLine);
     } else {
       EXPECT_FALSE(found.contains("repairedLine")) << report.dump();
-      EXPECT_EQ(r->body.find("normalize(uLightPosition - vPosition)"), std::string::npos) << "a student was given the repaired line";
     }
   }
+}
+
+// A course says how much of a repair its students read (the profile's `repairShown`): what is
+// wrong alone, or the repaired line too; staff read the repaired line in every course.
+TEST_F(AccessTest, HowMuchOfARepairAStudentReadsIsTheirCoursesChoice) {
+  std::vector<std::shared_ptr<const course::Course>> courses = {
+      std::shared_ptr<const course::Course>(&course::builtin_course(), [](const course::Course*) {})};
+  for (const auto& [id, shown] : {std::pair{"shown-what", "what"}, std::pair{"shown-line", "repairedLine"}}) {
+    json profile = course::to_json(course::builtin_course());
+    profile["id"] = id;
+    profile["repairShown"] = shown;
+    auto read = course::read_course(profile.dump(), course::embedded_source("courses"), "test.json");
+    ASSERT_TRUE(read) << read.error().message;
+    courses.push_back(std::make_shared<course::Course>(std::move(*read)));
+  }
+  auto set = course::CourseSet::of(std::move(courses));
+  ASSERT_TRUE(set);
+  auto config = test_config();
+  config.open_references = false;
+  config.tenants.api_keys_file = keys_->string();
+  config.courses = std::move(*set);
+  RunningService server(config);
+  ASSERT_TRUE(server.ok()) << server.failure;
+
+  const json what = graded(server, unnormalised_light("shown-what"), kStudent);
+  const json& said_what = what["repairSearch"]["found"];
+  ASSERT_TRUE(said_what.is_object()) << what.dump();
+  EXPECT_FALSE(said_what.contains("file") || said_what.contains("line") || said_what.contains("repairedLine")) << said_what.dump();
+  const std::string messages = what["messages"].dump();
+  EXPECT_NE(messages.find("`L` is not normalised"), std::string::npos) << messages;
+  EXPECT_EQ(messages.find("line 20"), std::string::npos) << "the course shows what is wrong, not where: " << messages;
+  EXPECT_EQ(graded(server, unnormalised_light("shown-what"), kStaff)["repairSearch"]["found"]["repairedLine"], kRightLine);
+
+  const auto r = server.client().Post("/api/grade", bearer(kStudent), unnormalised_light("shown-line").dump(), "application/json");
+  ASSERT_TRUE(r && r->status == 200) << (r ? r->body : "no response");
+  const json line = json::parse(r->body);
+  EXPECT_EQ(line["repairSearch"]["found"]["repairedLine"], kRightLine) << "the course shows its students the repaired line";
+  EXPECT_EQ(line["repairSearch"]["found"]["line"], 20);
+  EXPECT_NE(line["messages"].dump().find("With `" + kRightLine + "`"), std::string::npos) << line["messages"].dump();
 }
 
 TEST_F(AccessTest, WithStudentsWithoutKeysACallerWithoutAKeyIsAStudentOnEveryRoute) {

@@ -64,6 +64,12 @@ TEST(CourseProfileTest, TheBuiltInProfileRoundTripsFieldForField) {
   ASSERT_TRUE(again) << again.error().message;
   EXPECT_EQ(course::to_json(*again), written);
   EXPECT_EQ(written, builtin_json()) << "the file holds exactly what the reader keeps";
+  json shown = builtin_json();
+  shown["repairShown"] = "what";
+  auto what = course::read_course(shown.dump(), course::embedded_source("courses"), "repairShown");
+  ASSERT_TRUE(what) << what.error().message;
+  EXPECT_EQ(what->repair_shown, grade::RepairShown::what);
+  EXPECT_EQ(course::to_json(*what), shown) << "a course's choice of what its students read of a repair is kept";
   // Portable: every file named where it was read, so the JSON loads from any folder.
   const json portable = course::to_json(c, true);
   EXPECT_EQ(portable["meshes"][0]["file"], "builtin:assets/bunny.obj");
@@ -82,6 +88,7 @@ TEST(CourseProfileTest, ABadProfileIsRefusedWithTheFieldAndTheReason) {
   EXPECT_EQ(with([](json& j) { j["canvas"]["width"] = "wide"; }), "test.json: canvas.width: expected an integer in [1, 16384]");
   EXPECT_EQ(with([](json& j) { j["canvas"].erase("height"); }), "test.json: canvas.height: missing (required)");
   EXPECT_EQ(with([](json& j) { j["msaaa"] = 4; }), "test.json: msaaa: unknown field");
+  EXPECT_EQ(with([](json& j) { j["repairShown"] = "everything"; }), "test.json: repairShown: expected one of repairedLine, what, where");
   EXPECT_EQ(with([](json& j) { j["format"] = "shadelab-course-2"; }),
             "test.json: format: expected \"shadelab-course-1\" (this ShadeLab reads that version of the format)");
   EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["prefix"] = "spec ular"; }),

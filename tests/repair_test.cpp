@@ -10,6 +10,8 @@
 #include "grade/repair_edits.h"
 #include "road/repair_search.h"
 #include "shader/shader_source.h"
+#include "worker/course_job.h"
+#include "worker/pool.h"
 
 using namespace shadelab;
 
@@ -120,4 +122,32 @@ TEST(LiveStatementsTest, AConditionIsLiveWhereAnyOfItsBranchesIs) {
   EXPECT_TRUE(live.dead(glsl.find("float unused")));
   EXPECT_TRUE(live.dead(glsl.find("float d")));
   EXPECT_FALSE(live.dead(glsl.find("float c")));
+}
+
+// A screened candidate that hangs is stopped at its share of the deadlines (RepairBudget's
+// screen_deadline_share), not the grade's whole: the pool reads the job's share.
+TEST(RepairSearchTest, AJobsShareOfTheDeadlinesStopsAHangEarlier) {
+  worker::PoolConfig config;
+  config.workers = 1;
+  config.executable = SHADELAB_CLI;
+  config.warm_up = worker::WarmUp::none;
+  config.compile_deadline = config.render_deadline = std::chrono::milliseconds(4000);
+  worker::WorkerPool pool(config);
+  const course::Course& c = course::builtin_course();
+  shader::ShaderFile vertex{"loop_vert.glsl", "#version 300 es\nin vec4 aVertexPosition;\nvoid main() {\n  int i = gl_VertexID % 3;\n"
+                            "  gl_Position = vec4(i == 1 ? 3.0 : -1.0, i == 2 ? 3.0 : -1.0, 0.0, 1.0);\n}\n"};
+  shader::ShaderFile fragment{"loop_frag.glsl", "#version 300 es\nprecision highp float;\nout vec4 c;\nvoid main() {\n  float s = gl_FragCoord.x;\n"
+                              "  while (true) { s = sin(sin(sin(sin(s * 1.0001 + 0.5)))); if (s > 2.0) break; }\n  c = vec4(s);\n}\n"};
+  worker::Job job = worker::course_job(c, worker::JobKind::render, vertex, fragment);
+  std::string mesh;
+  ASSERT_TRUE(worker::attach_course_mesh(c, c.default_mesh, job, mesh).ok());
+  job.request.width = job.request.height = 16;
+  job.request.frames = 1;
+  job.deadline_share = 0.1;
+  auto submitted = pool.submit(worker::to_message(job, mesh));
+  ASSERT_TRUE(submitted.ok());
+  const worker::JobResult result = submitted->get();
+  ASSERT_FALSE(result.answered) << "an endless loop never answers";
+  EXPECT_EQ(result.error.code, ErrorCode::render_timeout) << result.error.message;
+  EXPECT_NE(result.error.message.find("used more than 400 ms of CPU time"), std::string::npos) << result.error.message;
 }

@@ -55,7 +55,7 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
   submission->spec.reference_store.folder = f.cache_dir;
   submission->spec.heatmap = f.heatmaps;
   submission->repair.candidates = f.repair_candidates;
-  submission->show_repaired_line = f.show_repaired_line;
+  if (f.show_repaired_line) submission->repair_shown = grade::RepairShown::repaired_line;
   return submission;
 }
 

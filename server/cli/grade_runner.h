@@ -31,7 +31,8 @@ struct GradeFlags {
   double max_score = 1.0;
   bool spatial = false;
   int repair_candidates = road::RepairBudget{}.candidates;  // a failing grade's repair search (road/repair_search.h); 0: none
-  bool show_repaired_line = false;  // a TA's own `grade` shows it; what students receive does not
+  // A TA's own `grade` shows the repaired line; what students receive shows what their course says.
+  bool show_repaired_line = false;
   grade::HeatMap heatmaps = grade::HeatMap::never;  // a class batch writes none; a command that does says when
   long timeout_ms = 10000;
   bool software = software_from_environment();

@@ -15,6 +15,7 @@
 
 #include "core/expected.h"
 #include "grade/grade_spec.h"
+#include "grade/repair_edits.h"
 #include "render/render_request.h"
 #include "scene/mesh.h"
 #include "scene/scene_description.h"
@@ -191,6 +192,9 @@ struct Course {
   // The verdict's thresholds (the profile's `tolerance`; GradeOptions' defaults where it says
   // nothing). Its max_score is unused: a checkpoint's points are its score.
   grade::GradeOptions tolerance;
+  // How much of a confirmed repair of a failing code grade its students are shown (the profile's
+  // `repairShown`): what is wrong, where (the line: the default), or the repaired line too.
+  grade::RepairShown repair_shown = grade::RepairShown::where;
   render::PageCamera camera;
   std::vector<PageUniform> uniforms;
   std::vector<grade::StarterConstant> starter_constants;  // specularAlpha = 6.0

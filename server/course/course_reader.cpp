@@ -50,7 +50,8 @@ class Parser {
   Expected<Course> parse(const json& j) {
     JsonReader root(j, "", &error_, "a course profile");
     root.only({"format", "id", "title", "source", "canvas", "frames", "msaa", "camera", "uniforms", "specularExponent", "meshes",
-               "defaultMesh", "presets", "defaultPreset", "checkpoints", "defaultCheckpoint", "aliases", "notebook", "tolerance", "handIn"});
+               "defaultMesh", "presets", "defaultPreset", "checkpoints", "defaultCheckpoint", "aliases", "notebook", "tolerance", "handIn",
+               "repairShown"});
     if (root.require("format") && root.text("format", "") != kCourseFormat)
       root.fail_at("format", std::string("expected \"") + kCourseFormat + "\" (this ShadeLab reads that version of the format)");
     header(root);
@@ -73,6 +74,14 @@ class Parser {
     course_.title = r.text("title", "");
     course_.source = r.text("source", "");
     course_.hand_in_title = r.text("handIn", "");
+    repair_shown(r);
+  }
+
+  void repair_shown(const JsonReader& r) {
+    std::set<std::string> names;
+    for (const auto& row : grade::kRepairShownNames) names.emplace(row.name);
+    const std::string where = std::string(name_in(grade::kRepairShownNames, grade::RepairShown::where));
+    course_.repair_shown = value_in(grade::kRepairShownNames, r.text("repairShown", where, names)).value_or(grade::RepairShown::where);
   }
 
   void page(const JsonReader& r) {

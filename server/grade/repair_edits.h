@@ -37,6 +37,16 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::name_replaced, "name_replaced"},
 };
 
+// How much of a confirmed repair a reader is shown: what is wrong; what and where (the file's
+// line); or the repaired line too. A course chooses it for its students (the profile's
+// `repairShown`); whoever may see the references is shown the repaired line.
+enum class RepairShown { what, where, repaired_line };
+inline constexpr EnumName<RepairShown> kRepairShownNames[] = {
+    {RepairShown::what, "what"},
+    {RepairShown::where, "where"},
+    {RepairShown::repaired_line, "repairedLine"},
+};
+
 struct RepairEdit {
   shader::Stage stage = shader::Stage::fragment;
   RepairKind kind = RepairKind::normalised;

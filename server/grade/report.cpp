@@ -90,7 +90,8 @@ SHADELAB_JSON_FIELDS(Explanation, field("explained", &Explanation::explained), f
 
 constexpr json_fields::Names kRepairKinds{kRepairKindNames};
 
-SHADELAB_JSON_FIELDS(Repair, field("kind", &Repair::kind, kRepairKinds), field("file", &Repair::file), field("line", &Repair::line),
+SHADELAB_JSON_FIELDS(Repair, field("kind", &Repair::kind, kRepairKinds), field("file", &Repair::file, When::omitted_when_empty),
+                     field("line", &Repair::line, When::omitted_when_empty),
                      field("text", &Repair::text), field("repairedLine", &Repair::repaired_line, When::omitted_when_empty))
 
 SHADELAB_JSON_FIELDS(RepairSearch, field("found", &RepairSearch::found, When::omitted_when_empty),

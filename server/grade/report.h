@@ -65,11 +65,13 @@ struct Explanation {
 // program that makes it draw what the reference draws, confirmed on every frame the grade draws.
 struct Repair {
   RepairKind kind = RepairKind::normalised;
-  std::string file;  // the student's file: phong_frag.js
-  int line = 0;      // in that file (1-based)
+  // Where: the student's file (phong_frag.js) and its line (1-based); none where the course shows
+  // its students only what is wrong (RepairShown::what).
+  std::optional<std::string> file;
+  std::optional<int> line;
   std::string text;  // what is wrong there, in the homework's words
-  // The line as the repair writes it: only for whoever may see the references (a TA, an open
-  // server); none for a student.
+  // The line as the repair writes it: for whoever may see the references (a TA, an open server),
+  // and for students only where their course shows it (RepairShown::repaired_line).
   std::optional<std::string> repaired_line;
 };
 

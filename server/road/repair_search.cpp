@@ -56,8 +56,8 @@ std::vector<Candidate> candidates(const Program& p, int most) {
 }
 
 // The grade's job for a candidate: a verdict only (no catalogue, no formula, no heat map), on the
-// grade's canvas or, to screen, one `screen_size` on its longer side.
-worker::Job candidate_job(const worker::Job& failed, const Candidate& c, std::optional<int> screen_size) {
+// grade's canvas or, to screen, one `budget.screen_size` on its longer side within its share of the deadlines.
+worker::Job candidate_job(const worker::Job& failed, const Candidate& c, const RepairBudget& budget, bool screen) {
   worker::Job job = failed;
   job.request.vertex = c.vertex;
   job.request.fragment = c.fragment;
@@ -65,16 +65,17 @@ worker::Job candidate_job(const worker::Job& failed, const Candidate& c, std::op
   job.grade.formula.reset();
   job.grade.starter_constants.clear();
   job.grade.heatmap = grade::HeatMap::never;
-  if (screen_size) {
+  if (screen) {
     // Three frames a third of a turn apart, under the page's light alone: a filter. Only the
     // confirming render, every frame and light the grade draws, states a repair.
     job.request.degrees_per_frame *= static_cast<double>(job.request.frames) / kScreenFrames;
     job.request.frames = kScreenFrames;
     job.grade.probes.clear();
-    const double scale = static_cast<double>(*screen_size) / std::max(job.request.width, job.request.height);
+    const double scale = static_cast<double>(budget.screen_size) / std::max(job.request.width, job.request.height);
     job.request.width = std::max(1, static_cast<int>(std::lround(job.request.width * scale)));
     job.request.height = std::max(1, static_cast<int>(std::lround(job.request.height * scale)));
     job.grade.reference_store = {};  // a screening canvas's references are not worth keeping
+    job.deadline_share = budget.screen_deadline_share;
   }
   return job;
 }
@@ -116,13 +117,20 @@ Expected<std::vector<bool>> grade_candidates(worker::WorkerPool& pool, const std
   return passed;
 }
 
-void state_repair(const Program& p, const Candidate& c, bool show_repaired_line, grade::Report& report) {
+// The confirmed repair, said as far as `shown` allows: "phong_frag.js line 20: L is not normalised:
+// ...", then, with the repaired line, "With `...` the frames match ...".
+void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown, grade::Report& report) {
   const StudentStage& stage = p[c.edit.stage];
-  const int line = stage.source.locate(c.edit.line, 0).file_line;
-  grade::Repair repair{c.edit.kind, stage.file->name, line, grade::repair_words(c.edit), std::nullopt};
-  const std::string where = (repair.file.empty() ? std::string(to_string(c.edit.stage)) : repair.file) + " line " + std::to_string(line);
-  std::vector<std::string> said = {where + ": " + repair.text + "."};
-  if (show_repaired_line) {
+  grade::Repair repair{c.edit.kind, std::nullopt, std::nullopt, grade::repair_words(c.edit), std::nullopt};
+  std::vector<std::string> said = {repair.text + "."};
+  if (shown != grade::RepairShown::what) {
+    const int line = stage.source.locate(c.edit.line, 0).file_line;
+    repair.file = stage.file->name;
+    repair.line = line;
+    said.front() = (stage.file->name.empty() ? std::string(to_string(c.edit.stage)) : stage.file->name) + " line " + std::to_string(line) + ": " +
+                   repair.text + ".";
+  }
+  if (shown == grade::RepairShown::repaired_line) {
     repair.repaired_line = grade::edited_line(stage.source.glsl, c.edit);
     said.push_back("With `" + *repair.repaired_line + "` the frames match the reference's on every frame and light the grade draws.");
   }
@@ -141,37 +149,44 @@ bool wants_repair(const grade::Report& report) {
   return report.diagnosis.empty() || report.diagnosis == grade::to_string(grade::Diagnosis::nan);
 }
 
-void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, bool show_repaired_line,
+void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
                    grade::Report& report, const RepairBudget& budget) {
   const auto program = program_of(failed);
-  if (!program) return;
+  if (!program || budget.confirmations < 1) return;  // nothing screened could be stated
   const std::vector<Candidate> all = candidates(*program, budget.candidates);
   grade::RepairSearch search;
+  // A wave screens several candidates at once (the machine's speed), but the search reads their
+  // verdicts in order, and counts only those it read: the same count on any machine.
   const size_t wave = static_cast<size_t>(std::max({1, budget.wave, pool.config().workers}));
   for (size_t first = 0; first < all.size(); first += wave) {
     const size_t last = std::min(all.size(), first + wave);
     std::vector<worker::Job> screens;
-    for (size_t i = first; i < last; ++i) screens.push_back(candidate_job(failed, all[i], budget.screen_size));
+    for (size_t i = first; i < last; ++i) screens.push_back(candidate_job(failed, all[i], budget, true));
     auto screened = grade_candidates(pool, screens, mesh_bytes);
     if (!screened) {
       report.warnings.push_back("the repair search could not run (" + screened.error().message + ")");
       return;
     }
-    search.candidates += static_cast<int>(screens.size());
     for (size_t i = first; i < last; ++i) {
-      if (!(*screened)[i - first] || search.confirmations == budget.confirmations) continue;
+      search.candidates = static_cast<int>(i + 1);
+      if (!(*screened)[i - first]) continue;
       ++search.confirmations;
-      auto confirmed = grade_candidates(pool, {candidate_job(failed, all[i], std::nullopt)}, mesh_bytes);
+      auto confirmed = grade_candidates(pool, {candidate_job(failed, all[i], budget, false)}, mesh_bytes);
       if (!confirmed) {
         report.warnings.push_back("the repair search could not run (" + confirmed.error().message + ")");
         return;
       }
-      if (!confirmed->front()) continue;
-      report.repair_search = std::move(search);
-      state_repair(*program, all[i], show_repaired_line, report);
-      return;
+      if (confirmed->front()) {
+        report.repair_search = std::move(search);
+        state_repair(*program, all[i], shown, report);
+        return;
+      }
+      if (search.confirmations == budget.confirmations) {
+        search.budget_spent = true;
+        report.repair_search = std::move(search);
+        return;
+      }
     }
-    if (search.confirmations == budget.confirmations) break;
   }
   search.budget_spent = true;
   report.repair_search = std::move(search);

@@ -22,6 +22,10 @@ struct RepairBudget {
   int confirmations = 2;  // screened passes rendered again at the grade's frames, at most
   int screen_size = 64;   // the screening canvas's longer side, in pixels
   int wave = 2;           // candidates screened at once, or one a worker: the machine's speed, never the answer
+  // A screen's share of the pool's compile and render deadlines (CPU time, as every deadline): a
+  // candidate that hangs is dropped after this share, never the grade's failure. The confirming
+  // render has the grade's whole deadlines, as the student's own program had.
+  double screen_deadline_share = 0.25;
 };
 
 // Whether a report is one the search is for: a failing grade that drew its frames and that
@@ -29,11 +33,11 @@ struct RepairBudget {
 bool wants_repair(const grade::Report& report);
 
 // Searches the program `failed` drew (a grade job), and writes into `report` what it tried
-// (`repair_search`) and, when a repair is confirmed, what is wrong and where among its messages;
-// `show_repaired_line`: the repaired line too (for whoever may see the references). When the
+// (`repair_search`) and, when a repair is confirmed, as much of it as `shown` says among its
+// messages (what is wrong; where; the repaired line). When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
-void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, bool show_repaired_line,
+void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
                    grade::Report& report, const RepairBudget& budget = {});
 
 }  // namespace shadelab::road

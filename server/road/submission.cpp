@@ -82,7 +82,7 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
     grade::Report& report = a.answered->result.report;
     note_attempts(report, a.attempts(), a.retried());
     if (submission.repair.candidates == 0 || !wants_repair(report)) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
-    search_repair(pool, job, submission.mesh_bytes, submission.show_repaired_line, report, submission.repair);
+    search_repair(pool, job, submission.mesh_bytes, submission.repair_shown, report, submission.repair);
     return CodeGrade{std::move(a.answered->result), seconds_since(start)};
   }
   auto failed = grade_unreadable(a.answered.error(), spec.reference_name, spec.options.max_score);
@@ -97,6 +97,7 @@ Expected<CodeSubmission> course_code(const course::Course& c, const course::Chec
                                      const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
   CodeSubmission out{worker::course_job(c, worker::JobKind::grade, std::move(vertex), std::move(fragment)), {}, c.grade_spec(checkpoint, options),
                      render.limits};
+  out.repair_shown = c.repair_shown;
   if (auto s = worker::attach_course_mesh(c, render.mesh.empty() ? c.default_mesh : render.mesh, out.render, out.mesh_bytes); !s)
     return s.take_error();
   auto& r = out.render.request;

@@ -39,9 +39,9 @@ struct CodeSubmission {
   std::string mesh_bytes;  // the mesh's bytes, when they travel with the job
   grade::GradeSpec spec;
   render::RenderLimits limits;  // the caller's: its sources are checked against them, once, on the road
-  // A failing grade's repair (road/repair_search.h) with the repaired line: for whoever may see
-  // the references; a student reads what is wrong and where.
-  bool show_repaired_line = false;
+  // How much of a failing grade's repair (road/repair_search.h) is said: the course's choice for
+  // its students, the repaired line for whoever may see the references.
+  grade::RepairShown repair_shown = grade::RepairShown::where;
   RepairBudget repair;  // 0 candidates: no search
 };
 

@@ -138,7 +138,8 @@ SHADELAB_JSON_FIELDS(Job, field("kind", &Job::kind, kKinds), field("request", &J
                      field("fit", &Job::fit, When::null_when_empty), field("frameName", &Job::frame_name), field("prefix", &Job::prefix),
                      field("output", &Job::output, json_fields::by_to_string(Output::grid, Output::frames, Output::json)),
                      field("format", &Job::format, json_fields::by_to_string(Format::png, Format::exr)), field("notice", &Job::notice),
-                     only_where([](const Job& job) { return is_grade(job.kind); }, field("grade", &Job::grade)))
+                     only_where([](const Job& job) { return is_grade(job.kind); }, field("grade", &Job::grade)),
+                     field("deadlineShare", &Job::deadline_share, When::omitted_when_empty))
 
 std::string_view to_string(JobKind k) {
   switch (k) {

@@ -51,6 +51,10 @@ struct Job {
   // course that wants frames saved from its page: Course::frames_download_notice).
   std::string notice;
   grade::GradeSpec grade;  // for JobKind::grade and grade_frames
+  // The share of the pool's compile and render deadlines (CPU time) the job's shaders get, in
+  // (0, 1]: a repair candidate's screen is small, and one that hangs is dropped at its share.
+  // None: the whole deadlines. The grader's own renders keep theirs.
+  std::optional<double> deadline_share;
 };
 
 // A grade_frames job's payload: the uploaded mesh's bytes (empty for a built-in one) and the

@@ -13,6 +13,7 @@
 
 #include <time.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -107,6 +108,15 @@ std::chrono::nanoseconds cpu_time(pid_t pid) {
 }
 
 // What a phase of a job may use: CPU time, and a far larger wall-clock backstop.
+// The share of the deadlines a job asks for (Job::deadline_share): 1 unless it names one in (0, 1].
+double deadline_share(const nlohmann::json& header) {
+  if (!header.is_object()) return 1.0;
+  const auto it = header.find("deadlineShare");
+  if (it == header.end() || !it->is_number()) return 1.0;
+  const double share = it->get<double>();
+  return share > 0.0 && share <= 1.0 ? share : 1.0;
+}
+
 struct PhaseBudget {
   JobPhase phase;
   std::chrono::milliseconds cpu;
@@ -302,7 +312,11 @@ struct WorkerPool::Slot {
       }
     }
     const PoolConfig& c = pool.config_;
-    PhaseBudget budget(JobPhase::compile, c.compile_deadline, pid, c.wall_clock_factor);
+    const double share = deadline_share(job.header);
+    const auto shared = [share](std::chrono::milliseconds d) {
+      return std::max(std::chrono::milliseconds(1), std::chrono::milliseconds(std::llround(static_cast<double>(d.count()) * share)));
+    };
+    PhaseBudget budget(JobPhase::compile, shared(c.compile_deadline), pid, c.wall_clock_factor);
     PeakResident peak(pool, kind);
     while (true) {
       Message in;
@@ -312,7 +326,7 @@ struct WorkerPool::Slot {
         const std::string event = header_text(in.header, "event");
         if (event == "phase") {
           const JobPhase phase = job_phase_named(header_text(in.header, "phase")).value_or(JobPhase::render);
-          budget = PhaseBudget(phase, phase == JobPhase::grader ? c.grader_deadline : c.render_deadline, pid, c.wall_clock_factor);
+          budget = PhaseBudget(phase, phase == JobPhase::grader ? c.grader_deadline : shared(c.render_deadline), pid, c.wall_clock_factor);
           continue;
         }
         const auto& caches = in.header.is_object() && in.header.contains("caches") ? in.header["caches"] : nlohmann::json();
