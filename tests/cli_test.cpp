@@ -209,6 +209,28 @@ TEST_F(CliTest, BatchGradingScoresAHangingSubmissionZeroAndGoesOn) {
   EXPECT_NE(carol.find("graded again"), std::string::npos) << carol;
 }
 
+// A class's failing students are counted by their mistake: where the repair search confirmed one,
+// by its words (never the line, which differs between students), beside the formula's labels.
+TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
+  const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
+  const std::string right = "vec3 L = normalize(uLightPosition - vPosition);";
+  for (const char* who : {"ivan", "judy"}) {
+    std::string fragment = preset("specular_frag.js");
+    // judy's line is one further down: the same mistake at another line
+    fragment.replace(fragment.find(right), right.size(), std::string(who == std::string("judy") ? "\n" : "") + "vec3 L = uLightPosition - vPosition;");
+    write(std::string("class/") + who + "/shaders/phong_vert.js", preset("specular_vert.js"));
+    write(std::string("class/") + who + "/shaders/phong_frag.js", fragment);
+  }
+  write("class/kim/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/kim/shaders/phong_frag.js", preset("specular_frag.js"));
+  const auto run = run_cli("grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  const std::string words = "`L` is not normalised: a direction must be a unit vector";
+  EXPECT_NE(run.output.find("2 students: " + words), std::string::npos) << run.output;
+  const std::string explanations = read_text(path("grades/explanations.csv"));
+  EXPECT_NE(explanations.find(words + ",2,ivan judy\n"), std::string::npos) << explanations;
+}
+
 // The class's saved frames looked at across the class: two students who hand in the same frames
 // (one re-encoded: the same pixels) are both flagged, and so is one who hands in ShadeLab's own
 // render of the reference; a student whose frames are their own page's is not.

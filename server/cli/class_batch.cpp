@@ -31,7 +31,7 @@ struct Entry {
   std::string diagnosis, message;
   std::string frames;              // the saved frames' fingerprint; empty: none handed in
   std::vector<std::string> flags;  // the grade's flags, in words
-  std::string explanation;         // a failing grade's, in a few words (grade::Explanation::label); "" for none
+  std::string explanation;         // a failing grade's mistake, in a few words (grade::mistake_label); "" for none
 };
 
 json to_json(const Entry& e) {
@@ -52,7 +52,7 @@ std::optional<Entry> entry_from(const std::string& line) {
 Entry entry_of(const std::string& student, const StudentGrade& g) {
   const grade::Report& r = g.report;
   Entry e{student, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0], g.frames_fingerprint, {},
-          r.explanation ? r.explanation->label : ""};
+          grade::mistake_label(r)};
   for (const auto& f : r.flags) e.flags.push_back(f.message);
   return e;
 }

@@ -152,9 +152,12 @@ StageLiveness liveness(std::string_view glsl, std::set<std::string, std::less<>>
     }
   }
   const auto byte = [&](const GlslToken& token) { return static_cast<size_t>(token.text.data() - glsl.data()); };
-  for (const auto& s : all)
-    if (!s.target.empty() && !out.live_names.count(s.target))
+  // Dead: an assignment to a name nothing live reads, and a condition whose blocks hold nothing live.
+  for (size_t i = 0; i < all.size(); ++i) {
+    const Statement& s = all[i];
+    if ((!s.target.empty() && !out.live_names.count(s.target)) || (s.guards_to && !live[i]))
       out.dead_spans.emplace_back(byte(t[s.first]), byte(t[s.last]) + t[s.last].text.size());
+  }
   return out;
 }
 

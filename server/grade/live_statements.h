@@ -1,9 +1,9 @@
 #pragma once
 // Which assignments of a stage can change what the program draws, read from tokens: an edit
 // anywhere else cannot repair it, so the repair search (grade/repair_edits.h) spends no candidate
-// there. Conservative: only an assignment to a name nothing live reads is dead; every statement
-// that is not an assignment (a call, a return, a condition, a loop) is live, and so is every name
-// it reads.
+// there. Conservative: only an assignment to a name nothing live reads, and a condition or loop
+// whose blocks hold nothing live, are dead; every other statement that is not an assignment (a
+// call, a return) is live, and so is every name it reads.
 #include <set>
 #include <string>
 #include <string_view>

@@ -201,6 +201,13 @@ void operators(const Stage& s, const std::map<std::string, std::string, std::les
         out.push_back(s.edit(RepairKind::factor_removed, s.end(i - 1), s.end(i + 1), "", i + 1, s.t[i + 1].text));
     }
     if ((op == "+" || op == "-") && !unary) {
+      // The other operator: the right operand (after `=` for += and -=) is what it adds or subtracts.
+      const size_t right = s.is(i + 1, "=") ? i + 2 : i + 1;
+      if (right < s.size() && !s.is(right, "=")) {
+        RepairEdit e = s.replace(RepairKind::operator_swapped, i, i, op == "+" ? "-" : "+", s.text(right, s.expression_last(right)));
+        e.other = e.with;
+        out.push_back(std::move(e));
+      }
       size_t last = i + 1;
       if (s.identifier(i + 1) && s.t[i + 1].text.starts_with("vec") && s.is(i + 2, "(")) {
         last = s.close_of(i + 2);
@@ -217,19 +224,61 @@ void operators(const Stage& s, const std::map<std::string, std::string, std::les
   }
 }
 
-// A uniform or an input read where another of its type was meant.
+// A value a stage can read by name: a uniform or an input (from the start), or a local, from its
+// declaration on (blocks are not scopes here: a candidate that does not compile is passed over).
+struct Readable {
+  std::string type;
+  size_t from = 0;  // the first token that may read it
+};
+
+std::map<std::string, Readable, std::less<>> readable_names(const Stage& s) {
+  std::map<std::string, Readable, std::less<>> names;
+  for (auto& [name, type] : read_only_names(s)) names.emplace(name, Readable{type, 0});
+  for (size_t i = 1; i + 1 < s.size(); ++i)
+    if (one_of(s.t[i - 1].text, {"float", "vec3", "vec4"}) && s.identifier(i) && s.is(i + 1, "=") && !s.is(i + 2, "="))
+      names.emplace(std::string(s.t[i].text), Readable{std::string(s.t[i - 1].text), i + 2});
+  return names;
+}
+
+// Whether the name at `i` is read there: not declared, assigned or a field.
+bool read_at(const Stage& s, size_t i) {
+  if (i > 0 && (s.is(i - 1, ".") || s.identifier(i - 1))) return false;  // a field, or a declaration
+  return !(s.is(i + 1, "=") && !s.is(i + 2, "="));
+}
+
+// A uniform, an input or a local read where another of its type was meant.
 void names(const Stage& s, std::vector<RepairEdit>& out) {
-  const auto readable = read_only_names(s);
-  std::set<size_t> declarations;
-  for (size_t i = 1; i < s.size(); ++i)
-    if (s.identifier(i) && s.identifier(i - 1) && readable.count(s.t[i].text)) declarations.insert(i);
+  const auto readable = readable_names(s);
   for (size_t i = 0; i < s.size(); ++i) {
     const auto found = s.identifier(i) ? readable.find(s.t[i].text) : readable.end();
-    if (found == readable.end() || declarations.count(i) || (i > 0 && s.is(i - 1, "."))) continue;
-    for (const auto& [other, type] : readable) {
-      if (other == found->first || type != found->second) continue;
+    if (found == readable.end() || !read_at(s, i) || i < found->second.from) continue;
+    for (const auto& [other, value] : readable) {
+      if (other == found->first || value.type != found->second.type || i < value.from) continue;
       RepairEdit e = s.replace(RepairKind::name_replaced, i, i, other, found->first);
       e.other = other;
+      out.push_back(std::move(e));
+    }
+  }
+}
+
+// A matrix uniform missing from a product: put before an input vec4 (aVertexNormal) or before a
+// matrix that starts a product (uMeshToWorldMatrix * P).
+void matrices(const Stage& s, const std::map<std::string, std::string, std::less<>>& types, std::vector<RepairEdit>& out) {
+  std::vector<std::string> matrices;
+  for (const auto& [name, type] : read_only_names(s))
+    if (type == "mat4") matrices.push_back(name);
+  const auto inputs = read_only_names(s);
+  for (size_t i = 1; i < s.size(); ++i) {
+    if (!s.identifier(i) || !read_at(s, i)) continue;
+    const auto type = types.find(s.t[i].text);
+    const bool matrix = type != types.end() && type->second == "mat4" && before_operand(s.t[i - 1].text) && s.is(i + 1, "*");
+    const auto input = inputs.find(s.t[i].text);
+    const bool vector = input != inputs.end() && input->second == "vec4" && (s.is(i - 1, "*") || before_operand(s.t[i - 1].text));
+    if (!matrix && !vector) continue;
+    for (const auto& m : matrices) {
+      if (m == s.t[i].text || (i >= 2 && s.is(i - 1, "*") && s.t[i - 2].text == m)) continue;
+      RepairEdit e = s.edit(RepairKind::matrix_added, s.begin(i), s.begin(i), m + " * ", i, s.text(i, s.operand_last(i)));
+      e.other = m;
       out.push_back(std::move(e));
     }
   }
@@ -244,6 +293,7 @@ std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage)
   vector_values(s, types, out);
   calls(s, out);
   operators(s, types, out);
+  matrices(s, types, out);
   names(s, out);
   std::stable_sort(out.begin(), out.end(), smaller);
   return out;
@@ -293,6 +343,9 @@ std::string repair_words(const RepairEdit& e) {
                               : x + " is a point, so its w must be 1: with w = 0 the matrix's translation is lost";
     case RepairKind::negation_removed:
     case RepairKind::negation_added: return x + " has the wrong sign";
+    case RepairKind::operator_swapped:
+      return e.other == "-" ? x + " is added where the homework subtracts it" : x + " is subtracted where the homework adds it";
+    case RepairKind::matrix_added: return x + " is not transformed by `" + e.other + "`";
     case RepairKind::factor_removed: return x + " should not multiply here: the homework uses the value as it is";
     case RepairKind::term_removed: return x + " should not be there: it moves the value away from the homework's";
     case RepairKind::name_replaced: return x + " is not the value the homework uses here";

@@ -21,9 +21,11 @@ enum class RepairKind {
   direction_w,       // vec4(n, 1.0)  ->  vec4(n, 0.0), and the other way
   negation_removed,  // -X  ->  X
   negation_added,    // reflect(L, N)  ->  reflect(-L, N); vec3 V = X  ->  vec3 V = -X
+  operator_swapped,  // A + B  ->  A - B, and the other way (+= and -= too)
   factor_removed,    // 0.5 * uLightPosition  ->  uLightPosition; M * P  ->  P for a matrix M
   term_removed,      // uLightPosition + vec3(0.0, 4.0, 0.0)  ->  uLightPosition
-  name_replaced,     // uDiffuseColor  ->  uSpecularColor (a uniform or an input of the same type)
+  matrix_added,      // aVertexNormal  ->  uMeshToWorldRotMatrix * aVertexNormal (a matrix uniform)
+  name_replaced,     // uDiffuseColor  ->  uSpecularColor (a uniform, an input or a local of the same type)
 };
 inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::normalised, "normalised"},
@@ -32,8 +34,10 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::direction_w, "direction_w"},
     {RepairKind::negation_removed, "negation_removed"},
     {RepairKind::negation_added, "negation_added"},
+    {RepairKind::operator_swapped, "operator_swapped"},
     {RepairKind::factor_removed, "factor_removed"},
     {RepairKind::term_removed, "term_removed"},
+    {RepairKind::matrix_added, "matrix_added"},
     {RepairKind::name_replaced, "name_replaced"},
 };
 
@@ -54,7 +58,8 @@ struct RepairEdit {
   std::string with;
   int line = 0;         // the GLSL line `begin` is on (1-based)
   std::string subject;  // what the edit changes, as the student wrote it: "L", "dot(V, R)", "uDiffuseColor"
-  std::string other;    // name_replaced: the name put in its place; direction_w: the new w
+  std::string other;    // name_replaced: the name put in its place; direction_w: the new w;
+                        // operator_swapped: the new operator; matrix_added: the matrix
   int nodes = 1;        // syntax nodes the edit changes: "smallest" is fewest
 };
 

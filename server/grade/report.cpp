@@ -29,6 +29,11 @@ Report failed_submission(const Error& e, const std::string& checkpoint, double m
   return {checkpoint, false, 0.0, max_score, std::string(to_string(e.code)), {message}, {}, e.diagnostics, {}};
 }
 
+std::string mistake_label(const Report& report) {
+  if (report.repair_search && report.repair_search->found) return report.repair_search->found->text;
+  return report.explanation ? report.explanation->label : "";
+}
+
 Report part_of(const Report& whole, bool probes, double max_score) {
   Report out = whole;
   out.max_score = max_score;

@@ -109,6 +109,11 @@ Report report(const GradeResult& result, const std::string& checkpoint, const st
 // A submission that could not be graded: score 0, the reason (its first compile error at its line).
 Report failed_submission(const Error& error, const std::string& checkpoint, double max_score);
 
+// A failing grade's mistake in a few words, to count a class by: its confirmed repair's words
+// ("`L` is not normalised: a direction must be a unit vector"), else the formula's label; "" for
+// neither. Never the line or the repaired line: students share a mistake, not a line number.
+std::string mistake_label(const Report& report);
+
 // The part of a report under the page's light (`probes` false) or under the probe lights (true),
 // worth `max_score`: a submission right under the page's light and wrong under a probe sees which.
 // A report with no frames (the code did not compile) is the same failure for either part.

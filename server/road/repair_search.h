@@ -18,7 +18,7 @@
 namespace shadelab::road {
 
 struct RepairBudget {
-  int candidates = 64;    // edits screened, at most
+  int candidates = 128;   // edits screened, at most
   int confirmations = 2;  // screened passes rendered again at the grade's frames, at most
   int screen_size = 64;   // the screening canvas's longer side, in pixels
   int wave = 2;           // candidates screened at once, or one a worker: the machine's speed, never the answer
