@@ -166,6 +166,29 @@ describe("the page", () => {
     await context.close();
   });
 
+  test("Check code grades the editors' code as a deliverable and marks the line a render confirmed, never giving the answer", async () => {
+    const { page, context, consoleErrors } = await openPage(browser, server.base);
+    const right = "vec3 L = normalize(uLightPosition - vPosition);";
+    const fragment = shaderText("specular_frag.js");
+    const line = fragment.split("\n").findIndex((l) => l.includes(right)) + 1;
+    await page.fill("#vertex", shaderText("specular_vert.js"));
+    await page.fill("#fragment", fragment.replace(right, "vec3 L = uLightPosition - vPosition;"));
+    await page.selectOption("#check-deliverable", "specular");
+    await page.getByRole("button", { name: "Check code" }).click();
+    const result = page.locator("#code-result");
+    await result.waitFor({ state: "visible", timeout: 120000 });
+    assert.match(await result.locator(".verdict").innerText(), /Your code: fail/);
+    const said = await result.innerText();
+    assert.match(said, new RegExp(`starter_frag\\.js line ${line}: \`L\` is not normalised`));
+    assert.ok(!said.includes("normalize(uLightPosition - vPosition)"), `a student was given the repaired line: ${said}`);
+    const mark = page.locator("#fragment-editor .diagnostics li").first();
+    assert.match(await mark.innerText(), new RegExp(`starter_frag\\.js:${line}: mistake: \`L\` is not normalised`));
+    assert.equal(await page.locator("#fragment-editor .gutter .error-line").innerText(), String(line));
+    await page.screenshot({ path: path.join(artifacts, "check_code.png") });
+    assert.deepEqual(consoleErrors, []);
+    await context.close();
+  });
+
   test("downloading the frames gives the PNGs with the course's names, labelled for checking only", async () => {
     const { page, context } = await openPage(browser, server.base);
     const [download] = await Promise.all([

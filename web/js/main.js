@@ -150,6 +150,46 @@ async function renderOnServer() {
   return result;
 }
 
+// The editors' code graded against a deliverable's reference, as the hand-in will be: the verdict,
+// what is wrong, and the line a render confirmed marked in its editor.
+async function checkCode() {
+  const checkpoint = state.course.checkpoints.find((c) => c.name === $("check-deliverable").value);
+  status("server-status", `Grading the code as ${checkpoint.title}…`);
+  const body = { reference: checkpoint.name, vertex: editors.vertex.text, fragment: editors.fragment.text,
+                 vertexName: editors.vertex.name, fragmentName: editors.fragment.name };
+  if (state.course.id) body.course = state.course.id;
+  const response = await api("/api/grade", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) });
+  const report = await response.json();
+  if (!response.ok) {
+    status("server-status", `Server: ${report.detail} [${report.code}]`, true);
+    throw Object.assign(new Error(report.detail), { problem: report });
+  }
+  showCodeResult(checkpoint, report);
+  status("server-status", `Graded the code as ${checkpoint.title}: ${report.pass ? "pass" : "fail"}.`);
+  return report;
+}
+
+// Compile errors at their lines, and the line of a confirmed repair (what is wrong there).
+function showCodeResult(checkpoint, report) {
+  const found = report.repairSearch?.found;
+  for (const stage of ["vertex", "fragment"]) {
+    const marks = (report.diagnostics ?? []).filter((d) => d.stage === stage || (stage === "fragment" && d.stage === "link"));
+    if (found?.line && found.file === editors[stage].name) marks.push({ line: found.line, message: found.text, severity: "mistake" });
+    editors[stage].show(marks);
+  }
+  const result = $("code-result");
+  result.replaceChildren(element("h3", { textContent: `The editors' code, graded as ${checkpoint.title}` }),
+                         verdictOf(report, "Your code"), element("ul", {}, report.messages.map((m) => element("li", { textContent: m }))));
+  result.hidden = false;
+}
+
+// The deliverables whose code the editors can hold; the one the current preset is the reference of first.
+function fillCheckDeliverable(course, preset) {
+  const select = $("check-deliverable");
+  select.innerHTML = "";
+  for (const c of course.checkpoints.filter((c) => c.code)) select.append(new Option(c.title, c.name, false, c.reference === preset));
+}
+
 async function downloadFrames() {
   const response = await post("frames");
   const notice = response.headers.get("X-ShadeLab-Notice");
@@ -213,7 +253,7 @@ async function gradeSavedFrames(checkpoint, files, withCode) {
 
 function verdictOf(report, what) {
   return element("p", { className: `verdict ${report.pass ? "pass" : "fail"}`,
-                        textContent: `${what}: ${report.pass ? "pass" : "fail"}${report.pass ? "" : ` (${report.diagnosis})`}` });
+                        textContent: `${what}: ${report.pass ? "pass" : "fail"}${report.pass || !report.diagnosis ? "" : ` (${report.diagnosis})`}` });
 }
 
 function showSavedResult(checkpoint, result) {
@@ -290,6 +330,8 @@ async function choosePreset(name, presets) {
   // A deliverable's reference saves its frames under the deliverable's prefix (hw2_normals_*).
   $("prefix").value = state.course.checkpoints.find((c) => c.reference === name)?.prefix ?? name;
   fillSavedCode(state.course, name);
+  fillCheckDeliverable(state.course, name);
+  $("code-result").hidden = true;
   state.last = null;
   await applyLocally();
 }
@@ -353,6 +395,7 @@ async function init() {
   $("spin").addEventListener("change", () => (state.dirty = true));
   $("render-server").addEventListener("click", () => report(renderOnServer()));
   $("download-frames").addEventListener("click", () => report(downloadFrames()));
+  $("check-code").addEventListener("click", () => report(checkCode()));
   $("compare").addEventListener("click", () => report(compareFrame(0)));
   wireSavedFrames();
   document.addEventListener("keydown", (e) => {
@@ -361,7 +404,7 @@ async function init() {
 
   // Hooks for the browser tests (tests/browser), which drive the page as a student would.
   window.shadelab = {
-    course, view: state.view, editors, state, renderOnServer, compareFrame, applyLocally, frameFile, checkSavedFrames,
+    course, view: state.view, editors, state, renderOnServer, compareFrame, applyLocally, frameFile, checkSavedFrames, checkCode,
     // What the course's page would save for the shaders now applied, on a clock of `hz` (see saved_frames.js).
     saveLikeTheCoursePage: (prefix, clock) => saveLikeTheCoursePage(state.view, course, prefix, clock),
     choosePreset: (name) => choosePreset(name, presets),
