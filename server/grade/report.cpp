@@ -100,6 +100,7 @@ SHADELAB_JSON_FIELDS(Repair, field("kind", &Repair::kind, kRepairKinds), field("
                      field("text", &Repair::text), field("repairedLine", &Repair::repaired_line, When::omitted_when_empty))
 
 SHADELAB_JSON_FIELDS(RepairSearch, field("found", &RepairSearch::found, When::omitted_when_empty),
+                     field("also", &RepairSearch::also, When::omitted_when_empty),
                      field("candidates", &RepairSearch::candidates), field("confirmations", &RepairSearch::confirmations),
                      field("budgetSpent", &RepairSearch::budget_spent))
 

@@ -78,6 +78,7 @@ struct Repair {
 // What the repair search of a failing code grade tried, counted (not timed): the same on any machine.
 struct RepairSearch {
   std::optional<Repair> found;
+  std::optional<Repair> also;  // a repair of two edits: the second
   int candidates = 0;     // edits screened, each its own worker job on a small canvas
   int confirmations = 0;  // screened passes rendered again at the grade's own frames
   bool budget_spent = false;  // every candidate the budget allows was tried and none was confirmed

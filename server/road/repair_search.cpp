@@ -24,8 +24,8 @@ struct StudentStage {
 };
 
 struct Candidate {
-  grade::RepairEdit edit;
-  shader::ShaderFile vertex, fragment;  // the program with the edit made
+  std::vector<grade::RepairEdit> edits;  // one, or a pair
+  shader::ShaderFile vertex, fragment;   // the program with the edits made
 };
 
 struct Program {
@@ -40,23 +40,40 @@ std::optional<Program> program_of(const worker::Job& job) {
   return Program{{&job.request.vertex, std::move(*vertex)}, {&job.request.fragment, std::move(*fragment)}};
 }
 
-// The budget's candidates, smallest first: the edited stage given as the GLSL the edit made (the
-// same program the driver compiles), the other as the student's file.
-std::vector<Candidate> candidates(const Program& p, int most) {
-  std::vector<grade::RepairEdit> edits = grade::program_repair_edits(p.vertex.source.glsl, p.fragment.source.glsl);
-  if (edits.size() > static_cast<size_t>(most)) edits.resize(most);
-  std::vector<Candidate> out;
-  for (auto& e : edits) {
-    Candidate c{std::move(e), *p.vertex.file, *p.fragment.file};
-    shader::ShaderFile& edited = c.edit.stage == shader::Stage::vertex ? c.vertex : c.fragment;
-    edited.text = grade::with_edit(p[c.edit.stage].source.glsl, c.edit);
-    out.push_back(std::move(c));
+// The program with `edits` made: an edited stage given as the GLSL the edits made (the same
+// program the driver compiles), the other as the student's file.
+Candidate candidate_of(const Program& p, std::vector<grade::RepairEdit> edits) {
+  Candidate c{std::move(edits), *p.vertex.file, *p.fragment.file};
+  for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment}) {
+    std::vector<const grade::RepairEdit*> here;
+    for (const auto& e : c.edits)
+      if (e.stage == stage) here.push_back(&e);
+    if (here.empty()) continue;
+    // The later span first, so the earlier one's bytes are still where it says.
+    std::sort(here.begin(), here.end(), [](const auto* a, const auto* b) { return a->begin > b->begin; });
+    std::string glsl = p[stage].source.glsl;
+    for (const auto* e : here) glsl = grade::with_edit(glsl, *e);
+    (stage == shader::Stage::vertex ? c.vertex : c.fragment).text = std::move(glsl);
   }
+  return c;
+}
+
+// The budget's single edits, smallest first.
+std::vector<Candidate> single_candidates(const Program& p, int most) {
+  std::vector<grade::RepairEdit> edits = grade::program_repair_edits(p.vertex.source.glsl, p.fragment.source.glsl);
+  if (edits.size() > static_cast<size_t>(std::max(0, most))) edits.resize(std::max(0, most));
+  std::vector<Candidate> out;
+  for (auto& e : edits) out.push_back(candidate_of(p, {std::move(e)}));
   return out;
 }
 
+bool overlapping(const grade::RepairEdit& a, const grade::RepairEdit& b) {
+  return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end;  // touching spans count: one token's edits
+}
+
 // The grade's job for a candidate: a verdict only (no catalogue, no formula, no heat map), on the
-// grade's canvas or, to screen, one `budget.screen_size` on its longer side within its share of the deadlines.
+// grade's canvas or, to screen, one `budget.screen_size` on its longer side within its share of
+// the deadlines.
 worker::Job candidate_job(const worker::Job& failed, const Candidate& c, const RepairBudget& budget, bool screen) {
   worker::Job job = failed;
   job.request.vertex = c.vertex;
@@ -91,54 +108,157 @@ Expected<std::future<worker::JobResult>> submit_when_room(worker::WorkerPool& po
   }
 }
 
-// Whether each candidate's grade passes; an Error when the service could not run one (a
-// candidate's own failure, its compile, a hang, a crash, is a failing grade, not an Error).
-Expected<std::vector<bool>> grade_candidates(worker::WorkerPool& pool, const std::vector<worker::Job>& jobs, const std::string& mesh) {
+// A candidate's grade: whether it passed, and how far its frames are from the reference's: the
+// mean RMS difference (0 to 1), continuous so that an edit that mends one mistake of two counts
+// as nearer, in steps of 1/10000 so that a GPU's last bits do not reorder candidates (1 where
+// nothing was drawn or a frame holds NaN).
+struct Graded {
+  bool pass = false;
+  double distance = 1.0;
+};
+
+double distance_of(const grade::Report& report) {
+  if (report.frames.empty()) return 1.0;
+  double sum = 0;
+  for (const auto& f : report.frames) sum += f.grade.non_finite.nan + f.grade.non_finite.inf > 0 ? 1.0 : f.grade.metrics.rmse;
+  return std::round(10000.0 * sum / static_cast<double>(report.frames.size())) / 10000.0;
+}
+
+// Each candidate's grade; an Error when the service could not run one (a candidate's own failure,
+// its compile, a hang, a crash, is a failing grade, not an Error).
+Expected<std::vector<Graded>> grade_candidates(worker::WorkerPool& pool, const std::vector<worker::Job>& jobs, const std::string& mesh) {
   std::vector<std::future<worker::JobResult>> running;
   for (const auto& job : jobs) {
     auto submitted = submit_when_room(pool, worker::to_message(job, mesh));
     if (!submitted) return submitted.take_error();
     running.push_back(std::move(*submitted));
   }
-  std::vector<bool> passed;
+  std::vector<Graded> out;
   std::optional<Error> trouble;
   for (auto& f : running) {
     worker::JobResult done = f.get();
     if (!done.answered) {
       if (!info(done.error.code).submission_caused) trouble = done.error;
-      passed.push_back(false);
+      out.push_back({});
       continue;
     }
     auto result = worker::result_from<worker::GradeResult>(done.answer);
     if (!result) return result.take_error();
-    passed.push_back(result->report.pass);
+    out.push_back({result->report.pass, distance_of(result->report)});
   }
   if (trouble) return *trouble;
-  return passed;
+  return out;
+}
+
+// One edit of a confirmed repair, said as far as `shown` allows.
+grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::RepairShown shown) {
+  const StudentStage& stage = p[e.stage];
+  grade::Repair repair{e.kind, std::nullopt, std::nullopt, grade::repair_words(e), std::nullopt};
+  if (shown != grade::RepairShown::what) {
+    repair.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
+    repair.line = stage.source.locate(e.line, 0).file_line;
+  }
+  if (shown == grade::RepairShown::repaired_line) repair.repaired_line = grade::edited_line(stage.source.glsl, e);
+  return repair;
 }
 
 // The confirmed repair, said as far as `shown` allows: "phong_frag.js line 20: L is not normalised:
-// ...", then, with the repaired line, "With `...` the frames match ...".
+// ..." for each edit, then, with the repaired lines, "With `...` the frames match ...".
 void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown, grade::Report& report) {
-  const StudentStage& stage = p[c.edit.stage];
-  grade::Repair repair{c.edit.kind, std::nullopt, std::nullopt, grade::repair_words(c.edit), std::nullopt};
-  std::vector<std::string> said = {repair.text + "."};
-  if (shown != grade::RepairShown::what) {
-    const int line = stage.source.locate(c.edit.line, 0).file_line;
-    repair.file = stage.file->name;
-    repair.line = line;
-    said.front() = (stage.file->name.empty() ? std::string(to_string(c.edit.stage)) : stage.file->name) + " line " + std::to_string(line) + ": " +
-                   repair.text + ".";
+  std::vector<grade::Repair> repairs;
+  for (const auto& e : c.edits) repairs.push_back(repair_of(p, e, shown));
+  std::vector<std::string> said, lines;
+  for (const auto& r : repairs) {
+    said.push_back((r.line ? *r.file + " line " + std::to_string(*r.line) + ": " : std::string()) + r.text + ".");
+    if (r.repaired_line) lines.push_back("`" + *r.repaired_line + "`");
   }
-  if (shown == grade::RepairShown::repaired_line) {
-    repair.repaired_line = grade::edited_line(stage.source.glsl, c.edit);
-    said.push_back("With `" + *repair.repaired_line + "` the frames match the reference's on every frame and light the grade draws.");
-  }
+  if (!lines.empty())
+    said.push_back("With " + lines.front() + (lines.size() > 1 ? " and " + lines.back() : "") +
+                   " the frames match the reference's on every frame and light the grade draws.");
   // The formula's "cannot say why" is superseded by what a render confirmed.
   auto& m = report.messages;
   if (report.explanation && !report.explanation->explained) m.erase(std::remove(m.begin(), m.end(), report.explanation->text), m.end());
   m.insert(m.begin() + std::min<size_t>(1, m.size()), said.begin(), said.end());
-  report.repair_search->found = std::move(repair);
+  report.repair_search->found = std::move(repairs.front());
+  if (repairs.size() > 1) report.repair_search->also = std::move(repairs.back());
+}
+
+// What one pass of the search came to.
+enum class Pass { confirmed, budget_spent, none_passed, trouble };
+
+// The search's state: what it was given and what it has spent.
+struct Search {
+  worker::WorkerPool& pool;
+  const worker::Job& failed;
+  const std::string& mesh;
+  const RepairBudget& budget;
+  grade::Report& report;
+  grade::RepairSearch spent;
+
+  // Screens `candidates` in order, a wave at a time (the machine's speed, never the answer), reads
+  // their verdicts in order and renders each screened pass again at the grade's frames until one
+  // is confirmed (`winner`) or the confirmations are spent. `distances`: each screen's distance.
+  Pass try_in_order(const std::vector<Candidate>& candidates, std::vector<double>* distances, const Candidate** winner) {
+    const size_t wave = static_cast<size_t>(std::max({1, budget.wave, pool.config().workers}));
+    for (size_t first = 0; first < candidates.size(); first += wave) {
+      const size_t last = std::min(candidates.size(), first + wave);
+      std::vector<worker::Job> screens;
+      for (size_t i = first; i < last; ++i) screens.push_back(candidate_job(failed, candidates[i], budget, true));
+      auto screened = grade_candidates(pool, screens, mesh);
+      if (!screened) return could_not_run(screened.error());
+      for (size_t i = first; i < last; ++i) {
+        ++spent.candidates;
+        const Graded& g = (*screened)[i - first];
+        if (distances) distances->push_back(g.distance);
+        if (!g.pass) continue;
+        ++spent.confirmations;
+        auto confirmed = grade_candidates(pool, {candidate_job(failed, candidates[i], budget, false)}, mesh);
+        if (!confirmed) return could_not_run(confirmed.error());
+        if (confirmed->front().pass) {
+          *winner = &candidates[i];
+          return Pass::confirmed;
+        }
+        if (spent.confirmations == budget.confirmations) return Pass::budget_spent;
+      }
+    }
+    return Pass::none_passed;
+  }
+
+  Pass could_not_run(const Error& e) {
+    report.warnings.push_back("the repair search could not run (" + e.message + ")");
+    return Pass::trouble;
+  }
+
+  // The student's own program's distance on the screening canvas: what a single edit must improve
+  // on to be one of a pair.
+  std::optional<double> own_distance(const Program& p) {
+    auto own = grade_candidates(pool, {candidate_job(failed, candidate_of(p, {}), budget, true)}, mesh);
+    if (!own) {
+      could_not_run(own.error());
+      return std::nullopt;
+    }
+    return own->front().distance;
+  }
+};
+
+// Pairs for a program no single edit repairs: the single that drew nearest the reference (a
+// mistake of two mended: it must draw nearer than the student's own program) with each other
+// single, in the singles' order, that does not touch it; at most `pairs`. A second mistake's
+// edit need not draw nearer alone: the first mistake's error can hide it.
+std::vector<Candidate> pair_candidates(const Program& p, const std::vector<Candidate>& singles, const std::vector<double>& distances,
+                                       double own, const RepairBudget& budget) {
+  std::vector<Candidate> out;
+  size_t nearest = distances.size();
+  for (size_t i = 0; i < distances.size(); ++i)
+    if (distances[i] < own && (nearest == distances.size() || distances[i] < distances[nearest])) nearest = i;
+  if (nearest == distances.size()) return out;
+  const grade::RepairEdit& first = singles[nearest].edits.front();
+  for (size_t i = 0; i < singles.size() && out.size() < static_cast<size_t>(std::max(0, budget.pairs)); ++i) {
+    const grade::RepairEdit& second = singles[i].edits.front();
+    if (i == nearest || overlapping(first, second)) continue;
+    out.push_back(candidate_of(p, smaller(second, first) ? std::vector{second, first} : std::vector{first, second}));
+  }
+  return out;
 }
 
 }  // namespace
@@ -153,43 +273,23 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
                    grade::Report& report, const RepairBudget& budget) {
   const auto program = program_of(failed);
   if (!program || budget.confirmations < 1) return;  // nothing screened could be stated
-  const std::vector<Candidate> all = candidates(*program, budget.candidates);
-  grade::RepairSearch search;
-  // A wave screens several candidates at once (the machine's speed), but the search reads their
-  // verdicts in order, and counts only those it read: the same count on any machine.
-  const size_t wave = static_cast<size_t>(std::max({1, budget.wave, pool.config().workers}));
-  for (size_t first = 0; first < all.size(); first += wave) {
-    const size_t last = std::min(all.size(), first + wave);
-    std::vector<worker::Job> screens;
-    for (size_t i = first; i < last; ++i) screens.push_back(candidate_job(failed, all[i], budget, true));
-    auto screened = grade_candidates(pool, screens, mesh_bytes);
-    if (!screened) {
-      report.warnings.push_back("the repair search could not run (" + screened.error().message + ")");
-      return;
-    }
-    for (size_t i = first; i < last; ++i) {
-      search.candidates = static_cast<int>(i + 1);
-      if (!(*screened)[i - first]) continue;
-      ++search.confirmations;
-      auto confirmed = grade_candidates(pool, {candidate_job(failed, all[i], budget, false)}, mesh_bytes);
-      if (!confirmed) {
-        report.warnings.push_back("the repair search could not run (" + confirmed.error().message + ")");
-        return;
-      }
-      if (confirmed->front()) {
-        report.repair_search = std::move(search);
-        state_repair(*program, all[i], shown, report);
-        return;
-      }
-      if (search.confirmations == budget.confirmations) {
-        search.budget_spent = true;
-        report.repair_search = std::move(search);
-        return;
-      }
-    }
+  Search search{pool, failed, mesh_bytes, budget, report, {}};
+  const std::vector<Candidate> singles = single_candidates(*program, budget.candidates);
+  std::vector<double> distances;
+  std::vector<Candidate> pairs;
+  const Candidate* winner = nullptr;  // in `singles` or `pairs`
+  Pass pass = search.try_in_order(singles, &distances, &winner);
+  if (pass == Pass::none_passed && budget.pairs > 0) {
+    // No one edit repairs it: two edits, each of which drew nearer on its own.
+    const auto own = search.own_distance(*program);
+    if (!own) return;
+    pairs = pair_candidates(*program, singles, distances, *own, budget);
+    pass = search.try_in_order(pairs, nullptr, &winner);
   }
-  search.budget_spent = true;
-  report.repair_search = std::move(search);
+  if (pass == Pass::trouble) return;
+  search.spent.budget_spent = pass != Pass::confirmed;
+  report.repair_search = std::move(search.spent);
+  if (winner) state_repair(*program, *winner, shown, report);
 }
 
 }  // namespace shadelab::road

@@ -18,8 +18,11 @@
 namespace shadelab::road {
 
 struct RepairBudget {
-  int candidates = 128;   // edits screened, at most
-  int confirmations = 2;  // screened passes rendered again at the grade's frames, at most
+  int candidates = 128;   // single edits screened, at most
+  // Where no single edit repairs the program: the single that drew nearest the reference, paired
+  // with each other single in order, at most `pairs` pairs.
+  int pairs = 128;
+  int confirmations = 2;  // screened passes rendered again at the grade's frames, at most (singles and pairs together)
   int screen_size = 64;   // the screening canvas's longer side, in pixels
   int wave = 2;           // candidates screened at once, or one a worker: the machine's speed, never the answer
   // A screen's share of the pool's compile and render deadlines (CPU time, as every deadline): a
