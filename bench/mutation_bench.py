@@ -444,6 +444,7 @@ def main():
     ap.add_argument("--limit", type=int, default=0, help="grade only the first N mutants of each source (a sample)")
     ap.add_argument("--list", action="store_true", help="list the mutants, grade none")
     ap.add_argument("--json", help="write every mutant's outcome here")
+    ap.add_argument("--singles-from", help="pairs only: the failing singles as an earlier run's --json says, not graded again")
     ap.add_argument("--sample", action="store_true", help="grade the fixed sample alone, and exit 1 unless each is repaired where the mutation was")
     args = ap.parse_args()
     if args.sample:
@@ -498,7 +499,10 @@ def main():
     if "typed" in sources:
         run_all(groups["typed"])
     if "pair" in sources:
-        if "single" not in sources:
+        if args.singles_from:
+            earlier = {(r["checkpoint"], r["mutant"]): r["outcome"] for r in json.load(open(args.singles_from)) if r["source"] == "single"}
+            singles = [{"mutant_object": m, "outcome": earlier.get((m.checkpoint, m.name), "does not compile")} for m in groups["single"]]
+        elif "single" not in sources:
             singles = run_all(groups["single"])
         failing = [r["mutant_object"] for r in singles if r["outcome"] not in ("does not compile", "still passes")]
         run_all(pair_mutants(failing, args.pairs, args.seed))
