@@ -264,10 +264,10 @@ void names(const Stage& s, std::vector<RepairEdit>& out) {
 // A matrix uniform missing from a product: put before an input vec4 (aVertexNormal) or before a
 // matrix that starts a product (uMeshToWorldMatrix * P).
 void matrices(const Stage& s, const std::map<std::string, std::string, std::less<>>& types, std::vector<RepairEdit>& out) {
-  std::vector<std::string> matrices;
-  for (const auto& [name, type] : read_only_names(s))
-    if (type == "mat4") matrices.push_back(name);
   const auto inputs = read_only_names(s);
+  std::vector<std::string> matrices;
+  for (const auto& [name, type] : inputs)
+    if (type == "mat4") matrices.push_back(name);
   for (size_t i = 1; i < s.size(); ++i) {
     if (!s.identifier(i) || !read_at(s, i)) continue;
     const auto type = types.find(s.t[i].text);
