@@ -309,6 +309,8 @@ SAMPLE = [
     ("diffuse", "matrix removed, vert line 19"),
     ("specular", "name replaced, frag line 21: `N` -> `L`"),
     ("specular", "two: L not normalised, the specular colour from the diffuse"),
+    ("diffuse", "statement removed, vert line 19"),
+    ("specular", "literal changed, frag line 27"),
 ]
 
 
@@ -421,6 +423,9 @@ def classify(ref, mutant, report, files):
             verdicts.append("elsewhere")
             where[-1] += ": `%s`" % part.get("repairedLine", "")
             continue
+        if part["kind"] == "statement_restored":  # the reference's own statement, never shown as a line
+            verdicts.append("undone")
+            continue
         # The reference's line at the same place: the mutated file's line count may differ only
         # where the mutation wrote more or fewer lines, which the typed mutants do not.
         ref_lines = ref[stage].split("\n")
@@ -442,6 +447,7 @@ def main():
     ap.add_argument("--only", default="single,typed,pair")
     ap.add_argument("--checkpoints", default=",".join(CHECKPOINTS))
     ap.add_argument("--limit", type=int, default=0, help="grade only the first N mutants of each source (a sample)")
+    ap.add_argument("--match", help="grade only the mutants whose name holds this text")
     ap.add_argument("--list", action="store_true", help="list the mutants, grade none")
     ap.add_argument("--json", help="write every mutant's outcome here")
     ap.add_argument("--singles-from", help="pairs only: the failing singles as an earlier run's --json says, not graded again")
@@ -460,6 +466,8 @@ def main():
         chosen = lambda m: any(m.checkpoint == c and m.name.startswith(n) for c, n in SAMPLE)
         groups = {source: [m for m in ms if chosen(m)] for source, ms in groups.items()}
         assert sum(map(len, groups.values())) == len(SAMPLE), "a sample mutant is no longer made: %s" % groups
+    if args.match:
+        groups = {source: [m for m in ms if args.match in m.name] for source, ms in groups.items()}
     if args.list:
         for source, ms in groups.items():
             for m in ms:

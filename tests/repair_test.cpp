@@ -9,6 +9,7 @@
 #include "grade/live_statements.h"
 #include "grade/repair_edits.h"
 #include "road/repair_search.h"
+#include "shader/glsl_lines.h"
 #include "shader/shader_source.h"
 #include "worker/course_job.h"
 #include "worker/pool.h"
@@ -71,7 +72,8 @@ TEST(RepairEditsTest, EachMistakeIsUndoneByAnEditOfItsOwnLineWithinTheBudget) {
     std::string vertex = glsl_of("specular", shader::Stage::vertex), fragment = glsl_of("specular", shader::Stage::fragment);
     std::string& wrong = m.stage == shader::Stage::vertex ? vertex : fragment;
     wrong = typed(wrong, m.find, m.replace);
-    const auto edits = grade::program_repair_edits(vertex, fragment);
+    const auto edits = grade::program_repair_edits({vertex, fragment}, {glsl_of("specular", shader::Stage::vertex),
+                                                                        glsl_of("specular", shader::Stage::fragment)});
     size_t found = edits.size();
     for (size_t i = 0; i < edits.size() && found == edits.size(); ++i)
       if (edits[i].stage == m.stage && std::count(m.repaired.begin(), m.repaired.end(), grade::edited_line(wrong, edits[i]))) found = i;
@@ -86,15 +88,41 @@ TEST(RepairEditsTest, EachMistakeIsUndoneByAnEditOfItsOwnLineWithinTheBudget) {
 TEST(RepairEditsTest, AnAssignmentThatCannotReachTheOutputGetsNoCandidate) {
   const std::string vertex = glsl_of("specular", shader::Stage::vertex);
   const std::string fragment = typed(glsl_of("specular", shader::Stage::fragment), "fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);");
-  const auto edits = grade::program_repair_edits(vertex, fragment);
+  const auto edits = grade::program_repair_edits({vertex, fragment});
   ASSERT_FALSE(edits.empty());
   for (const auto& e : edits) {
     const std::string line = grade::edited_line(e.stage == shader::Stage::vertex ? vertex : fragment, e);
     if (e.stage == shader::Stage::vertex) EXPECT_EQ(line.rfind("gl_Position", 0), 0u) << line;
     else EXPECT_EQ(line.rfind("fragColor", 0), 0u) << line;
   }
-  const auto all = grade::program_repair_edits(vertex, glsl_of("specular", shader::Stage::fragment));
+  const auto all = grade::program_repair_edits({vertex, glsl_of("specular", shader::Stage::fragment)});
   EXPECT_GT(all.size(), 3 * edits.size()) << "the whole program has candidates everywhere";
+}
+
+// An output the student's stage never writes is restored from the reference, where it stands
+// there (after the statement before it, in the gap a deleted line left), named by what it writes;
+// a number the reference writes is never refit, one it does not write is refit to each it does.
+TEST(RepairEditsTest, AMissingOutputIsRestoredWhereTheReferenceWritesItAndOnlyForeignNumbersAreRefit) {
+  const std::string reference = glsl_of("specular", shader::Stage::vertex);
+  const std::string deleted = typed(reference, "vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;", "");
+  const auto edits = grade::reference_edits(deleted, reference, shader::Stage::vertex);
+  const auto restored = std::find_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; });
+  ASSERT_NE(restored, edits.end());
+  EXPECT_EQ(restored->subject, "vNormal");
+  EXPECT_EQ(grade::with_edit(deleted, *restored).find("vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;"),
+            reference.find("vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;"))
+      << "restored where it was deleted";
+  EXPECT_EQ(restored->line, shader::lines_of(reference.substr(0, reference.find("vNormal ="))).size());
+  EXPECT_EQ(grade::repair_words(*restored), "`vNormal` is never written: the fragment stage reads what the vertex stage writes there");
+  EXPECT_EQ(std::count_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; }), 1);
+
+  const std::string fragment = glsl_of("specular", shader::Stage::fragment);
+  for (const auto& e : grade::reference_edits(fragment, fragment, shader::Stage::fragment))
+    ADD_FAILURE() << "the reference itself has an edit: " << grade::edited_line(fragment, e);
+  const std::string halved = typed(fragment, "float specularAlpha = 6.0;", "float specularAlpha = 3.0;");
+  std::vector<std::string> refits;
+  for (const auto& e : grade::reference_edits(halved, fragment, shader::Stage::fragment)) refits.push_back(grade::edited_line(halved, e));
+  EXPECT_EQ(refits, (std::vector<std::string>{"float specularAlpha = 6.0;", "float specularAlpha = 0.0;"}));
 }
 
 // An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.

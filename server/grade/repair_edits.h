@@ -25,7 +25,10 @@ enum class RepairKind {
   factor_removed,    // 0.5 * uLightPosition  ->  uLightPosition; M * P  ->  P for a matrix M
   term_removed,      // uLightPosition + vec3(0.0, 4.0, 0.0)  ->  uLightPosition
   matrix_added,      // aVertexNormal  ->  uMeshToWorldRotMatrix * aVertexNormal (a matrix uniform)
+  literal_refit,     // max(0.5, X)  ->  max(0.0, X): a number the reference never writes, as one it does
   name_replaced,     // uDiffuseColor  ->  uSpecularColor (a uniform, an input or a local of the same type)
+  arguments_swapped, // reflect(N, -L)  ->  reflect(-L, N), where the order matters
+  statement_restored,// an output the stage never writes: the reference's assignment to it, at the end of main
 };
 inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::normalised, "normalised"},
@@ -38,7 +41,10 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::factor_removed, "factor_removed"},
     {RepairKind::term_removed, "term_removed"},
     {RepairKind::matrix_added, "matrix_added"},
+    {RepairKind::literal_refit, "literal_refit"},
     {RepairKind::name_replaced, "name_replaced"},
+    {RepairKind::arguments_swapped, "arguments_swapped"},
+    {RepairKind::statement_restored, "statement_restored"},
 };
 
 // How much of a confirmed repair a reader is shown: what is wrong; what and where (the file's
@@ -59,7 +65,8 @@ struct RepairEdit {
   int line = 0;         // the GLSL line `begin` is on (1-based)
   std::string subject;  // what the edit changes, as the student wrote it: "L", "dot(V, R)", "uDiffuseColor"
   std::string other;    // name_replaced: the name put in its place; direction_w: the new w;
-                        // operator_swapped: the new operator; matrix_added: the matrix
+                        // operator_swapped: the new operator; matrix_added: the matrix;
+                        // literal_refit: the new number
   int nodes = 1;        // syntax nodes the edit changes: "smallest" is fewest
 };
 
@@ -67,9 +74,21 @@ struct RepairEdit {
 // smallest first.
 std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage);
 
+// The edits that read the course's reference program beside the student's (one stage of each):
+// a number refit to one the reference writes, an output the student's stage never writes
+// restored. A restored statement is the reference's text, so it is never shown as a repaired
+// line (grade::Repair::repaired_line), only named by what it writes.
+std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view reference, shader::Stage stage);
+
+// A program's two stages as the driver gets them.
+struct StagePair {
+  std::string_view vertex, fragment;
+};
+
 // Both stages' edits, smallest first, less those in an assignment that cannot reach what the
 // program draws (grade/live_statements.h): the candidates a repair search tries, in its order.
-std::vector<RepairEdit> program_repair_edits(std::string_view vertex, std::string_view fragment);
+// With the reference's stages (empty: none), the reference's edits too.
+std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference = {});
 
 // "Smaller": fewer nodes, then the kind's order above, then the vertex stage before the fragment,
 // then the place in the stage.

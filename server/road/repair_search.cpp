@@ -30,14 +30,23 @@ struct Candidate {
 
 struct Program {
   StudentStage vertex, fragment;
+  std::string reference_vertex, reference_fragment;  // the GLSL the grade's reference draws with, or empty
   const StudentStage& operator[](shader::Stage s) const { return s == shader::Stage::vertex ? vertex : fragment; }
 };
+
+std::string glsl_or_empty(const shader::ShaderFile& file, shader::Stage stage) {
+  auto unwrapped = shader::unwrap(file, stage);
+  return unwrapped ? std::move(unwrapped->glsl) : std::string();
+}
 
 std::optional<Program> program_of(const worker::Job& job) {
   auto vertex = shader::unwrap(job.request.vertex, shader::Stage::vertex);
   auto fragment = shader::unwrap(job.request.fragment, shader::Stage::fragment);
   if (!vertex || !fragment) return std::nullopt;
-  return Program{{&job.request.vertex, std::move(*vertex)}, {&job.request.fragment, std::move(*fragment)}};
+  return Program{{&job.request.vertex, std::move(*vertex)},
+                 {&job.request.fragment, std::move(*fragment)},
+                 glsl_or_empty(job.grade.reference_vertex, shader::Stage::vertex),
+                 glsl_or_empty(job.grade.reference_fragment, shader::Stage::fragment)};
 }
 
 // The program with `edits` made: an edited stage given as the GLSL the edits made (the same
@@ -60,7 +69,8 @@ Candidate candidate_of(const Program& p, std::vector<grade::RepairEdit> edits) {
 
 // The budget's single edits, smallest first.
 std::vector<Candidate> single_candidates(const Program& p, int most) {
-  std::vector<grade::RepairEdit> edits = grade::program_repair_edits(p.vertex.source.glsl, p.fragment.source.glsl);
+  std::vector<grade::RepairEdit> edits =
+      grade::program_repair_edits({p.vertex.source.glsl, p.fragment.source.glsl}, {p.reference_vertex, p.reference_fragment});
   if (edits.size() > static_cast<size_t>(std::max(0, most))) edits.resize(std::max(0, most));
   std::vector<Candidate> out;
   for (auto& e : edits) out.push_back(candidate_of(p, {std::move(e)}));
@@ -72,9 +82,22 @@ bool overlapping(const grade::RepairEdit& a, const grade::RepairEdit& b) {
 }
 
 // The grade's job for a candidate: a verdict only (no catalogue, no formula, no heat map), on the
-// grade's canvas or, to screen, one `budget.screen_size` on its longer side within its share of
-// the deadlines.
-worker::Job candidate_job(const worker::Job& failed, const Candidate& c, const RepairBudget& budget, bool screen) {
+// grade's canvas or, to screen (`screen`: the probes it keeps), one `budget.screen_size` on its
+// longer side within its share of the deadlines.
+// The probe lights a screen draws under: none where the student's frames fail under the page's
+// light (it alone filters), else those under which they fail: a program right under the page's
+// light and wrong under a probe would pass every screen, and each pass spend a confirmation.
+std::vector<std::string> screen_probes(const grade::Report& failed) {
+  std::vector<std::string> out;
+  for (const auto& f : failed.frames) {
+    if (f.grade.pass) continue;
+    if (f.light == "homework") return {};
+    if (std::find(out.begin(), out.end(), f.light) == out.end()) out.push_back(f.light);
+  }
+  return out;
+}
+
+worker::Job candidate_job(const worker::Job& failed, const Candidate& c, const RepairBudget& budget, const std::vector<std::string>* screen) {
   worker::Job job = failed;
   job.request.vertex = c.vertex;
   job.request.fragment = c.fragment;
@@ -83,11 +106,12 @@ worker::Job candidate_job(const worker::Job& failed, const Candidate& c, const R
   job.grade.starter_constants.clear();
   job.grade.heatmap = grade::HeatMap::never;
   if (screen) {
-    // Three frames a third of a turn apart, under the page's light alone: a filter. Only the
-    // confirming render, every frame and light the grade draws, states a repair.
+    // Three frames a third of a turn apart, under the page's light (or the probes the student's
+    // frames fail under): a filter. Only the confirming render, every frame and light the grade
+    // draws, states a repair.
     job.request.degrees_per_frame *= static_cast<double>(job.request.frames) / kScreenFrames;
     job.request.frames = kScreenFrames;
-    job.grade.probes.clear();
+    std::erase_if(job.grade.probes, [&](const grade::Probe& p) { return std::find(screen->begin(), screen->end(), p.name) == screen->end(); });
     const double scale = static_cast<double>(budget.screen_size) / std::max(job.request.width, job.request.height);
     job.request.width = std::max(1, static_cast<int>(std::lround(job.request.width * scale)));
     job.request.height = std::max(1, static_cast<int>(std::lround(job.request.height * scale)));
@@ -158,7 +182,9 @@ grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::Rep
     repair.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
     repair.line = stage.source.locate(e.line, 0).file_line;
   }
-  if (shown == grade::RepairShown::repaired_line) repair.repaired_line = grade::edited_line(stage.source.glsl, e);
+  // A restored statement is the reference's line, not the student's edited: named, never shown.
+  if (shown == grade::RepairShown::repaired_line && e.kind != grade::RepairKind::statement_restored)
+    repair.repaired_line = grade::edited_line(stage.source.glsl, e);
   return repair;
 }
 
@@ -193,6 +219,7 @@ struct Search {
   const std::string& mesh;
   const RepairBudget& budget;
   grade::Report& report;
+  const std::vector<std::string> probes = screen_probes(report);  // the screens'
   grade::RepairSearch spent;
 
   // Screens `candidates` in order, a wave at a time (the machine's speed, never the answer), reads
@@ -203,7 +230,7 @@ struct Search {
     for (size_t first = 0; first < candidates.size(); first += wave) {
       const size_t last = std::min(candidates.size(), first + wave);
       std::vector<worker::Job> screens;
-      for (size_t i = first; i < last; ++i) screens.push_back(candidate_job(failed, candidates[i], budget, true));
+      for (size_t i = first; i < last; ++i) screens.push_back(candidate_job(failed, candidates[i], budget, &probes));
       auto screened = grade_candidates(pool, screens, mesh);
       if (!screened) return could_not_run(screened.error());
       for (size_t i = first; i < last; ++i) {
@@ -212,7 +239,7 @@ struct Search {
         if (distances) distances->push_back(g.distance);
         if (!g.pass) continue;
         ++spent.confirmations;
-        auto confirmed = grade_candidates(pool, {candidate_job(failed, candidates[i], budget, false)}, mesh);
+        auto confirmed = grade_candidates(pool, {candidate_job(failed, candidates[i], budget, nullptr)}, mesh);
         if (!confirmed) return could_not_run(confirmed.error());
         if (confirmed->front().pass) {
           *winner = &candidates[i];
@@ -232,7 +259,7 @@ struct Search {
   // The student's own program's distance on the screening canvas: what a single edit must improve
   // on to be one of a pair.
   std::optional<double> own_distance(const Program& p) {
-    auto own = grade_candidates(pool, {candidate_job(failed, candidate_of(p, {}), budget, true)}, mesh);
+    auto own = grade_candidates(pool, {candidate_job(failed, candidate_of(p, {}), budget, &probes)}, mesh);
     if (!own) {
       could_not_run(own.error());
       return std::nullopt;
@@ -273,7 +300,7 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
                    grade::Report& report, const RepairBudget& budget) {
   const auto program = program_of(failed);
   if (!program || budget.confirmations < 1) return;  // nothing screened could be stated
-  Search search{pool, failed, mesh_bytes, budget, report, {}};
+  Search search{pool, failed, mesh_bytes, budget, report};
   const std::vector<Candidate> singles = single_candidates(*program, budget.candidates);
   std::vector<double> distances;
   std::vector<Candidate> pairs;
