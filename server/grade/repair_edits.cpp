@@ -1,113 +1,20 @@
 #include "grade/repair_edits.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <map>
 #include <set>
 #include <tuple>
 
 #include "grade/live_statements.h"
+#include "grade/reference_edits.h"
+#include "grade/stage_tokens.h"
 #include "shader/glsl_lines.h"
 
 namespace shadelab::grade {
 
 namespace {
 
-using shader::GlslToken;
-
-bool one_of(std::string_view s, std::initializer_list<std::string_view> words) {
-  return std::find(words.begin(), words.end(), s) != words.end();
-}
-
-// Tokens that may stand before a unary operator or an operand's start: never an operand's end.
-// Punctuation is one character a token (shader/glsl_lines.h): `+=` is `+` then `=`.
-bool before_operand(std::string_view s) {
-  return one_of(s, {"(", ",", "=", "+", "-", "*", "/", "?", ":", "return", "{", ";", "<", ">", "!"});
-}
-
-// One stage's tokens, with the spans they cover in its GLSL.
-struct Stage {
-  std::string_view glsl;
-  std::vector<GlslToken> t;
-  shader::Stage stage;
-
-  size_t size() const { return t.size(); }
-  bool is(size_t i, std::string_view s) const { return i < t.size() && t[i].text == s; }
-  bool identifier(size_t i) const { return i < t.size() && t[i].kind == GlslToken::Kind::identifier; }
-  bool number(size_t i) const { return i < t.size() && t[i].kind == GlslToken::Kind::number; }
-  size_t begin(size_t i) const { return static_cast<size_t>(t[i].text.data() - glsl.data()); }
-  size_t end(size_t i) const { return begin(i) + t[i].text.size(); }
-  // Tokens first..last, inclusive, as written (their spaces and comments included).
-  std::string_view text(size_t first, size_t last) const { return glsl.substr(begin(first), end(last) - begin(first)); }
-
-  // The `)` that closes the `(` at `open`; size() when none does.
-  size_t close_of(size_t open) const {
-    int depth = 0;
-    for (size_t i = open; i < t.size(); ++i) {
-      if (is(i, "(") || is(i, "[")) ++depth;
-      if ((is(i, ")") || is(i, "]")) && --depth == 0) return i;
-    }
-    return t.size();
-  }
-  // The last token of the expression that starts at `first`: before the `;`, `,` or closing
-  // bracket at its own depth.
-  size_t expression_last(size_t first) const {
-    int depth = 0;
-    for (size_t i = first; i < t.size(); ++i) {
-      if (is(i, "(") || is(i, "[")) ++depth;
-      if (is(i, ")") || is(i, "]") || is(i, "}")) {
-        if (depth == 0) return i - 1;
-        --depth;
-      }
-      if (depth == 0 && (is(i, ";") || is(i, ","))) return i - 1;
-    }
-    return t.size() - 1;
-  }
-  // The last token of the operand that starts at `first`: a name or a number, a call, a
-  // parenthesis, each with its fields (`.xyz`) and indices after it.
-  size_t operand_last(size_t first) const {
-    size_t i = first;
-    if (is(i, "(")) i = close_of(i);
-    else if (identifier(i) && is(i + 1, "(")) i = close_of(i + 1);
-    while (i + 2 < t.size() && (is(i + 1, ".") || is(i + 1, "["))) i = is(i + 1, ".") ? i + 2 : close_of(i + 1);
-    return std::min(i, t.size() - 1);
-  }
-  // The arguments of the call whose `(` is at `open`: each as its first and last token.
-  std::vector<std::pair<size_t, size_t>> arguments(size_t open) const {
-    std::vector<std::pair<size_t, size_t>> out;
-    const size_t close = close_of(open);
-    for (size_t i = open + 1; i < close;) {
-      const size_t last = expression_last(i);
-      out.emplace_back(i, last);
-      i = last + 2;
-    }
-    return out;
-  }
-  // The name of the call an argument at `i` is inside, or "".
-  std::string_view enclosing_call(size_t i) const {
-    int depth = 0;
-    for (size_t k = i; k-- > 0;) {
-      if (is(k, ")")) ++depth;
-      if (is(k, "(") && depth-- == 0) return k > 0 && identifier(k - 1) ? t[k - 1].text : std::string_view();
-    }
-    return {};
-  }
-
-  RepairEdit edit(RepairKind kind, size_t first_byte, size_t end_byte, std::string with, size_t at, std::string_view subject) const {
-    RepairEdit e;
-    e.stage = stage;
-    e.kind = kind;
-    e.begin = first_byte;
-    e.end = end_byte;
-    e.with = std::move(with);
-    e.line = t[at].line;
-    e.subject = std::string(subject);
-    return e;
-  }
-  RepairEdit replace(RepairKind kind, size_t first, size_t last, std::string with, std::string_view subject) const {
-    return edit(kind, begin(first), end(last), std::move(with), first, subject);
-  }
-};
+using Stage = StageTokens;
 
 // The type each declared name has: `vec3 L`, `uniform vec4 uDiffuseColor`, `in vec3 vNormal`.
 std::map<std::string, std::string, std::less<>> declared_types(const Stage& s) {
@@ -308,158 +215,12 @@ void argument_orders(const Stage& s, std::vector<RepairEdit>& out) {
   }
 }
 
-// The number tokens of a stage outside its directives (`#version 300 es`).
-std::vector<size_t> numbers_of(const Stage& s) {
-  std::set<int> directive_lines;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.is(i, "#") && (i == 0 || s.t[i - 1].line != s.t[i].line)) directive_lines.insert(s.t[i].line);
-  std::vector<size_t> out;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.number(i) && !directive_lines.contains(s.t[i].line)) out.push_back(i);
-  return out;
-}
-
-bool is_float(std::string_view number) {
-  return !number.starts_with("0x") && !number.starts_with("0X") && number.find_first_of(".eE") != std::string_view::npos;
-}
-
-double value_of(std::string_view number) { return std::strtod(std::string(number).c_str(), nullptr); }
-
-// A number the reference's stage never writes, refit to each it does, floats to floats and
-// integers to integers: max(0.5, X) -> max(0.0, X). A number the reference writes is left as it is.
-void literals(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
-  std::vector<std::string_view> offered;  // the reference's numbers, one of each value and kind, in order
-  const auto offers = [&](std::string_view n) {
-    return std::any_of(offered.begin(), offered.end(), [&](auto o) { return is_float(o) == is_float(n) && value_of(o) == value_of(n); });
-  };
-  for (const size_t i : numbers_of(reference))
-    if (!offers(reference.t[i].text)) offered.push_back(reference.t[i].text);
-  for (const size_t i : numbers_of(s)) {
-    const std::string_view n = s.t[i].text;
-    if (offers(n)) continue;
-    for (const auto o : offered) {
-      if (is_float(o) != is_float(n)) continue;
-      RepairEdit e = s.replace(RepairKind::literal_refit, i, i, std::string(o), n);
-      e.other = e.with;
-      out.push_back(std::move(e));
-    }
-  }
-}
-
-// The names a stage's results leave by: its `out` variables (a vertex stage's `varying`s too),
-// gl_Position in a vertex stage, gl_FragColor in a fragment stage.
-std::vector<std::string_view> outputs_of(const Stage& s) {
-  std::vector<std::string_view> out{s.stage == shader::Stage::vertex ? "gl_Position" : "gl_FragColor"};
-  for (size_t i = 0; i + 2 < s.size(); ++i) {
-    if (!s.is(i, "out") && !(s.stage == shader::Stage::vertex && s.is(i, "varying"))) continue;
-    size_t k = i + 1;
-    while (k < s.size() && one_of(s.t[k].text, {"lowp", "mediump", "highp", "flat", "smooth", "centroid"})) ++k;
-    if (s.identifier(k) && s.identifier(k + 1) && s.is(k + 2, ";")) out.push_back(s.t[k + 1].text);
-  }
-  return out;
-}
-
-// Where the stage assigns `name` (name = X, name += X, name.xyz = X, name[i] = X) as a statement:
-// the token of the name, or size() when it never does.
-size_t assignment_of(const Stage& s, std::string_view name) {
-  for (size_t i = 1; i < s.size(); ++i) {
-    if (!s.is(i, name) || !one_of(s.t[i - 1].text, {";", "{", "}", ")"})) continue;
-    size_t k = i + 1;
-    while (k + 1 < s.size() && (s.is(k, ".") || s.is(k, "["))) k = s.is(k, ".") ? k + 2 : s.close_of(k) + 1;
-    if (k + 1 < s.size() && one_of(s.t[k].text, {"+", "-", "*", "/"})) ++k;
-    if (s.is(k, "=") && !s.is(k + 1, "=")) return i;
-  }
-  return s.size();
-}
-
-// The `{` that opens main's body, or size().
-size_t main_start(const Stage& s) {
-  for (size_t i = 0; i + 1 < s.size(); ++i)
-    if (s.is(i, "main") && s.is(i + 1, "(") && s.is(s.close_of(i + 1) + 1, "{")) return s.close_of(i + 1) + 1;
-  return s.size();
-}
-
-// The `}` that closes the block opening at `open`, or size().
-size_t block_end(const Stage& s, size_t open) {
-  for (int depth = 0; open < s.size(); ++open) {
-    if (s.is(open, "{")) ++depth;
-    if (s.is(open, "}") && --depth == 0) return open;
-  }
-  return s.size();
-}
-
-bool statement_boundary(const Stage& s, size_t i) { return s.is(i, ";") || s.is(i, "{") || s.is(i, "}"); }
-
-// The statement boundary (`;`, `{` or `}`) before token `at`.
-size_t boundary_before(const Stage& s, size_t at) {
-  while (at-- > 0)
-    if (statement_boundary(s, at)) return at;
-  return s.size();
-}
-
-// The name the statement after boundary `b` writes: `L` in `vec3 L = X;`, `color` in `color += X;`.
-std::string_view target_after(const Stage& s, size_t b) {
-  size_t k = b + 1;
-  if (s.identifier(k) && s.identifier(k + 1)) ++k;  // a declaration's type
-  return s.identifier(k) ? s.t[k].text : std::string_view();
-}
-
-// The `;` of the student's statement that writes or declares `name`, or size().
-size_t statement_end_of(const Stage& s, std::string_view name) {
-  for (size_t i = 1; i < s.size(); ++i) {
-    if (!s.is(i, name)) continue;
-    const bool starts = statement_boundary(s, i - 1) || (s.identifier(i - 1) && i >= 2 && statement_boundary(s, i - 2));
-    const size_t end = s.expression_last(i) + 1;
-    if (starts && s.is(end, ";")) return end;
-  }
-  return s.size();
-}
-
-// Where the reference's statement at `at` goes in the student's stage: after the token this
-// returns. Aligned by the statements before it: after the student's statement that writes what
-// the nearest of them writes; with none, at the start of main (it was the first) or its end.
-size_t aligned_after(const Stage& s, const Stage& reference, size_t at) {
-  for (size_t b = boundary_before(reference, at); b < reference.size(); b = boundary_before(reference, b)) {
-    if (reference.is(b, "{")) return main_start(reference) == b ? main_start(s) : s.size();
-    if (reference.is(b, "}")) break;  // a block before it: no statement to align with
-    const size_t found = statement_end_of(s, target_after(reference, boundary_before(reference, b)));
-    if (found < s.size()) return found;
-  }
-  const size_t end = block_end(s, main_start(s));
-  return end < s.size() ? end - 1 : s.size();
-}
-
-// An output the student's stage never writes, where the reference's stage writes it: the
-// reference's statement put where it stands in the reference, by the statements before it, on
-// the gap's last line before the next statement (where a deleted line was).
-void restored_statements(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
-  for (const std::string_view name : outputs_of(s)) {
-    if (assignment_of(s, name) < s.size()) continue;
-    const size_t at = assignment_of(reference, name);
-    if (at >= reference.size()) continue;
-    const size_t last = reference.expression_last(at) + 1;  // the statement's `;`
-    if (!reference.is(last, ";")) continue;
-    const size_t after = aligned_after(s, reference, at);
-    if (after + 1 >= s.size()) continue;
-    const size_t next = after + 1;
-    const std::string statement(reference.text(at, last));
-    RepairEdit e;
-    if (s.t[next].line == s.t[after].line) {
-      e = s.edit(RepairKind::statement_restored, s.end(after), s.end(after), " " + statement, after, name);
-    } else {
-      // As many lines after the statement before it as in the reference, within the gap before
-      // the next statement; at the next statement's own line where there is no gap.
-      const int below = std::max(1, reference.t[at].line - reference.t[boundary_before(reference, at)].line);
-      const int line = std::min(s.t[after].line + below, s.t[next].line);
-      size_t line_start = s.glsl.rfind('\n', s.begin(next) - 1) + 1;
-      for (int l = s.t[next].line; l > line; --l) line_start = s.glsl.rfind('\n', line_start - 2) + 1;
-      e = s.edit(RepairKind::statement_restored, line_start, line_start, "    " + statement + "\n", next, name);
-      e.line = line;
-    }
-    e.nodes = 0;
-    for (size_t k = at; k <= last; ++k) e.nodes += reference.identifier(k) || reference.number(k);
-    out.push_back(std::move(e));
-  }
+// `text` without its spaces, tabs and newlines: two lines that differ only there read the same.
+std::string unspaced(std::string_view text) {
+  std::string kept;
+  for (const char c : text)
+    if (c != ' ' && c != '\t' && c != '\n' && c != '\r') kept += c;
+  return kept;
 }
 
 }  // namespace
@@ -478,15 +239,6 @@ std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage)
   return out;
 }
 
-std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view reference, shader::Stage stage) {
-  const Stage s{glsl, shader::tokens_of(glsl), stage}, r{reference, shader::tokens_of(reference), stage};
-  std::vector<RepairEdit> out;
-  literals(s, r, out);
-  restored_statements(s, r, out);
-  std::stable_sort(out.begin(), out.end(), smaller);
-  return out;
-}
-
 std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference) {
   const StageLiveness fragment_live = fragment_liveness(student.fragment);
   const StageLiveness vertex_live = vertex_liveness(student.vertex, fragment_live.live_names);
@@ -495,8 +247,13 @@ std::vector<RepairEdit> program_repair_edits(const StagePair& student, const Sta
     std::vector<RepairEdit> edits = repair_edits(glsl, stage);
     if (!reference_glsl.empty())
       for (auto& e : reference_edits(glsl, reference_glsl, stage)) edits.push_back(std::move(e));
-    for (auto& e : edits)
-      if (!live.dead(e.begin)) out.push_back(std::move(e));
+    std::set<std::string, std::less<>> reference_lines;
+    for (const auto line : shader::lines_of(reference_glsl)) reference_lines.insert(unspaced(line));
+    for (auto& e : edits) {
+      if (live.dead(e.begin)) continue;
+      e.reads_as_reference = e.kind == RepairKind::statement_restored || reference_lines.contains(unspaced(edited_line(glsl, e)));
+      out.push_back(std::move(e));
+    }
   };
   add(student.vertex, reference.vertex, shader::Stage::vertex, vertex_live);
   add(student.fragment, reference.fragment, shader::Stage::fragment, fragment_live);
@@ -505,7 +262,8 @@ std::vector<RepairEdit> program_repair_edits(const StagePair& student, const Sta
 }
 
 bool smaller(const RepairEdit& a, const RepairEdit& b) {
-  return std::tuple(a.nodes, a.kind, a.stage, a.begin) < std::tuple(b.nodes, b.kind, b.stage, b.begin);
+  return std::tuple(!a.reads_as_reference, a.nodes, a.kind, a.stage, a.begin) <
+         std::tuple(!b.reads_as_reference, b.nodes, b.kind, b.stage, b.begin);
 }
 
 std::string with_edit(std::string_view glsl, const RepairEdit& edit) {
@@ -548,6 +306,7 @@ std::string repair_words(const RepairEdit& e) {
       if (e.stage == shader::Stage::fragment) return x + " is never written: the colour the fragment stage draws is what it writes there";
       if (e.subject == "gl_Position") return x + " is never written: the vertex stage must say where each vertex lands";
       return x + " is never written: the fragment stage reads what the vertex stage writes there";
+    case RepairKind::value_restored: return x + " is not computed as the homework computes it";
   }
   return x + " differs from the homework";
 }

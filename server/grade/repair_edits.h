@@ -28,7 +28,8 @@ enum class RepairKind {
   literal_refit,     // max(0.5, X)  ->  max(0.0, X): a number the reference never writes, as one it does
   name_replaced,     // uDiffuseColor  ->  uSpecularColor (a uniform, an input or a local of the same type)
   arguments_swapped, // reflect(N, -L)  ->  reflect(-L, N), where the order matters
-  statement_restored,// an output the stage never writes: the reference's assignment to it, at the end of main
+  statement_restored,// an output the stage never writes: the reference's assignment to it, where it stands there
+  value_restored,    // vec3 R = normalize(L + V);  ->  the reference's value of R, where each assigns R once
 };
 inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::normalised, "normalised"},
@@ -45,7 +46,18 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::name_replaced, "name_replaced"},
     {RepairKind::arguments_swapped, "arguments_swapped"},
     {RepairKind::statement_restored, "statement_restored"},
+    {RepairKind::value_restored, "value_restored"},
 };
+
+// Whether an edit of this kind writes the reference's own text (a statement or a value restored):
+// such an edit is named, never shown as a repaired line.
+constexpr bool writes_reference_text(RepairKind kind) {
+  return kind == RepairKind::statement_restored || kind == RepairKind::value_restored;
+}
+
+// Whether an edit of this kind reads the reference (grade::reference_edits): the search counts
+// these apart from the student's own edits (road::RepairBudget).
+constexpr bool reads_reference(RepairKind kind) { return kind == RepairKind::literal_refit || writes_reference_text(kind); }
 
 // How much of a confirmed repair a reader is shown: what is wrong; what and where (the file's
 // line); or the repaired line too. A course chooses it for its students (the profile's
@@ -68,17 +80,14 @@ struct RepairEdit {
                         // operator_swapped: the new operator; matrix_added: the matrix;
                         // literal_refit: the new number
   int nodes = 1;        // syntax nodes the edit changes: "smallest" is fewest
+  // Whether the edited line reads as a line of the reference's stage (spaces aside): such an edit
+  // is tried before any other, as the student's line aligned with the reference's.
+  bool reads_as_reference = false;
 };
 
 // Every edit of the kinds above that applies to `glsl` (one stage, as the driver gets it),
 // smallest first.
 std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage);
-
-// The edits that read the course's reference program beside the student's (one stage of each):
-// a number refit to one the reference writes, an output the student's stage never writes
-// restored. A restored statement is the reference's text, so it is never shown as a repaired
-// line (grade::Repair::repaired_line), only named by what it writes.
-std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view reference, shader::Stage stage);
 
 // A program's two stages as the driver gets them.
 struct StagePair {
@@ -90,8 +99,8 @@ struct StagePair {
 // With the reference's stages (empty: none), the reference's edits too.
 std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference = {});
 
-// "Smaller": fewer nodes, then the kind's order above, then the vertex stage before the fragment,
-// then the place in the stage.
+// "Smaller": an edit whose line then reads as the reference's first, then fewer nodes, then the
+// kind's order above, then the vertex stage before the fragment, then the place in the stage.
 bool smaller(const RepairEdit& a, const RepairEdit& b);
 
 // `glsl` with `edit` made.

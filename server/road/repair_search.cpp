@@ -67,13 +67,13 @@ Candidate candidate_of(const Program& p, std::vector<grade::RepairEdit> edits) {
   return c;
 }
 
-// The budget's single edits, smallest first.
-std::vector<Candidate> single_candidates(const Program& p, int most) {
-  std::vector<grade::RepairEdit> edits =
-      grade::program_repair_edits({p.vertex.source.glsl, p.fragment.source.glsl}, {p.reference_vertex, p.reference_fragment});
-  if (edits.size() > static_cast<size_t>(std::max(0, most))) edits.resize(std::max(0, most));
+// The budget's single edits, smallest first: the first `budget.candidates` of the student's own
+// and the first `budget.reference_candidates` of those that read the reference.
+std::vector<Candidate> single_candidates(const Program& p, const RepairBudget& budget) {
+  int own = std::max(0, budget.candidates), reference = std::max(0, budget.reference_candidates);
   std::vector<Candidate> out;
-  for (auto& e : edits) out.push_back(candidate_of(p, {std::move(e)}));
+  for (auto& e : grade::program_repair_edits({p.vertex.source.glsl, p.fragment.source.glsl}, {p.reference_vertex, p.reference_fragment}))
+    if ((grade::reads_reference(e.kind) ? reference : own)-- > 0) out.push_back(candidate_of(p, {std::move(e)}));
   return out;
 }
 
@@ -182,8 +182,8 @@ grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::Rep
     repair.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
     repair.line = stage.source.locate(e.line, 0).file_line;
   }
-  // A restored statement is the reference's line, not the student's edited: named, never shown.
-  if (shown == grade::RepairShown::repaired_line && e.kind != grade::RepairKind::statement_restored)
+  // A restored statement or value is the reference's text, not the student's line: named, never shown.
+  if (shown == grade::RepairShown::repaired_line && !grade::writes_reference_text(e.kind))
     repair.repaired_line = grade::edited_line(stage.source.glsl, e);
   return repair;
 }
@@ -301,7 +301,7 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   const auto program = program_of(failed);
   if (!program || budget.confirmations < 1) return;  // nothing screened could be stated
   Search search{pool, failed, mesh_bytes, budget, report};
-  const std::vector<Candidate> singles = single_candidates(*program, budget.candidates);
+  const std::vector<Candidate> singles = single_candidates(*program, budget);
   std::vector<double> distances;
   std::vector<Candidate> pairs;
   const Candidate* winner = nullptr;  // in `singles` or `pairs`

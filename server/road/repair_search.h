@@ -18,7 +18,10 @@
 namespace shadelab::road {
 
 struct RepairBudget {
-  int candidates = 128;   // single edits screened, at most
+  int candidates = 128;   // single edits of the student's own program screened, at most
+  // Single edits that read the reference (a number refit, a statement or a value restored:
+  // grade/reference_edits.h), at most: counted apart, as they are few and come last by size.
+  int reference_candidates = 16;
   // Where no single edit repairs the program: the single that drew nearest the reference, paired
   // with each other single in order, at most `pairs` pairs.
   int pairs = 128;

@@ -90,9 +90,11 @@ ssize_t receive_with_fd(int socket, Request& request, int& fd) {
 // The worker, two forks down: adopted by the server, it sets itself up as launch.cpp's fork + exec
 // would (fd 3, limits, LP_NUM_THREADS) and runs `shadelab worker`.
 [[noreturn]] void become_worker(const Request& r, int fd, pid_t server) {
-  // The fork server reaped the intermediate before answering, so adoption has happened or is a
-  // moment away. Were the server gone, init would adopt us: then there is no one to serve.
-  for (int i = 0; i < 10000 && ::getppid() != server; ++i) ::usleep(100);
+  // Adopted by the server once the intermediate has exited, which it does as soon as it has
+  // written our pid: wait for that however long a busy machine takes to run it (a deadline here
+  // failed starts under load). Were the server gone, init would adopt us: no one to serve.
+  const pid_t intermediate = ::getppid();
+  while (::getppid() == intermediate && intermediate != server) ::usleep(100);
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the server
   if (::getppid() != server) ::_exit(1);
   ::prctl(PR_SET_NAME, "shadelab-worker");

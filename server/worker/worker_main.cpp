@@ -1,8 +1,10 @@
 #include "worker/worker_main.h"
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <optional>
 
 #include "core/lru_cache.h"
@@ -349,8 +351,10 @@ int run_worker(int fd, const egl::ContextOptions& options, WarmUp warm_up) {
   }
   inject_fault(start_fault_plan(), FaultPhase::start, fd);  // inactive outside fault-injection runs
   if (!write_message(fd, {{{"event", "ready"}, {"ok", true}, {"renderer", info.gl_renderer}, {"version", info.gl_version},
-                           {"software", info.software}}, {}}))
+                           {"software", info.software}}, {}})) {
+    std::cerr << "shadelab worker: its ready message could not be sent (" << std::strerror(errno) << ")\n";  // the operator's only clue
     return 1;
+  }
   // A replacement's warm-up: a failure here is the first job's to report, as it would be cold.
   if (warm_up == WarmUp::after_ready) (void)worker.warm_up();
   worker.serve();

@@ -1,0 +1,223 @@
+#include "grade/reference_edits.h"
+
+#include <cstdlib>
+#include <set>
+
+#include "grade/stage_tokens.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+using Stage = StageTokens;
+
+// The number tokens of a stage outside its directives (`#version 300 es`).
+std::vector<size_t> numbers_of(const Stage& s) {
+  std::set<int> directive_lines;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.is(i, "#") && (i == 0 || s.t[i - 1].line != s.t[i].line)) directive_lines.insert(s.t[i].line);
+  std::vector<size_t> out;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.number(i) && !directive_lines.contains(s.t[i].line)) out.push_back(i);
+  return out;
+}
+
+bool is_float(std::string_view number) {
+  return !number.starts_with("0x") && !number.starts_with("0X") && number.find_first_of(".eE") != std::string_view::npos;
+}
+
+double value_of(std::string_view number) { return std::strtod(std::string(number).c_str(), nullptr); }
+
+// A number the reference's stage never writes, refit to each it does, floats to floats and
+// integers to integers: max(0.5, X) -> max(0.0, X). A number the reference writes is left as it is.
+void literals(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
+  std::vector<std::string_view> offered;  // the reference's numbers, one of each value and kind, in order
+  const auto offers = [&](std::string_view n) {
+    return std::any_of(offered.begin(), offered.end(), [&](auto o) { return is_float(o) == is_float(n) && value_of(o) == value_of(n); });
+  };
+  for (const size_t i : numbers_of(reference))
+    if (!offers(reference.t[i].text)) offered.push_back(reference.t[i].text);
+  for (const size_t i : numbers_of(s)) {
+    const std::string_view n = s.t[i].text;
+    if (offers(n)) continue;
+    for (const auto o : offered) {
+      if (is_float(o) != is_float(n)) continue;
+      RepairEdit e = s.replace(RepairKind::literal_refit, i, i, std::string(o), n);
+      e.other = e.with;
+      out.push_back(std::move(e));
+    }
+  }
+}
+
+// Operands (names and numbers) among tokens first..last: a restored value's size.
+int operands(const Stage& s, size_t first, size_t last) {
+  int n = 0;
+  for (size_t k = first; k <= last && k < s.size(); ++k) n += s.identifier(k) || s.number(k);
+  return n;
+}
+
+// The names a stage's results leave by: its `out` variables (a vertex stage's `varying`s too),
+// gl_Position in a vertex stage, gl_FragColor in a fragment stage.
+std::vector<std::string_view> outputs_of(const Stage& s) {
+  std::vector<std::string_view> out{s.stage == shader::Stage::vertex ? "gl_Position" : "gl_FragColor"};
+  for (size_t i = 0; i + 2 < s.size(); ++i) {
+    if (!s.is(i, "out") && !(s.stage == shader::Stage::vertex && s.is(i, "varying"))) continue;
+    size_t k = i + 1;
+    while (k < s.size() && one_of(s.t[k].text, {"lowp", "mediump", "highp", "flat", "smooth", "centroid"})) ++k;
+    if (s.identifier(k) && s.identifier(k + 1) && s.is(k + 2, ";")) out.push_back(s.t[k + 1].text);
+  }
+  return out;
+}
+
+// Where the stage assigns `name` (name = X, name += X, name.xyz = X, name[i] = X) as a statement:
+// the token of the name, or size() when it never does.
+size_t assignment_of(const Stage& s, std::string_view name) {
+  for (size_t i = 1; i < s.size(); ++i) {
+    if (!s.is(i, name) || !one_of(s.t[i - 1].text, {";", "{", "}", ")"})) continue;
+    size_t k = i + 1;
+    while (k + 1 < s.size() && (s.is(k, ".") || s.is(k, "["))) k = s.is(k, ".") ? k + 2 : s.close_of(k) + 1;
+    if (k + 1 < s.size() && one_of(s.t[k].text, {"+", "-", "*", "/"})) ++k;
+    if (s.is(k, "=") && !s.is(k + 1, "=")) return i;
+  }
+  return s.size();
+}
+
+// The `{` that opens main's body, or size().
+size_t main_start(const Stage& s) {
+  for (size_t i = 0; i + 1 < s.size(); ++i)
+    if (s.is(i, "main") && s.is(i + 1, "(") && s.is(s.close_of(i + 1) + 1, "{")) return s.close_of(i + 1) + 1;
+  return s.size();
+}
+
+// The `}` that closes the block opening at `open`, or size().
+size_t block_end(const Stage& s, size_t open) {
+  for (int depth = 0; open < s.size(); ++open) {
+    if (s.is(open, "{")) ++depth;
+    if (s.is(open, "}") && --depth == 0) return open;
+  }
+  return s.size();
+}
+
+bool statement_boundary(const Stage& s, size_t i) { return s.is(i, ";") || s.is(i, "{") || s.is(i, "}"); }
+
+// The statement boundary (`;`, `{` or `}`) before token `at`.
+size_t boundary_before(const Stage& s, size_t at) {
+  while (at-- > 0)
+    if (statement_boundary(s, at)) return at;
+  return s.size();
+}
+
+// The name the statement after boundary `b` writes: `L` in `vec3 L = X;`, `color` in `color += X;`.
+std::string_view target_after(const Stage& s, size_t b) {
+  size_t k = b + 1;
+  if (s.identifier(k) && s.identifier(k + 1)) ++k;  // a declaration's type
+  return s.identifier(k) ? s.t[k].text : std::string_view();
+}
+
+// The `;` of the student's statement that writes or declares `name`, or size().
+size_t statement_end_of(const Stage& s, std::string_view name) {
+  for (size_t i = 1; i < s.size(); ++i) {
+    if (!s.is(i, name)) continue;
+    const bool starts = statement_boundary(s, i - 1) || (s.identifier(i - 1) && i >= 2 && statement_boundary(s, i - 2));
+    const size_t end = s.expression_last(i) + 1;
+    if (starts && s.is(end, ";")) return end;
+  }
+  return s.size();
+}
+
+// Where the reference's statement at `at` goes in the student's stage: after the token this
+// returns. Aligned by the statements before it: after the student's statement that writes what
+// the nearest of them writes; with none, at the start of main (it was the first) or its end.
+size_t aligned_after(const Stage& s, const Stage& reference, size_t at) {
+  for (size_t b = boundary_before(reference, at); b < reference.size(); b = boundary_before(reference, b)) {
+    if (reference.is(b, "{")) return main_start(reference) == b ? main_start(s) : s.size();
+    if (reference.is(b, "}")) break;  // a block before it: no statement to align with
+    const size_t found = statement_end_of(s, target_after(reference, boundary_before(reference, b)));
+    if (found < s.size()) return found;
+  }
+  const size_t end = block_end(s, main_start(s));
+  return end < s.size() ? end - 1 : s.size();
+}
+
+// An output the student's stage never writes, where the reference's stage writes it: the
+// reference's statement put where it stands in the reference, by the statements before it, on
+// the gap's last line before the next statement (where a deleted line was).
+void restored_statements(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
+  for (const std::string_view name : outputs_of(s)) {
+    if (assignment_of(s, name) < s.size()) continue;
+    const size_t at = assignment_of(reference, name);
+    if (at >= reference.size()) continue;
+    const size_t last = reference.expression_last(at) + 1;  // the statement's `;`
+    if (!reference.is(last, ";")) continue;
+    const size_t after = aligned_after(s, reference, at);
+    if (after + 1 >= s.size()) continue;
+    const size_t next = after + 1;
+    const std::string statement(reference.text(at, last));
+    RepairEdit e;
+    if (s.t[next].line == s.t[after].line) {
+      e = s.edit(RepairKind::statement_restored, s.end(after), s.end(after), " " + statement, after, name);
+    } else {
+      // As many lines after the statement before it as in the reference, within the gap before
+      // the next statement; at the next statement's own line where there is no gap.
+      const int below = std::max(1, reference.t[at].line - reference.t[boundary_before(reference, at)].line);
+      const int line = std::min(s.t[after].line + below, s.t[next].line);
+      size_t line_start = s.glsl.rfind('\n', s.begin(next) - 1) + 1;
+      for (int l = s.t[next].line; l > line; --l) line_start = s.glsl.rfind('\n', line_start - 2) + 1;
+      e = s.edit(RepairKind::statement_restored, line_start, line_start, "    " + statement + "\n", next, name);
+      e.line = line;
+    }
+    e.nodes = operands(reference, at, last);
+    out.push_back(std::move(e));
+  }
+}
+
+// The statements that write `name` (declared, assigned or updated): each the token of the name.
+std::vector<size_t> writes_of(const Stage& s, std::string_view name) {
+  std::vector<size_t> out;
+  for (size_t i = 1; i + 1 < s.size(); ++i) {
+    if (!s.is(i, name)) continue;
+    const bool declared = s.identifier(i - 1) && i >= 2 && statement_boundary(s, i - 2);
+    if (declared && s.is(i + 1, "=")) out.push_back(i);
+    else if (!declared && statement_boundary(s, i - 1) && assignment_of(s, name) <= i) out.push_back(i);
+  }
+  return out;
+}
+
+// A value the student's stage computes otherwise than the reference's, where each writes the
+// name once with `=`: the reference's value in its place (`vec3 R = normalize(L + V);` gets the
+// reference's value of R).
+void restored_values(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
+  const auto unspaced = [](std::string_view text) {
+    std::string kept;
+    for (const char c : text)
+      if (c != ' ' && c != '\t' && c != '\n' && c != '\r') kept += c;
+    return kept;
+  };
+  std::set<std::string_view, std::less<>> seen;
+  for (size_t i = 1; i + 2 < s.size(); ++i) {
+    if (!s.identifier(i) || !s.is(i + 1, "=") || s.is(i + 2, "=") || !seen.insert(s.t[i].text).second) continue;
+    const std::string_view name = s.t[i].text;
+    const auto own = writes_of(s, name), theirs = writes_of(reference, name);
+    if (own.size() != 1 || own.front() != i || theirs.size() != 1 || !reference.is(theirs.front() + 1, "=")) continue;
+    const size_t first = i + 2, last = s.expression_last(first), ref_first = theirs.front() + 2;
+    const size_t ref_last = reference.expression_last(ref_first);
+    if (last < first || ref_last < ref_first || unspaced(s.text(first, last)) == unspaced(reference.text(ref_first, ref_last))) continue;
+    RepairEdit e = s.replace(RepairKind::value_restored, first, last, std::string(reference.text(ref_first, ref_last)), name);
+    e.nodes = operands(reference, ref_first, ref_last);
+    out.push_back(std::move(e));
+  }
+}
+
+}  // namespace
+
+std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view reference, shader::Stage stage) {
+  const StageTokens s{glsl, shader::tokens_of(glsl), stage}, r{reference, shader::tokens_of(reference), stage};
+  std::vector<RepairEdit> out;
+  literals(s, r, out);
+  restored_statements(s, r, out);
+  restored_values(s, r, out);
+  std::stable_sort(out.begin(), out.end(), smaller);
+  return out;
+}
+
+}  // namespace shadelab::grade
