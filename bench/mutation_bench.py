@@ -528,6 +528,17 @@ def main():
 REPAIRED = ("undone", "equal", "elsewhere")
 
 
+def cost_ratio(results):
+    """A repaired grade's time against a passing one's, graded in the same run and under the same load:
+    the mutants that still pass are passing grades of the same programs' size."""
+    passing = [r["seconds"] for r in results if r["outcome"] == "still passes"]
+    for label, outcomes in (("repaired", REPAIRED), ("not repaired (budget spent)", ("not repaired",))):
+        failing = [r["seconds"] for r in results if r["outcome"] in outcomes]
+        if passing and failing:
+            p, f = statistics.median(passing), statistics.median(failing)
+            print("a %s grade, median %.2f s over %d; a passing grade, median %.2f s over %d: %.1fx" % (label, f, len(failing), p, len(passing), f / p))
+
+
 def report(results, sources, checkpoints, args):
     print("| mutants | checkpoint | made | do not compile | still pass | failing | explained without a search | repaired | of them undone / equal | wrong (elsewhere) | not repaired | repaired share of the failing, searched | candidates per repair (median) | confirming renders per repair | seconds per repair (median) |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
@@ -548,6 +559,8 @@ def report(results, sources, checkpoints, args):
                 n("undone"), n("equal"), n("elsewhere"), n("not repaired"),
                 "%.0f%%" % (100.0 * len(repaired) / searched) if searched else "-",
                 "%g" % med("candidates"), "%g" % med("confirmations"), "%.2f" % med("seconds")))
+    print()
+    cost_ratio(results)
     print()
     print("| operator | failing | explained | repaired | not repaired |")
     print("| --- | --- | --- | --- | --- |")
