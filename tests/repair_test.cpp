@@ -192,5 +192,10 @@ TEST(RepairSearchTest, AJobsShareOfTheDeadlinesStopsAHangEarlier) {
   const worker::JobResult result = submitted->get();
   ASSERT_FALSE(result.answered) << "an endless loop never answers";
   EXPECT_EQ(result.error.code, ErrorCode::render_timeout) << result.error.message;
-  EXPECT_NE(result.error.message.find("used more than 400 ms of CPU time"), std::string::npos) << result.error.message;
+  // Stopped at the share: 400 ms of CPU time, or on a machine too busy to give the worker a
+  // quarter of a core, the wall-clock backstop of four times that (the whole deadlines: 4000 and
+  // 16000 ms).
+  const std::string& why = result.error.message;
+  EXPECT_TRUE(why.find("used more than 400 ms of CPU time") != std::string::npos || why.find("within 1600 ms of wall-clock time") != std::string::npos)
+      << why;
 }

@@ -6,6 +6,7 @@
 #include <future>
 #include <thread>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "grade/diagnosis.h"
@@ -268,23 +269,31 @@ struct Search {
   }
 };
 
-// Pairs for a program no single edit repairs: the single that drew nearest the reference (a
-// mistake of two mended: it must draw nearer than the student's own program) with each other
-// single, in the singles' order, that does not touch it; at most `pairs`. A second mistake's
-// edit need not draw nearer alone: the first mistake's error can hide it.
+// Pairs for a program no single edit repairs, at most `budget.pairs`, in this order:
+// - two singles that each make their line read as the reference's (the student's program aligned
+//   with the reference at two lines), in the singles' order;
+// - the single that drew nearest the reference (a mistake of two mended: it must draw nearer than
+//   the student's own program) with each other single, in the singles' order. A second mistake's
+//   edit need not draw nearer alone: the first mistake's error can hide it.
+// No pair twice, and none of two edits that touch.
 std::vector<Candidate> pair_candidates(const Program& p, const std::vector<Candidate>& singles, const std::vector<double>& distances,
                                        double own, const RepairBudget& budget) {
   std::vector<Candidate> out;
+  std::set<std::pair<size_t, size_t>> paired;
+  const auto add = [&](size_t i, size_t j) {
+    const grade::RepairEdit &a = singles[i].edits.front(), &b = singles[j].edits.front();
+    if (i == j || overlapping(a, b) || out.size() >= static_cast<size_t>(std::max(0, budget.pairs))) return;
+    if (!paired.insert(std::minmax(i, j)).second) return;
+    out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
+  };
+  for (size_t i = 0; i < singles.size(); ++i)
+    for (size_t j = i + 1; j < singles.size(); ++j)
+      if (singles[i].edits.front().reads_as_reference && singles[j].edits.front().reads_as_reference) add(i, j);
   size_t nearest = distances.size();
   for (size_t i = 0; i < distances.size(); ++i)
     if (distances[i] < own && (nearest == distances.size() || distances[i] < distances[nearest])) nearest = i;
-  if (nearest == distances.size()) return out;
-  const grade::RepairEdit& first = singles[nearest].edits.front();
-  for (size_t i = 0; i < singles.size() && out.size() < static_cast<size_t>(std::max(0, budget.pairs)); ++i) {
-    const grade::RepairEdit& second = singles[i].edits.front();
-    if (i == nearest || overlapping(first, second)) continue;
-    out.push_back(candidate_of(p, smaller(second, first) ? std::vector{second, first} : std::vector{first, second}));
-  }
+  if (nearest < distances.size())
+    for (size_t i = 0; i < singles.size(); ++i) add(nearest, i);
   return out;
 }
 
@@ -307,7 +316,7 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   const Candidate* winner = nullptr;  // in `singles` or `pairs`
   Pass pass = search.try_in_order(singles, &distances, &winner);
   if (pass == Pass::none_passed && budget.pairs > 0) {
-    // No one edit repairs it: two edits, each of which drew nearer on its own.
+    // No one edit repairs it: two edits (pair_candidates says which, in what order).
     const auto own = search.own_distance(*program);
     if (!own) return;
     pairs = pair_candidates(*program, singles, distances, *own, budget);
