@@ -187,12 +187,6 @@ std::vector<size_t> writes_of(const Stage& s, std::string_view name) {
 // name once with `=`: the reference's value in its place (`vec3 R = normalize(L + V);` gets the
 // reference's value of R).
 void restored_values(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
-  const auto unspaced = [](std::string_view text) {
-    std::string kept;
-    for (const char c : text)
-      if (c != ' ' && c != '\t' && c != '\n' && c != '\r') kept += c;
-    return kept;
-  };
   std::set<std::string_view, std::less<>> seen;
   for (size_t i = 1; i + 2 < s.size(); ++i) {
     if (!s.identifier(i) || !s.is(i + 1, "=") || s.is(i + 2, "=") || !seen.insert(s.t[i].text).second) continue;

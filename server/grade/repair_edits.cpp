@@ -215,14 +215,6 @@ void argument_orders(const Stage& s, std::vector<RepairEdit>& out) {
   }
 }
 
-// `text` without its spaces, tabs and newlines: two lines that differ only there read the same.
-std::string unspaced(std::string_view text) {
-  std::string kept;
-  for (const char c : text)
-    if (c != ' ' && c != '\t' && c != '\n' && c != '\r') kept += c;
-  return kept;
-}
-
 }  // namespace
 
 std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage) {

@@ -109,4 +109,12 @@ struct StageTokens {
   }
 };
 
+// `text` without its spaces, tabs and newlines: two lines that differ only there read the same.
+inline std::string unspaced(std::string_view text) {
+  std::string kept;
+  for (const char c : text)
+    if (c != ' ' && c != '\t' && c != '\n' && c != '\r') kept += c;
+  return kept;
+}
+
 }  // namespace shadelab::grade
