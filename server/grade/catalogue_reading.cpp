@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grade/diagnosis.h"
 #include "grade/formula_readings.h"
+#include "grade/starter_constants.h"
 
 namespace shadelab::grade {
 
@@ -18,6 +20,16 @@ bool close_enough(model::Parameter parameter, double fitted, double wanted) {
     case model::Parameter::light_position: return off <= kPositionTolerance * std::max(1.0, std::abs(wanted));
     default: return off <= kColourTolerance;
   }
+}
+
+// The catalogued mistake that is `constant` at `value` and nothing else, if any.
+const Mistake* catalogued_constant(const std::vector<Mistake>& mistakes, const StarterConstant& constant, double value) {
+  for (const auto& m : mistakes) {
+    if (!m.reading || m.reading->variant != model::Variant::formula || m.reading->values.size() != 1) continue;
+    const auto& v = m.reading->values.front();
+    if (to_string(v.parameter) == constant.meaning && v.value.size() == 1 && v.value.front() == value) return &m;
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -43,6 +55,18 @@ CatalogueWork catalogue_work(const std::vector<Mistake>& mistakes, const std::op
     else if (!out.recognised && reads_as(*e, *m.reading)) out.recognised = &m;
   }
   return out;
+}
+
+void name_catalogued_constants(Report& report, const GradeSpec& spec, const std::string& fragment) {
+  for (const auto& found : changed_starter_constants(spec.starter_constants, fragment)) {
+    if (report.diagnosis != changed_constant_diagnosis(found.variable)) continue;
+    const auto constant = std::find_if(spec.starter_constants.begin(), spec.starter_constants.end(),
+                                       [&](const StarterConstant& c) { return c.variable == found.variable; });
+    const Mistake* m = catalogued_constant(spec.mistakes, *constant, found.value);
+    if (!m) continue;
+    report.diagnosis = m->id;
+    std::replace(report.messages.begin(), report.messages.end(), found.message, m->message);
+  }
 }
 
 std::optional<RenderedMistake> recognised_mistake(const CatalogueWork& work) {

@@ -26,6 +26,13 @@ struct CatalogueWork {
   std::vector<const Mistake*> to_render;
 };
 CatalogueWork catalogue_work(const std::vector<Mistake>& mistakes, const std::optional<Explanation>& explanation);
+// A changed starter constant the catalogue names, in its words: a mistake whose reading (the
+// formula's own variant) changes the constant's quantity alone, to the value the student's
+// `fragment` gives it (the handout's exponent, 0.6). The source says it exactly: no render, no
+// formula. `report` (a failing grade's, its diagnosis changed_<variable>) then carries the
+// mistake's id and message in place of the constant's.
+void name_catalogued_constants(Report& report, const GradeSpec& spec, const std::string& fragment);
+
 // The recognised mistake as grade::explain takes it (no frames), if any.
 std::optional<RenderedMistake> recognised_mistake(const CatalogueWork& work);
 

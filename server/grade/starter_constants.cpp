@@ -78,7 +78,7 @@ std::vector<ConstantFinding> changed_starter_constants(const std::vector<Starter
     if (!literal) continue;
     const double found = std::strtod(literal->c_str(), nullptr);
     if (found == c.value) continue;
-    out.push_back({c.variable, "your shader's " + c.meaning + " is " + *literal + "; the course's starter uses " + glsl_number(c.value) +
+    out.push_back({c.variable, found, "your shader's " + c.meaning + " is " + *literal + "; the course's starter uses " + glsl_number(c.value) +
                                    " (" + c.variable + ")"});
   }
   return out;

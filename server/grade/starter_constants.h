@@ -11,6 +11,7 @@ namespace shadelab::grade {
 
 struct ConstantFinding {
   std::string variable;  // specularAlpha
+  double value = 0;      // the student's: 0.6
   std::string message;
 };
 

@@ -226,7 +226,8 @@ struct Search {
   // Screens `candidates` in order, a wave at a time (the machine's speed, never the answer), reads
   // their verdicts in order and renders each screened pass again at the grade's frames until one
   // is confirmed (`winner`) or the confirmations are spent. `distances`: each screen's distance.
-  Pass try_in_order(const std::vector<Candidate>& candidates, std::vector<double>* distances, const Candidate** winner) {
+  Pass try_in_order(const std::vector<Candidate>& candidates, int confirmations, std::vector<double>* distances, const Candidate** winner) {
+    const int confirmed_before = spent.confirmations;
     const size_t wave = static_cast<size_t>(std::max({1, budget.wave, pool.config().workers}));
     for (size_t first = 0; first < candidates.size(); first += wave) {
       const size_t last = std::min(candidates.size(), first + wave);
@@ -246,7 +247,7 @@ struct Search {
           *winner = &candidates[i];
           return Pass::confirmed;
         }
-        if (spent.confirmations == budget.confirmations) return Pass::budget_spent;
+        if (spent.confirmations - confirmed_before == confirmations) return Pass::budget_spent;
       }
     }
     return Pass::none_passed;
@@ -314,13 +315,15 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   std::vector<double> distances;
   std::vector<Candidate> pairs;
   const Candidate* winner = nullptr;  // in `singles` or `pairs`
-  Pass pass = search.try_in_order(singles, &distances, &winner);
-  if (pass == Pass::none_passed && budget.pairs > 0) {
+  Pass pass = search.try_in_order(singles, budget.confirmations, &distances, &winner);
+  // A single whose screen passed and whose full render did not is a mistake half mended: the
+  // pairs still get confirmations of their own.
+  if (pass != Pass::confirmed && pass != Pass::trouble && budget.pairs > 0 && budget.pair_confirmations > 0) {
     // No one edit repairs it: two edits (pair_candidates says which, in what order).
     const auto own = search.own_distance(*program);
     if (!own) return;
     pairs = pair_candidates(*program, singles, distances, *own, budget);
-    pass = search.try_in_order(pairs, nullptr, &winner);
+    pass = search.try_in_order(pairs, budget.pair_confirmations, nullptr, &winner);
   }
   if (pass == Pass::trouble) return;
   search.spent.budget_spent = pass != Pass::confirmed;

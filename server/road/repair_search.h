@@ -25,7 +25,8 @@ struct RepairBudget {
   // Where no single edit repairs the program: the single that drew nearest the reference, paired
   // with each other single in order, at most `pairs` pairs.
   int pairs = 128;
-  int confirmations = 2;  // screened passes rendered again at the grade's frames, at most (singles and pairs together)
+  int confirmations = 2;       // screened passes of single edits rendered again at the grade's frames, at most
+  int pair_confirmations = 2;  // and of pairs, apart: a single's screen that passed and its render that failed does not spend a pair's
   int screen_size = 64;   // the screening canvas's longer side, in pixels
   int wave = 2;           // candidates screened at once, or one a worker: the machine's speed, never the answer
   // A screen's share of the pool's compile and render deadlines (CPU time, as every deadline): a

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/words.h"
+#include "grade/catalogue_reading.h"
 #include "render/render_request.h"
 #include "worker/client.h"
 #include "worker/course_job.h"
@@ -46,6 +47,16 @@ Expected<worker::Job> frames_job(const course::Course& c, const course::Checkpoi
   return job;
 }
 
+// A code grade's verdict alone: whether it passes, and what the grader says of any failing
+// program (its regions, NaN, one colour, a changed starter constant), without the checkpoint's
+// formula or the course's catalogue: the readings a repair search makes needless.
+worker::Job verdict_job(const worker::Job& job) {
+  worker::Job verdict = job;
+  verdict.grade.formula.reset();
+  verdict.grade.mistakes.clear();
+  return verdict;
+}
+
 }  // namespace
 
 Expected<CodeGrade> grade_unreadable(const Error& error, const std::string& checkpoint, double max_score) {
@@ -69,6 +80,35 @@ grade::Report not_handed_in(const std::string& looked_for, const std::string& ch
   return grade::failed_submission(make_error(ErrorCode::invalid_argument, looked_for), checkpoint, max_score);
 }
 
+// A failing program no repair was confirmed for: graded again whole, the formula and the catalogue reading its frames, as with no search. What the
+// search said (`searched`, when it ran) is kept in the report: what it tried, and that none passed,
+// or that it could not run.
+struct Searched {
+  std::optional<grade::RepairSearch> tally;
+  std::vector<std::string> warnings;
+};
+
+Expected<CodeGrade> explained_after_search(worker::WorkerPool& pool, const worker::Job& job, const CodeSubmission& submission,
+                                           const Searched& searched, const worker::Attempted<worker::GradeResult>& verdict,
+                                           std::chrono::steady_clock::time_point start) {
+  const grade::GradeSpec& spec = job.grade;
+  auto b = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(job, submission.mesh_bytes));
+  const auto& stopped = verdict.attempts() > 1 ? verdict : b;  // a stop in either is said
+  if (!b.answered) {
+    auto failed = grade_unreadable(b.answered.error(), spec.reference_name, spec.options.max_score);
+    if (failed) {
+      note_attempts(failed->result.report, stopped.attempts(), stopped.retried());
+      failed->seconds = seconds_since(start);
+    }
+    return failed;
+  }
+  grade::Report& report = b.answered->result.report;
+  note_attempts(report, stopped.attempts(), stopped.retried());
+  report.repair_search = searched.tally;
+  report.warnings.insert(report.warnings.end(), searched.warnings.begin(), searched.warnings.end());
+  return CodeGrade{std::move(b.answered->result), seconds_since(start)};
+}
+
 Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submission) {
   worker::Job& job = submission.render;
   job.kind = worker::JobKind::grade;
@@ -77,20 +117,30 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   if (auto sources = render::check_sources(job.request, submission.limits); !sources)
     return grade_unreadable(sources.error(), spec.reference_name, spec.options.max_score);
   const auto start = std::chrono::steady_clock::now();
-  auto a = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(job, submission.mesh_bytes));
-  if (a.answered) {
-    grade::Report& report = a.answered->result.report;
-    note_attempts(report, a.attempts(), a.retried());
-    if (submission.repair.candidates == 0 || !wants_repair(report)) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
-    search_repair(pool, job, submission.mesh_bytes, submission.repair_shown, report, submission.repair);
-    return CodeGrade{std::move(a.answered->result), seconds_since(start)};
+  const bool searching = submission.repair.candidates > 0;
+  // With a search, the first grade is the verdict alone: a failing program's repair explains it
+  // (docs/grading.md, "One explainer"), so the formula and the catalogue read only what the
+  // search could not repair, in a second grade of the same program.
+  auto a = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(searching ? verdict_job(job) : job, submission.mesh_bytes));
+  if (!a.answered) {
+    auto failed = grade_unreadable(a.answered.error(), spec.reference_name, spec.options.max_score);
+    if (failed) {
+      note_attempts(failed->result.report, a.attempts(), a.retried());
+      failed->seconds = seconds_since(start);  // the attempts' time: no worker answered
+    }
+    return failed;
   }
-  auto failed = grade_unreadable(a.answered.error(), spec.reference_name, spec.options.max_score);
-  if (failed) {
-    note_attempts(failed->result.report, a.attempts(), a.retried());
-    failed->seconds = seconds_since(start);  // the attempts' time: no worker answered
-  }
-  return failed;
+  grade::Report& report = a.answered->result.report;
+  note_attempts(report, a.attempts(), a.retried());
+  // A pass, a compile error, or a failure the grader's own diagnosis names (a changed starter
+  // constant, swapped channels) is the grade as the verdict found it.
+  if (searching) grade::name_catalogued_constants(report, spec, job.request.fragment.text);
+  if (!searching || !wants_repair(report)) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
+  const size_t warned = report.warnings.size();
+  search_repair(pool, job, submission.mesh_bytes, submission.repair_shown, report, submission.repair);
+  if (report.repair_search && report.repair_search->found) return CodeGrade{std::move(a.answered->result), seconds_since(start)};
+  const Searched searched{report.repair_search, {report.warnings.begin() + static_cast<std::ptrdiff_t>(warned), report.warnings.end()}};
+  return explained_after_search(pool, job, submission, searched, a, start);
 }
 
 Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
