@@ -407,8 +407,11 @@ def classify(ref, mutant, report, files):
         return "still passes", ""
     search = report.get("repairSearch")
     found = (search or {}).get("found")
-    if not search:
-        e = report.get("explanation") or {}
+    e = report.get("explanation") or {}
+    named = e.get("explained") or report.get("diagnosis", "") not in ("", "nan")
+    if not search or (not found and named):
+        # No search (the grader's own diagnosis), or one that found no repair and left the
+        # formula or the catalogue to name it.
         return "explained", e.get("label") or report.get("diagnosis") or ""
     if not found:
         return "not repaired", ""

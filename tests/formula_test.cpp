@@ -318,6 +318,11 @@ class FormulaGradeTest : public ::testing::Test {
     auto config = testkit::test_config();
     // The references and the formula's geometry at 512 x 512, kept for the suite's other processes.
     config.reference_store = "/tmp/shadelab-formula-test-" + std::to_string(::getuid());
+    // The formula's own reading of code, as a server with no repair search gives it
+    // (--repair-candidates 0). With a search, a confirmed repair explains code and the formula
+    // reads only what no repair was found for: grade_test (the flat starter, unnormalised
+    // normals) and the mutation sample test that road.
+    config.repair.candidates = 0;
     server_ = new testkit::RunningService(config);
   }
   static void TearDownTestSuite() { delete server_; }

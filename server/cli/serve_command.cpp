@@ -184,6 +184,10 @@ Command add_serve_command(CLI::App& app) {
                 "Show the references' source and frames to every caller: a server for one learner's self-study, never a class's "
                 "(off: only staff keys see them)")
       ->envname("SHADELAB_OPEN_REFERENCES");
+  cmd->add_option("--repair-candidates", config->repair.candidates,
+                  "A failing code grade's repair search: edits of the student's program tried, at most (0: no search; the "
+                  "formula and the catalogue explain the frames alone)")
+      ->envname("SHADELAB_REPAIR_CANDIDATES")->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->add_option("--web-root", config->web_root, "Folder served at /")->envname("SHADELAB_WEB_ROOT")->capture_default_str();
   config->reference_store = grade::default_reference_folder();
   cmd->add_option("--cache-dir", config->reference_store,

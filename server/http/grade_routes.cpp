@@ -42,7 +42,7 @@ void grade(RouteContext& c, const course::Viewer& viewer, const httplib::Request
   road::ClientGrade& asked = parsed->grade;
   if (auto* code = std::get_if<road::CodeRequest>(&asked.request); code && !asked.unread)
     if (auto s = c.find_uploaded_mesh(code->mesh, **course); !s) asked.unread = s.take_error();
-  const road::ClientRoad lent{c.pool, c.config.limits.render, c.config.reference_places()};
+  const road::ClientRoad lent{c.pool, c.config.limits.render, c.config.reference_places(), c.config.repair};
   auto graded = road::grade_for_client(lent, **course, std::move(asked), viewer);
   if (!graded) {
     c.count(graded.error());

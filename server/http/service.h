@@ -10,6 +10,7 @@
 #include "http/connection_server.h"
 #include "http/limits.h"
 #include "http/tenants.h"
+#include "road/repair_search.h"
 #include "store/shared_store.h"
 #include "worker/pool.h"
 
@@ -29,6 +30,7 @@ struct ServiceConfig {
   // Every caller sees the references (a server for one learner's self-study); off: staff keys only.
   bool open_references = false;
   std::string reference_store;  // where workers keep reference renders across restarts (grade/reference_store.h); empty: memory only
+  road::RepairBudget repair;  // a failing code grade's repair search; 0 candidates: none (the formula explains code alone)
 
   // Where a grade's workers keep the references: the folder, and Redis when the replicas share one.
   grade::ReferenceStorePlaces reference_places() const { return {reference_store, shared_store}; }

@@ -21,6 +21,7 @@ Expected<ClientGraded> code_for_client(const ClientRoad& road, const course::Cou
   auto built = code_submission(c, std::move(request), viewer, road.limits);
   if (!built) return built.take_error();
   built->submission.spec.reference_store = road.reference_store;
+  built->submission.repair = road.repair;
   auto graded = grade_code(road.pool, std::move(built->submission));
   if (!graded) return graded.take_error();
   add_warnings(graded->result.report.warnings, grade.warnings, built->warnings);

@@ -24,11 +24,13 @@ struct ClientGrade {
   std::vector<std::string> warnings;  // the adapter's: fields the grade does not read
 };
 
-// What the caller lends the road: its workers, its limits on a render, its reference store.
+// What the caller lends the road: its workers, its limits on a render, its reference store, its
+// repair search's budget.
 struct ClientRoad {
   worker::WorkerPool& pool;
   render::RenderLimits limits;
   grade::ReferenceStorePlaces reference_store;
+  RepairBudget repair;
 };
 
 struct ClientGraded {
