@@ -66,6 +66,9 @@ const Mistake kMistakes[] = {
     {"the cosine clamped at 0.5", shader::Stage::fragment, "max(0.0, NdotL)", "max(0.5, NdotL)",
      {"vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);"}},
     {"R as the half vector", shader::Stage::fragment, "vec3 R = reflect(-L, N);", "vec3 R = normalize(L + V);", {"vec3 R = reflect(-L, N);"}},
+    {"the N.L guard removed", shader::Stage::fragment, "if (NdotL > 0.0) {", "if (true) {", {"if (NdotL > 0.0) {"}},
+    {"the diffuse term left out", shader::Stage::fragment, "uDiffuseColor * uLightColor * max(0.0, NdotL)", "vec4(0.0)",
+     {"vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);"}},
     {"V from the light", shader::Stage::fragment, "vec3 V = normalize(-vPosition);", "vec3 V = normalize(uLightPosition - vPosition);",
      {"vec3 V = normalize(-vPosition);"}},
 };
@@ -138,6 +141,32 @@ TEST(RepairEditsTest, AMissingOutputIsRestoredWhereTheReferenceWritesItAndOnlyFo
   for (const auto& e : grade::reference_edits(halved, fragment, shader::Stage::fragment))
     if (e.kind == grade::RepairKind::literal_refit) refits.push_back(grade::edited_line(halved, e));
   EXPECT_EQ(refits, (std::vector<std::string>{"float specularAlpha = 6.0;", "float specularAlpha = 0.0;"}));
+}
+
+// A varying made flat in both stages is one edit of both, read as the reference's lines: `flat`
+// removed from each (the qualifier must match between the stages: neither alone would link).
+// Flat in one stage alone does not link, so it is no mistake of this kind and gets no such edit.
+TEST(RepairEditsTest, AVaryingMadeFlatInBothStagesIsOneEditOfBoth) {
+  const std::string vertex = glsl_of("specular", shader::Stage::vertex), fragment = glsl_of("specular", shader::Stage::fragment);
+  const std::string flat_vertex = typed(vertex, "out vec3 vNormal;", "flat out vec3 vNormal;");
+  const std::string flat_fragment = typed(fragment, "in vec3 vNormal;", "flat in vec3 vNormal;");
+  const auto flat_removed = [](const auto& edits) {
+    return std::find_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::flat_removed; });
+  };
+  const auto edits = grade::program_repair_edits({flat_vertex, flat_fragment}, {vertex, fragment});
+  const auto found = flat_removed(edits);
+  ASSERT_NE(found, edits.end());
+  EXPECT_EQ(found, edits.begin()) << "the first tried: both lines then read as the reference's";
+  EXPECT_TRUE(found->reads_as_reference);
+  EXPECT_EQ(found->stage, shader::Stage::vertex);
+  EXPECT_EQ(found->subject, "vNormal");
+  EXPECT_EQ(grade::with_edit(flat_vertex, *found), vertex);
+  ASSERT_TRUE(found->other_stage.has_value());
+  EXPECT_EQ(flat_fragment.substr(0, found->other_stage->begin) + found->other_stage->with + flat_fragment.substr(found->other_stage->end),
+            fragment);
+  EXPECT_NE(grade::repair_words(*found).find("`vNormal` is declared `flat`"), std::string::npos) << grade::repair_words(*found);
+  const auto one_stage = grade::program_repair_edits({flat_vertex, fragment}, {vertex, fragment});
+  EXPECT_EQ(flat_removed(one_stage), one_stage.end());
 }
 
 // An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.

@@ -183,20 +183,60 @@ std::vector<size_t> writes_of(const Stage& s, std::string_view name) {
   return out;
 }
 
+// Where the value a write at `i` assigns starts (`name = X`, `name += X`), or `i` where it is not
+// one of those two forms (a field, an index).
+size_t value_first(const Stage& s, size_t i) {
+  if (s.is(i + 1, "=") && !s.is(i + 2, "=")) return i + 2;
+  if (i + 2 < s.size() && one_of(s.t[i + 1].text, {"+", "-", "*", "/"}) && s.is(i + 2, "=")) return i + 3;
+  return i;
+}
+
 // A value the student's stage computes otherwise than the reference's, where each writes the
-// name once with `=`: the reference's value in its place (`vec3 R = normalize(L + V);` gets the
-// reference's value of R).
+// name as often, in the same order and with the same operators (`vec4 color = ...;` then `color
+// += ...;`): the reference's value in its place (`vec3 R = normalize(L + V);` gets the reference's
+// value of R; the first write of `color` that left the diffuse term out gets it back).
 void restored_values(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
   std::set<std::string_view, std::less<>> seen;
   for (size_t i = 1; i + 2 < s.size(); ++i) {
     if (!s.identifier(i) || !s.is(i + 1, "=") || s.is(i + 2, "=") || !seen.insert(s.t[i].text).second) continue;
     const std::string_view name = s.t[i].text;
     const auto own = writes_of(s, name), theirs = writes_of(reference, name);
-    if (own.size() != 1 || own.front() != i || theirs.size() != 1 || !reference.is(theirs.front() + 1, "=")) continue;
-    const size_t first = i + 2, last = s.expression_last(first), ref_first = theirs.front() + 2;
-    const size_t ref_last = reference.expression_last(ref_first);
-    if (last < first || ref_last < ref_first || unspaced(s.text(first, last)) == unspaced(reference.text(ref_first, ref_last))) continue;
-    RepairEdit e = s.replace(RepairKind::value_restored, first, last, std::string(reference.text(ref_first, ref_last)), name);
+    if (own.size() != theirs.size()) continue;
+    for (size_t w = 0; w < own.size(); ++w) {
+      const size_t first = value_first(s, own[w]), ref_first = value_first(reference, theirs[w]);
+      if (first == own[w] || ref_first == theirs[w] || s.t[first - 1].text != reference.t[ref_first - 1].text ||
+          s.t[own[w] + 1].text != reference.t[theirs[w] + 1].text)
+        continue;  // not the same form of write
+      const size_t last = s.expression_last(first), ref_last = reference.expression_last(ref_first);
+      if (last < first || ref_last < ref_first || unspaced(s.text(first, last)) == unspaced(reference.text(ref_first, ref_last))) continue;
+      RepairEdit e = s.replace(RepairKind::value_restored, first, last, std::string(reference.text(ref_first, ref_last)), name);
+      e.nodes = operands(reference, ref_first, ref_last);
+      out.push_back(std::move(e));
+    }
+  }
+}
+
+// The conditions of a stage's `if`s, in order: the first and last token inside each `if (...)`.
+std::vector<std::pair<size_t, size_t>> conditions_of(const Stage& s) {
+  std::vector<std::pair<size_t, size_t>> out;
+  for (size_t i = 0; i + 2 < s.size(); ++i) {
+    if (!s.is(i, "if") || !s.is(i + 1, "(")) continue;
+    const size_t close = s.close_of(i + 1);
+    if (close < s.size() && close > i + 2) out.push_back({i + 2, close - 1});
+  }
+  return out;
+}
+
+// A condition the student's stage tests otherwise than the reference's, where the two stages have
+// as many `if`s: the reference's condition in its place (`if (true)` gets `if (NdotL > 0.0)`).
+void restored_conditions(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
+  const auto own = conditions_of(s), theirs = conditions_of(reference);
+  if (own.size() != theirs.size()) return;
+  for (size_t k = 0; k < own.size(); ++k) {
+    const auto [first, last] = own[k];
+    const auto [ref_first, ref_last] = theirs[k];
+    if (unspaced(s.text(first, last)) == unspaced(reference.text(ref_first, ref_last))) continue;
+    RepairEdit e = s.replace(RepairKind::condition_restored, first, last, std::string(reference.text(ref_first, ref_last)), s.text(first, last));
     e.nodes = operands(reference, ref_first, ref_last);
     out.push_back(std::move(e));
   }
@@ -210,6 +250,7 @@ std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view 
   literals(s, r, out);
   restored_statements(s, r, out);
   restored_values(s, r, out);
+  restored_conditions(s, r, out);
   std::stable_sort(out.begin(), out.end(), smaller);
   return out;
 }

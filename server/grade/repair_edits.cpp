@@ -215,6 +215,33 @@ void argument_orders(const Stage& s, std::vector<RepairEdit>& out) {
   }
 }
 
+// The `flat` token of each varying a stage declares flat (`flat out vec3 vNormal;`, `flat in
+// highp vec3 vNormal;`), by name.
+std::map<std::string, size_t, std::less<>> flat_varyings(const Stage& s, std::string_view direction) {
+  std::map<std::string, size_t, std::less<>> at;
+  for (size_t i = 0; i + 3 < s.size(); ++i) {
+    if (!s.is(i, "flat") || !s.is(i + 1, direction)) continue;
+    size_t k = i + 2;
+    if (one_of(s.t[k].text, {"lowp", "mediump", "highp"})) ++k;
+    if (s.identifier(k) && s.identifier(k + 1) && s.is(k + 2, ";")) at.emplace(std::string(s.t[k + 1].text), i);
+  }
+  return at;
+}
+
+// A varying flat in both stages -> interpolated in both: one edit, said at the vertex stage's line.
+void flat_removals(std::string_view vertex, std::string_view fragment, std::vector<RepairEdit>& out) {
+  const Stage v{vertex, shader::tokens_of(vertex), shader::Stage::vertex};
+  const Stage f{fragment, shader::tokens_of(fragment), shader::Stage::fragment};
+  const auto inputs = flat_varyings(f, "in");
+  for (const auto& [name, i] : flat_varyings(v, "out")) {
+    const auto in = inputs.find(name);
+    if (in == inputs.end()) continue;
+    RepairEdit e = v.edit(RepairKind::flat_removed, v.begin(i), v.begin(i + 1), "", i, name);
+    e.other_stage = OtherStageSpan{f.begin(in->second), f.begin(in->second + 1), ""};
+    out.push_back(std::move(e));
+  }
+}
+
 }  // namespace
 
 std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage) {
@@ -249,6 +276,18 @@ std::vector<RepairEdit> program_repair_edits(const StagePair& student, const Sta
   };
   add(student.vertex, reference.vertex, shader::Stage::vertex, vertex_live);
   add(student.fragment, reference.fragment, shader::Stage::fragment, fragment_live);
+  std::vector<RepairEdit> flat;
+  flat_removals(student.vertex, student.fragment, flat);
+  const auto reads_as = [](std::string_view reference_glsl, const std::string& line) {
+    for (const auto l : shader::lines_of(reference_glsl))
+      if (unspaced(l) == unspaced(line)) return true;
+    return false;
+  };
+  for (auto& e : flat) {
+    const RepairEdit in{shader::Stage::fragment, e.kind, e.other_stage->begin, e.other_stage->end, e.other_stage->with};
+    e.reads_as_reference = reads_as(reference.vertex, edited_line(student.vertex, e)) && reads_as(reference.fragment, edited_line(student.fragment, in));
+    out.push_back(std::move(e));
+  }
   std::stable_sort(out.begin(), out.end(), smaller);
   return out;
 }
@@ -294,11 +333,15 @@ std::string repair_words(const RepairEdit& e) {
     case RepairKind::name_replaced: return x + " is not the value the homework uses here";
     case RepairKind::literal_refit: return x + " is not the number the homework uses here";
     case RepairKind::arguments_swapped: return x + " has its arguments the wrong way round";
+    case RepairKind::flat_removed:
+      return x + " is declared `flat`: each triangle gets one value, where the homework interpolates it across the triangle (remove "
+                 "`flat` here and where the fragment stage declares " + x + ")";
     case RepairKind::statement_restored:
       if (e.stage == shader::Stage::fragment) return x + " is never written: the colour the fragment stage draws is what it writes there";
       if (e.subject == "gl_Position") return x + " is never written: the vertex stage must say where each vertex lands";
       return x + " is never written: the fragment stage reads what the vertex stage writes there";
     case RepairKind::value_restored: return x + " is not computed as the homework computes it";
+    case RepairKind::condition_restored: return "the condition " + x + " is not the one the homework tests here";
   }
   return x + " differs from the homework";
 }

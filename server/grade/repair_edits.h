@@ -4,6 +4,7 @@
 // vector not normalised, a cosine not clamped, a direction transformed as a point, a sign, a
 // uniform or a matrix mixed up, a term or a factor too many). Reading tokens only: whether an
 // edit repairs anything is for a render to say (road/repair_search.h), never for this file.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,8 +29,10 @@ enum class RepairKind {
   literal_refit,     // max(0.5, X)  ->  max(0.0, X): a number the reference never writes, as one it does
   name_replaced,     // uDiffuseColor  ->  uSpecularColor (a uniform, an input or a local of the same type)
   arguments_swapped, // reflect(N, -L)  ->  reflect(-L, N), where the order matters
+  flat_removed,      // flat out vec3 vNormal; and flat in vec3 vNormal;  ->  both interpolated (one edit of two stages)
   statement_restored,// an output the stage never writes: the reference's assignment to it, where it stands there
-  value_restored,    // vec3 R = normalize(L + V);  ->  the reference's value of R, where each assigns R once
+  value_restored,    // vec3 R = normalize(L + V);  ->  the reference's value of R, where each writes R alike
+  condition_restored,// if (true)  ->  the reference's condition, where the two have as many ifs
 };
 inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::normalised, "normalised"},
@@ -45,14 +48,16 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::literal_refit, "literal_refit"},
     {RepairKind::name_replaced, "name_replaced"},
     {RepairKind::arguments_swapped, "arguments_swapped"},
+    {RepairKind::flat_removed, "flat_removed"},
     {RepairKind::statement_restored, "statement_restored"},
     {RepairKind::value_restored, "value_restored"},
+    {RepairKind::condition_restored, "condition_restored"},
 };
 
 // Whether an edit of this kind writes the reference's own text (a statement or a value restored):
 // such an edit is named, never shown as a repaired line.
 constexpr bool writes_reference_text(RepairKind kind) {
-  return kind == RepairKind::statement_restored || kind == RepairKind::value_restored;
+  return kind == RepairKind::statement_restored || kind == RepairKind::value_restored || kind == RepairKind::condition_restored;
 }
 
 // Whether an edit of this kind reads the reference (grade::reference_edits): the search counts
@@ -69,6 +74,13 @@ inline constexpr EnumName<RepairShown> kRepairShownNames[] = {
     {RepairShown::repaired_line, "repairedLine"},
 };
 
+// A span of the other stage an edit changes with its own, as one edit: a varying's interpolation
+// qualifier must match in both stages, so its `flat` goes from both or neither.
+struct OtherStageSpan {
+  size_t begin = 0, end = 0;
+  std::string with;
+};
+
 struct RepairEdit {
   shader::Stage stage = shader::Stage::fragment;
   RepairKind kind = RepairKind::normalised;
@@ -83,6 +95,7 @@ struct RepairEdit {
   // Whether the edited line reads as a line of the reference's stage (spaces aside): such an edit
   // is tried before any other, as the student's line aligned with the reference's.
   bool reads_as_reference = false;
+  std::optional<OtherStageSpan> other_stage;  // flat_removed: the fragment stage's `flat`
 };
 
 // Every edit of the kinds above that applies to `glsl` (one stage, as the driver gets it),

@@ -55,14 +55,16 @@ std::optional<Program> program_of(const worker::Job& job) {
 Candidate candidate_of(const Program& p, std::vector<grade::RepairEdit> edits) {
   Candidate c{std::move(edits), *p.vertex.file, *p.fragment.file};
   for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment}) {
-    std::vector<const grade::RepairEdit*> here;
-    for (const auto& e : c.edits)
-      if (e.stage == stage) here.push_back(&e);
+    std::vector<grade::OtherStageSpan> here;  // each span this stage's text changes
+    for (const auto& e : c.edits) {
+      if (e.stage == stage) here.push_back({e.begin, e.end, e.with});
+      else if (e.other_stage) here.push_back(*e.other_stage);
+    }
     if (here.empty()) continue;
     // The later span first, so the earlier one's bytes are still where it says.
-    std::sort(here.begin(), here.end(), [](const auto* a, const auto* b) { return a->begin > b->begin; });
+    std::sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.begin > b.begin; });
     std::string glsl = p[stage].source.glsl;
-    for (const auto* e : here) glsl = grade::with_edit(glsl, *e);
+    for (const auto& span : here) glsl = glsl.substr(0, span.begin) + span.with + glsl.substr(span.end);
     (stage == shader::Stage::vertex ? c.vertex : c.fragment).text = std::move(glsl);
   }
   return c;
