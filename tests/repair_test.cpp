@@ -169,6 +169,24 @@ TEST(RepairEditsTest, AVaryingMadeFlatInBothStagesIsOneEditOfBoth) {
   EXPECT_EQ(flat_removed(one_stage), one_stage.end());
 }
 
+// A student's extra statements (an `if` of their own, a write of one field) do not hide the
+// statement they changed: the guard's condition and the first write of `color` are still
+// restored from the reference.
+TEST(RepairEditsTest, AStudentsExtraIfOrFieldWriteDoesNotHideTheChangedStatement) {
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string extra = typed(reference, "    fragColor = color;", "    if (gl_FragCoord.x < -1.0) color.r += 1.0;\n    fragColor = color;");
+  const auto restored = [](const std::string& wrong, const std::string& ref) {
+    std::vector<std::string> lines;
+    for (const auto& e : grade::reference_edits(wrong, ref, shader::Stage::fragment))
+      if (e.kind != grade::RepairKind::literal_refit) lines.push_back(grade::edited_line(wrong, e));
+    return lines;
+  };
+  const auto guard = restored(typed(extra, "if (NdotL > 0.0) {", "if (true) {"), reference);
+  EXPECT_NE(std::find(guard.begin(), guard.end(), "if (NdotL > 0.0) {"), guard.end());
+  const auto diffuse = restored(typed(extra, "uDiffuseColor * uLightColor * max(0.0, NdotL)", "vec4(0.0)"), reference);
+  EXPECT_NE(std::find(diffuse.begin(), diffuse.end(), "vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);"), diffuse.end());
+}
+
 // An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.
 TEST(RepairEditsTest, AnEditChangesItsSpanAloneAndSaysWhatIsWrong) {
   const std::string glsl = "void main() {\n    vec3 L = uLightPosition - vPosition;\n}\n";

@@ -1,5 +1,6 @@
 #include "grade/reference_edits.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <set>
 
@@ -191,6 +192,15 @@ size_t value_first(const Stage& s, size_t i) {
   return i;
 }
 
+// The statements that write the whole of `name` with `=` or an operator's `=` (a field's or an
+// element's write, `color.r += 1.0;`, is left out: a student's extra touch, not a statement
+// the two stages align by).
+std::vector<size_t> whole_writes_of(const Stage& s, std::string_view name) {
+  auto out = writes_of(s, name);
+  std::erase_if(out, [&](size_t i) { return value_first(s, i) == i; });
+  return out;
+}
+
 // A value the student's stage computes otherwise than the reference's, where each writes the
 // name as often, in the same order and with the same operators (`vec4 color = ...;` then `color
 // += ...;`): the reference's value in its place (`vec3 R = normalize(L + V);` gets the reference's
@@ -200,7 +210,7 @@ void restored_values(const Stage& s, const Stage& reference, std::vector<RepairE
   for (size_t i = 1; i + 2 < s.size(); ++i) {
     if (!s.identifier(i) || !s.is(i + 1, "=") || s.is(i + 2, "=") || !seen.insert(s.t[i].text).second) continue;
     const std::string_view name = s.t[i].text;
-    const auto own = writes_of(s, name), theirs = writes_of(reference, name);
+    const auto own = whole_writes_of(s, name), theirs = whole_writes_of(reference, name);
     if (own.size() != theirs.size()) continue;
     for (size_t w = 0; w < own.size(); ++w) {
       const size_t first = value_first(s, own[w]), ref_first = value_first(reference, theirs[w]);
@@ -227,18 +237,23 @@ std::vector<std::pair<size_t, size_t>> conditions_of(const Stage& s) {
   return out;
 }
 
-// A condition the student's stage tests otherwise than the reference's, where the two stages have
-// as many `if`s: the reference's condition in its place (`if (true)` gets `if (NdotL > 0.0)`).
+// A condition the student's stage tests otherwise than the reference's: each of the student's
+// conditions the reference never tests, replaced by each the reference tests that the student's
+// never does (`if (true)` gets `if (NdotL > 0.0)`). Not aligned by count: a student's extra `if`
+// must not hide the one they changed. Few: most stages have one or two.
 void restored_conditions(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
   const auto own = conditions_of(s), theirs = conditions_of(reference);
-  if (own.size() != theirs.size()) return;
-  for (size_t k = 0; k < own.size(); ++k) {
-    const auto [first, last] = own[k];
-    const auto [ref_first, ref_last] = theirs[k];
-    if (unspaced(s.text(first, last)) == unspaced(reference.text(ref_first, ref_last))) continue;
-    RepairEdit e = s.replace(RepairKind::condition_restored, first, last, std::string(reference.text(ref_first, ref_last)), s.text(first, last));
-    e.nodes = operands(reference, ref_first, ref_last);
-    out.push_back(std::move(e));
+  const auto tested = [](const Stage& in, const auto& conditions, std::string_view text) {
+    return std::any_of(conditions.begin(), conditions.end(), [&](const auto& c) { return unspaced(in.text(c.first, c.second)) == unspaced(text); });
+  };
+  for (const auto& [first, last] : own) {
+    if (tested(reference, theirs, s.text(first, last))) continue;
+    for (const auto& [ref_first, ref_last] : theirs) {
+      if (tested(s, own, reference.text(ref_first, ref_last))) continue;
+      RepairEdit e = s.replace(RepairKind::condition_restored, first, last, std::string(reference.text(ref_first, ref_last)), s.text(first, last));
+      e.nodes = operands(reference, ref_first, ref_last);
+      out.push_back(std::move(e));
+    }
   }
 }
 
