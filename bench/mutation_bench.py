@@ -426,7 +426,7 @@ def classify(ref, mutant, report, files):
             verdicts.append("elsewhere")
             where[-1] += ": `%s`" % part.get("repairedLine", "")
             continue
-        if part["kind"] == "statement_restored":  # the reference's own statement, never shown as a line
+        if part["kind"] in ("statement_restored", "write_restored"):  # the reference's own statement, never shown as a line
             verdicts.append("undone")
             continue
         # The reference's line at the same place: the mutated file's line count may differ only

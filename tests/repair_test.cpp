@@ -9,6 +9,7 @@
 #include "grade/live_statements.h"
 #include "grade/reference_edits.h"
 #include "grade/repair_edits.h"
+#include "grade/stage_tokens.h"
 #include "road/repair_search.h"
 #include "shader/glsl_lines.h"
 #include "shader/shader_source.h"
@@ -57,7 +58,8 @@ const Mistake kMistakes[] = {
     {"reflect(L, N)", shader::Stage::fragment, "reflect(-L, N)", "reflect(L, N)", {"vec3 R = reflect(-L, N);"}},
     {"view vector away", shader::Stage::fragment, "normalize(-vPosition)", "normalize(vPosition)",
      {"vec3 V = normalize(-vPosition);", "vec3 V = -normalize(vPosition);"}},
-    {"N.L not clamped", shader::Stage::fragment, "max(0.0, NdotL)", "NdotL", {"float NdotL = max(0.0, dot(N, L));"}},
+    {"N.L not clamped", shader::Stage::fragment, "max(0.0, NdotL)", "NdotL",
+     {"vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);"}},  // its own line: NdotL's is the reference's
     {"normal with the translation", shader::Stage::vertex, "(uMeshToWorldRotMatrix * aVertexNormal).xyz", "(uMeshToWorldMatrix * vec4(aVertexNormal.xyz, 1.0)).xyz",
      {"vNormal = (uMeshToWorldMatrix * vec4(aVertexNormal.xyz, 0.0)).xyz;"}},
     {"position in clip space", shader::Stage::vertex, "vPosition = (uMeshToWorldMatrix * aVertexPosition).xyz;",
@@ -133,7 +135,19 @@ TEST(RepairEditsTest, AMissingOutputIsRestoredWhereTheReferenceWritesItAndOnlyFo
   EXPECT_EQ(grade::repair_words(*restored), "`vNormal` is never written: the fragment stage reads what the vertex stage writes there");
   EXPECT_EQ(std::count_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; }), 1);
 
+  // A write of a name the stage writes elsewhere too: the specular term's accumulation deleted.
   const std::string fragment = glsl_of("specular", shader::Stage::fragment);
+  const std::string accumulation = "color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);";
+  const std::string unlit = typed(fragment, "        " + accumulation + "\n", "");
+  const auto fragment_edits = grade::reference_edits(unlit, fragment, shader::Stage::fragment);
+  const auto write = std::find_if(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::write_restored; });
+  ASSERT_NE(write, fragment_edits.end());
+  EXPECT_EQ(grade::unspaced(grade::with_edit(unlit, *write)), grade::unspaced(fragment)) << "restored after the statement before it";
+  EXPECT_EQ(write->line, shader::lines_of(fragment.substr(0, fragment.find(accumulation))).size());
+  EXPECT_EQ(grade::repair_words(*write), "`color` misses a statement the homework has here: it writes `color` once more than yours does");
+  EXPECT_FALSE(std::any_of(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; }))
+      << "the stage writes its colour: nothing is never written";
+
   for (const auto& e : grade::reference_edits(fragment, fragment, shader::Stage::fragment))
     ADD_FAILURE() << "the reference itself has an edit: " << grade::edited_line(fragment, e);
   const std::string halved = typed(fragment, "float specularAlpha = 6.0;", "float specularAlpha = 3.0;");
@@ -185,6 +199,62 @@ TEST(RepairEditsTest, AStudentsExtraIfOrFieldWriteDoesNotHideTheChangedStatement
   EXPECT_NE(std::find(guard.begin(), guard.end(), "if (NdotL > 0.0) {"), guard.end());
   const auto diffuse = restored(typed(extra, "uDiffuseColor * uLightColor * max(0.0, NdotL)", "vec4(0.0)"), reference);
   EXPECT_NE(std::find(diffuse.begin(), diffuse.end(), "vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);"), diffuse.end());
+}
+
+// A line the student wrote as the reference writes it gets no edit: with L and R both negated,
+// negating the normal draws the reference's frames too (reflect ignores N's sign, N.L keeps its
+// own), but "`vNormal` has the wrong sign" would name a change the student never made.
+TEST(RepairEditsTest, ALineWrittenAsTheReferenceWritesItIsNeverEdited) {
+  const std::string vertex = glsl_of("specular", shader::Stage::vertex), fragment = glsl_of("specular", shader::Stage::fragment);
+  const std::string wrong = typed(typed(fragment, "dot(V, R)", "dot(V, -R)"), "vec3 L = normalize(uLightPosition - vPosition);",
+                                  "vec3 L = -normalize(uLightPosition - vPosition);");
+  const auto edits = grade::program_repair_edits({vertex, wrong}, {vertex, fragment});
+  const auto vertex_lines = shader::lines_of(vertex);
+  const auto wrong_lines = shader::lines_of(wrong);
+  bool changed_line_edited = false;
+  for (const auto& e : edits) {
+    if (e.kind == grade::RepairKind::statement_restored) continue;
+    const auto& lines = e.stage == shader::Stage::vertex ? vertex_lines : wrong_lines;
+    const std::string_view line = lines[e.line - 1];
+    EXPECT_TRUE(line.find("-R") != std::string_view::npos || line.find("-normalize") != std::string_view::npos)
+        << name_in(grade::kRepairKindNames, e.kind) << " at an unchanged line: " << line;
+    changed_line_edited = changed_line_edited || e.kind == grade::RepairKind::negation_removed;
+  }
+  EXPECT_TRUE(changed_line_edited) << "each negation is still undone at its own line";
+}
+
+// A restored value is the reference's text, named and never shown; where it differs from the
+// student's by one change a student makes, it is said in that change's words, of the student's
+// own text. Where it differs by more, no change is claimed.
+TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const auto words = [&](const std::string& find, const std::string& replace, const std::string& restored_line) {
+    const std::string wrong = typed(reference, find, replace);
+    for (const auto& e : grade::reference_edits(wrong, reference, shader::Stage::fragment))
+      if (e.kind == grade::RepairKind::value_restored && grade::edited_line(wrong, e) == restored_line) return grade::repair_words(e);
+    ADD_FAILURE() << "no value restored to " << restored_line;
+    return std::string();
+  };
+  const std::string color = "vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);";
+  EXPECT_EQ(words("normalize(uLightPosition - vPosition)", "(uLightPosition - vPosition)", "vec3 L = normalize(uLightPosition - vPosition);"),
+            "`L` is not normalised: a direction must be a unit vector");
+  EXPECT_EQ(words("normalize(-vPosition)", "normalize(vPosition)", "vec3 V = normalize(-vPosition);"), "`vPosition` has the wrong sign");
+  EXPECT_EQ(words("normalize(uLightPosition - vPosition)", "normalize(vPosition - uLightPosition)", "vec3 L = normalize(uLightPosition - vPosition);"),
+            "`vPosition - uLightPosition` has the wrong sign");
+  EXPECT_EQ(words("max(0.0, NdotL)", "NdotL", color), "`NdotL` is not clamped at 0: a cosine below 0 must count as 0, max(0.0, ...)");
+  EXPECT_EQ(words("uDiffuseColor * uLightColor", "uSpecularColor * uLightColor", color), "`uSpecularColor` is not the value the homework uses here");
+  EXPECT_EQ(words("uAmbientColor + uDiffuseColor", "uAmbientColor - uDiffuseColor", color),
+            "`uDiffuseColor * uLightColor * max(0.0, NdotL)` is subtracted where the homework adds it");
+  const std::string vertex = glsl_of("specular", shader::Stage::vertex);
+  const std::string w0 = typed(vertex, "uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition",
+                               "uWorldToClipSpaceMatrix * uMeshToWorldMatrix * vec4(aVertexPosition.xyz, 0.0)");
+  std::vector<std::string> w_words;
+  for (const auto& e : grade::reference_edits(w0, vertex, shader::Stage::vertex))
+    if (e.kind == grade::RepairKind::value_restored) w_words.push_back(grade::repair_words(e));
+  EXPECT_EQ(w_words, std::vector<std::string>{"`aVertexPosition` is a point, so its w must be 1: with w = 0 the matrix's translation is lost"});
+  EXPECT_EQ(words("uDiffuseColor * uLightColor * max(0.0, NdotL)", "vec4(0.0)", color), "`color` is not computed as the homework computes it")
+      << "a term replaced by another is more than one change";
+  EXPECT_EQ(words("vec3 R = reflect(-L, N);", "vec3 R = normalize(L + V);", "vec3 R = reflect(-L, N);"), "`R` is not computed as the homework computes it");
 }
 
 // An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <optional>
 #include <set>
 
 #include "grade/stage_tokens.h"
+#include "grade/value_difference.h"
 
 namespace shadelab::grade {
 
@@ -140,9 +142,33 @@ size_t aligned_after(const Stage& s, const Stage& reference, size_t at) {
   return end < s.size() ? end - 1 : s.size();
 }
 
+// The reference's statement `at`..`last` (its `;`), inserted where it stands in the reference,
+// by the statements before it, on the gap's last line before the next statement (where a
+// deleted line was); none where no place aligns.
+std::optional<RepairEdit> inserted(const Stage& s, const Stage& reference, size_t at, size_t last, RepairKind kind, std::string_view name) {
+  const size_t after = aligned_after(s, reference, at);
+  if (after + 1 >= s.size()) return std::nullopt;
+  const size_t next = after + 1;
+  const std::string statement(reference.text(at, last));
+  RepairEdit e;
+  if (s.t[next].line == s.t[after].line) {
+    e = s.edit(kind, s.end(after), s.end(after), " " + statement, after, name);
+  } else {
+    // As many lines after the statement before it as in the reference, within the gap before
+    // the next statement; at the next statement's own line where there is no gap.
+    const int below = std::max(1, reference.t[at].line - reference.t[boundary_before(reference, at)].line);
+    const int line = std::min(s.t[after].line + below, s.t[next].line);
+    size_t line_start = s.glsl.rfind('\n', s.begin(next) - 1) + 1;
+    for (int l = s.t[next].line; l > line; --l) line_start = s.glsl.rfind('\n', line_start - 2) + 1;
+    e = s.edit(kind, line_start, line_start, "    " + statement + "\n", next, name);
+    e.line = line;
+  }
+  e.nodes = operands(reference, at, last);
+  return e;
+}
+
 // An output the student's stage never writes, where the reference's stage writes it: the
-// reference's statement put where it stands in the reference, by the statements before it, on
-// the gap's last line before the next statement (where a deleted line was).
+// reference's statement put back where it stands in the reference.
 void restored_statements(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
   for (const std::string_view name : outputs_of(s)) {
     if (assignment_of(s, name) < s.size()) continue;
@@ -150,25 +176,7 @@ void restored_statements(const Stage& s, const Stage& reference, std::vector<Rep
     if (at >= reference.size()) continue;
     const size_t last = reference.expression_last(at) + 1;  // the statement's `;`
     if (!reference.is(last, ";")) continue;
-    const size_t after = aligned_after(s, reference, at);
-    if (after + 1 >= s.size()) continue;
-    const size_t next = after + 1;
-    const std::string statement(reference.text(at, last));
-    RepairEdit e;
-    if (s.t[next].line == s.t[after].line) {
-      e = s.edit(RepairKind::statement_restored, s.end(after), s.end(after), " " + statement, after, name);
-    } else {
-      // As many lines after the statement before it as in the reference, within the gap before
-      // the next statement; at the next statement's own line where there is no gap.
-      const int below = std::max(1, reference.t[at].line - reference.t[boundary_before(reference, at)].line);
-      const int line = std::min(s.t[after].line + below, s.t[next].line);
-      size_t line_start = s.glsl.rfind('\n', s.begin(next) - 1) + 1;
-      for (int l = s.t[next].line; l > line; --l) line_start = s.glsl.rfind('\n', line_start - 2) + 1;
-      e = s.edit(RepairKind::statement_restored, line_start, line_start, "    " + statement + "\n", next, name);
-      e.line = line;
-    }
-    e.nodes = operands(reference, at, last);
-    out.push_back(std::move(e));
+    if (auto e = inserted(s, reference, at, last, RepairKind::statement_restored, name)) out.push_back(std::move(*e));
   }
 }
 
@@ -201,6 +209,33 @@ std::vector<size_t> whole_writes_of(const Stage& s, std::string_view name) {
   return out;
 }
 
+// How a write at `i` writes its name: "=", or the operator of `+=`, `-=`, `*=`, `/=`.
+std::string_view operator_of(const Stage& s, size_t i) { return s.t[i + 1].text; }
+
+// A write of a name the student's stage leaves out, where it writes the name otherwise as the
+// reference does (the same operators, in order, but one): `color += ...;` deleted from the guard
+// gets the reference's statement back, where it stands in the reference. A declaration is never
+// one: without it the stage does not compile.
+void restored_writes(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
+  std::set<std::string_view, std::less<>> seen;
+  for (size_t i = 1; i + 2 < reference.size(); ++i) {
+    if (!reference.identifier(i) || !seen.insert(reference.t[i].text).second) continue;
+    const std::string_view name = reference.t[i].text;
+    const auto own = whole_writes_of(s, name), theirs = whole_writes_of(reference, name);
+    if (own.empty() || theirs.size() != own.size() + 1) continue;
+    for (size_t left_out = 0; left_out < theirs.size(); ++left_out) {
+      const size_t at = theirs[left_out];
+      if (!statement_boundary(reference, at - 1)) continue;  // a declaration
+      bool aligned = true;
+      for (size_t w = 0, k = 0; w < theirs.size() && aligned; ++w)
+        if (w != left_out) aligned = operator_of(reference, theirs[w]) == operator_of(s, own[k++]);
+      const size_t last = reference.expression_last(value_first(reference, at)) + 1;
+      if (!aligned || !reference.is(last, ";")) continue;
+      if (auto e = inserted(s, reference, at, last, RepairKind::write_restored, name)) out.push_back(std::move(*e));
+    }
+  }
+}
+
 // A value the student's stage computes otherwise than the reference's, where each writes the
 // name as often, in the same order and with the same operators (`vec4 color = ...;` then `color
 // += ...;`): the reference's value in its place (`vec3 R = normalize(L + V);` gets the reference's
@@ -221,6 +256,13 @@ void restored_values(const Stage& s, const Stage& reference, std::vector<RepairE
       if (last < first || ref_last < ref_first || unspaced(s.text(first, last)) == unspaced(reference.text(ref_first, ref_last))) continue;
       RepairEdit e = s.replace(RepairKind::value_restored, first, last, std::string(reference.text(ref_first, ref_last)), name);
       e.nodes = operands(reference, ref_first, ref_last);
+      const std::span<const GlslToken> student_value(s.t.begin() + first, last - first + 1),
+          reference_value(reference.t.begin() + ref_first, ref_last - ref_first + 1);
+      if (const auto d = value_difference(student_value, reference_value, name)) {
+        e.said_as = d->said_as;
+        e.subject = d->subject;
+        e.other = d->other;
+      }
       out.push_back(std::move(e));
     }
   }
@@ -264,6 +306,7 @@ std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view 
   std::vector<RepairEdit> out;
   literals(s, r, out);
   restored_statements(s, r, out);
+  restored_writes(s, r, out);
   restored_values(s, r, out);
   restored_conditions(s, r, out);
   std::stable_sort(out.begin(), out.end(), smaller);

@@ -258,34 +258,54 @@ std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage)
   return out;
 }
 
+namespace {
+
+// A reference stage's lines, spaces aside: whether a student's line reads as one of them.
+struct ReferenceLines {
+  std::set<std::string, std::less<>> lines;
+  explicit ReferenceLines(std::string_view reference_glsl) {
+    for (const auto line : shader::lines_of(reference_glsl)) lines.insert(unspaced(line));
+  }
+  bool has(std::string_view line) const { return lines.contains(unspaced(line)); }
+};
+
+// Whether an edit of this kind adds a statement of its own rather than change one of the student's.
+bool inserts_statement(RepairKind kind) { return kind == RepairKind::statement_restored || kind == RepairKind::write_restored; }
+
+// The student's line `edit` changes, as they wrote it.
+std::string_view line_of(std::string_view glsl, const RepairEdit& edit) {
+  const auto lines = shader::lines_of(glsl);
+  return edit.line >= 1 && static_cast<size_t>(edit.line) <= lines.size() ? lines[edit.line - 1] : std::string_view();
+}
+
+}  // namespace
+
 std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference) {
   const StageLiveness fragment_live = fragment_liveness(student.fragment);
   const StageLiveness vertex_live = vertex_liveness(student.vertex, fragment_live.live_names);
+  const ReferenceLines vertex_lines(reference.vertex), fragment_lines(reference.fragment);
   std::vector<RepairEdit> out;
-  const auto add = [&](std::string_view glsl, std::string_view reference_glsl, shader::Stage stage, const StageLiveness& live) {
+  const auto add = [&](std::string_view glsl, std::string_view reference_glsl, shader::Stage stage, const StageLiveness& live,
+                       const ReferenceLines& lines) {
     std::vector<RepairEdit> edits = repair_edits(glsl, stage);
     if (!reference_glsl.empty())
       for (auto& e : reference_edits(glsl, reference_glsl, stage)) edits.push_back(std::move(e));
-    std::set<std::string, std::less<>> reference_lines;
-    for (const auto line : shader::lines_of(reference_glsl)) reference_lines.insert(unspaced(line));
     for (auto& e : edits) {
       if (live.dead(e.begin)) continue;
-      e.reads_as_reference = e.kind == RepairKind::statement_restored || reference_lines.contains(unspaced(edited_line(glsl, e)));
+      // A line the student wrote as the reference writes it is right as it is: an edit there
+      // that makes up for a mistake elsewhere would name a change the student never made.
+      if (!inserts_statement(e.kind) && lines.has(line_of(glsl, e))) continue;
+      e.reads_as_reference = inserts_statement(e.kind) || lines.has(edited_line(glsl, e));
       out.push_back(std::move(e));
     }
   };
-  add(student.vertex, reference.vertex, shader::Stage::vertex, vertex_live);
-  add(student.fragment, reference.fragment, shader::Stage::fragment, fragment_live);
+  add(student.vertex, reference.vertex, shader::Stage::vertex, vertex_live, vertex_lines);
+  add(student.fragment, reference.fragment, shader::Stage::fragment, fragment_live, fragment_lines);
   std::vector<RepairEdit> flat;
   flat_removals(student.vertex, student.fragment, flat);
-  const auto reads_as = [](std::string_view reference_glsl, const std::string& line) {
-    for (const auto l : shader::lines_of(reference_glsl))
-      if (unspaced(l) == unspaced(line)) return true;
-    return false;
-  };
   for (auto& e : flat) {
     const RepairEdit in{shader::Stage::fragment, e.kind, e.other_stage->begin, e.other_stage->end, e.other_stage->with};
-    e.reads_as_reference = reads_as(reference.vertex, edited_line(student.vertex, e)) && reads_as(reference.fragment, edited_line(student.fragment, in));
+    e.reads_as_reference = vertex_lines.has(edited_line(student.vertex, e)) && fragment_lines.has(edited_line(student.fragment, in));
     out.push_back(std::move(e));
   }
   std::stable_sort(out.begin(), out.end(), smaller);
@@ -316,7 +336,7 @@ std::string edited_line(std::string_view glsl, const RepairEdit& edit) {
 
 std::string repair_words(const RepairEdit& e) {
   const std::string x = "`" + e.subject + "`";
-  switch (e.kind) {
+  switch (e.said_as.value_or(e.kind)) {
     case RepairKind::normalised: return x + " is not normalised: a direction must be a unit vector";
     case RepairKind::unnormalised: return x + " is normalised where the homework uses its length as it is";
     case RepairKind::clamped: return x + " is not clamped at 0: a cosine below 0 must count as 0, max(0.0, ...)";
@@ -340,6 +360,8 @@ std::string repair_words(const RepairEdit& e) {
       if (e.stage == shader::Stage::fragment) return x + " is never written: the colour the fragment stage draws is what it writes there";
       if (e.subject == "gl_Position") return x + " is never written: the vertex stage must say where each vertex lands";
       return x + " is never written: the fragment stage reads what the vertex stage writes there";
+    case RepairKind::write_restored:
+      return x + " misses a statement the homework has here: it writes " + x + " once more than yours does";
     case RepairKind::value_restored: return x + " is not computed as the homework computes it";
     case RepairKind::condition_restored: return "the condition " + x + " is not the one the homework tests here";
   }

@@ -31,6 +31,7 @@ enum class RepairKind {
   arguments_swapped, // reflect(N, -L)  ->  reflect(-L, N), where the order matters
   flat_removed,      // flat out vec3 vNormal; and flat in vec3 vNormal;  ->  both interpolated (one edit of two stages)
   statement_restored,// an output the stage never writes: the reference's assignment to it, where it stands there
+  write_restored,    // color += X; left out, where the stage writes color otherwise alike: the reference's write, where it stands there
   value_restored,    // vec3 R = normalize(L + V);  ->  the reference's value of R, where each writes R alike
   condition_restored,// if (true)  ->  the reference's condition, where the two have as many ifs
 };
@@ -50,6 +51,7 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::arguments_swapped, "arguments_swapped"},
     {RepairKind::flat_removed, "flat_removed"},
     {RepairKind::statement_restored, "statement_restored"},
+    {RepairKind::write_restored, "write_restored"},
     {RepairKind::value_restored, "value_restored"},
     {RepairKind::condition_restored, "condition_restored"},
 };
@@ -57,7 +59,8 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
 // Whether an edit of this kind writes the reference's own text (a statement or a value restored):
 // such an edit is named, never shown as a repaired line.
 constexpr bool writes_reference_text(RepairKind kind) {
-  return kind == RepairKind::statement_restored || kind == RepairKind::value_restored || kind == RepairKind::condition_restored;
+  return kind == RepairKind::statement_restored || kind == RepairKind::write_restored || kind == RepairKind::value_restored ||
+         kind == RepairKind::condition_restored;
 }
 
 // Whether an edit of this kind reads the reference (grade::reference_edits): the search counts
@@ -96,6 +99,9 @@ struct RepairEdit {
   // is tried before any other, as the student's line aligned with the reference's.
   bool reads_as_reference = false;
   std::optional<OtherStageSpan> other_stage;  // flat_removed: the fragment stage's `flat`
+  // value_restored: the student's own edit the restored value amounts to, where it is one
+  // (grade/value_difference.h); its words are said, with `subject` and `other` set for them.
+  std::optional<RepairKind> said_as;
 };
 
 // Every edit of the kinds above that applies to `glsl` (one stage, as the driver gets it),
