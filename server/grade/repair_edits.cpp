@@ -272,9 +272,8 @@ struct ReferenceLines {
 // Whether an edit of this kind adds a statement of its own rather than change one of the student's.
 bool inserts_statement(RepairKind kind) { return kind == RepairKind::statement_restored || kind == RepairKind::write_restored; }
 
-// The student's line `edit` changes, as they wrote it.
-std::string_view line_of(std::string_view glsl, const RepairEdit& edit) {
-  const auto lines = shader::lines_of(glsl);
+// The student's line `edit` changes, as they wrote it (`lines`: their stage's, split once).
+std::string_view line_of(const std::vector<std::string_view>& lines, const RepairEdit& edit) {
   return edit.line >= 1 && static_cast<size_t>(edit.line) <= lines.size() ? lines[edit.line - 1] : std::string_view();
 }
 
@@ -290,11 +289,12 @@ std::vector<RepairEdit> program_repair_edits(const StagePair& student, const Sta
     std::vector<RepairEdit> edits = repair_edits(glsl, stage);
     if (!reference_glsl.empty())
       for (auto& e : reference_edits(glsl, reference_glsl, stage)) edits.push_back(std::move(e));
+    const auto student_lines = shader::lines_of(glsl);
     for (auto& e : edits) {
       if (live.dead(e.begin)) continue;
       // A line the student wrote as the reference writes it is right as it is: an edit there
       // that makes up for a mistake elsewhere would name a change the student never made.
-      if (!inserts_statement(e.kind) && lines.has(line_of(glsl, e))) continue;
+      if (!inserts_statement(e.kind) && lines.has(line_of(student_lines, e))) continue;
       e.reads_as_reference = inserts_statement(e.kind) || lines.has(edited_line(glsl, e));
       out.push_back(std::move(e));
     }
