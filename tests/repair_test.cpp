@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "course/course_reader.h"
+#include "grade/aligned_lines.h"
 #include "grade/live_statements.h"
 #include "grade/reference_edits.h"
 #include "grade/repair_edits.h"
@@ -221,6 +222,43 @@ TEST(RepairEditsTest, ALineWrittenAsTheReferenceWritesItIsNeverEdited) {
     changed_line_edited = changed_line_edited || e.kind == grade::RepairKind::negation_removed;
   }
   EXPECT_TRUE(changed_line_edited) << "each negation is still undone at its own line";
+}
+
+// A student who names the reference's locals otherwise still wrote its lines: the names align
+// from their declarations, and only a line that differs by more than them is edited.
+TEST(RepairEditsTest, AStudentsOwnNamesForTheLocalsAlignWithTheReferences) {
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string student = typed(typed(typed(typed(typed(reference, "vec3 N = normalize(vNormal);", "vec3 n = normalize(vNormal);"),
+                                                        "vec3 L = normalize(", "vec3 toLight = normalize("),
+                                                  "dot(N, L)", "dot(n, toLight)"),
+                                            "vec3 R = reflect(-L, N);", "vec3 mirrored = reflect(-toLight, n);"),
+                                      "dot(V, R)", "dot(V, mirrored)");
+  const grade::AlignedLines lines(student, reference);
+  EXPECT_TRUE(lines.reads_as_reference("    vec3 mirrored = reflect(-toLight, n);  // R"));
+  EXPECT_TRUE(lines.reads_as_reference("float NdotL = dot(n, toLight);"));
+  EXPECT_FALSE(lines.reads_as_reference("vec3 mirrored = reflect(-n, toLight);")) << "the arguments swapped";
+  EXPECT_FALSE(lines.reads_as_reference("vec3 mirrored = reflect(toLight, n);")) << "a sign";
+  EXPECT_FALSE(lines.reads_as_reference("float NdotL = dot(N, L);")) << "a name aligned with another never reads as itself";
+  EXPECT_FALSE(lines.reads_as_reference("vec4 color = uAmbientColor + uSpecularColor * uLightColor * max(0.0, NdotL);"))
+      << "a uniform aligns only with itself";
+  // A declaration the student got wrong aligns its name once an edit mends it.
+  const std::string view_away =
+      typed(typed(student, "vec3 V = normalize(-vPosition);", "vec3 toEye = normalize(vPosition);"), "dot(V, mirrored)", "dot(toEye, mirrored)");
+  const grade::AlignedLines mended(view_away, reference);
+  EXPECT_FALSE(mended.reads_as_reference("vec3 toEye = normalize(vPosition);"));
+  EXPECT_TRUE(mended.reads_as_reference("vec3 toEye = normalize(-vPosition);"));
+  // So the search edits the line the student changed, not the reflection they wrote as the
+  // reference does (negating R's -L would draw the same frames).
+  const auto edits = grade::program_repair_edits({glsl_of("specular", shader::Stage::vertex), view_away},
+                                                 {glsl_of("specular", shader::Stage::vertex), reference});
+  const auto student_lines = shader::lines_of(view_away);
+  bool view_negated = false;
+  for (const auto& e : edits) {
+    if (e.stage != shader::Stage::fragment || e.kind == grade::RepairKind::statement_restored || e.kind == grade::RepairKind::write_restored) continue;
+    EXPECT_EQ(student_lines[e.line - 1].find("reflect("), std::string_view::npos) << name_in(grade::kRepairKindNames, e.kind);
+    view_negated = view_negated || (e.kind == grade::RepairKind::negation_added && student_lines[e.line - 1].find("toEye =") != std::string_view::npos);
+  }
+  EXPECT_TRUE(view_negated) << "the view vector's own line is negated";
 }
 
 // A restored value is the reference's text, named and never shown; where it differs from the

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <map>
-#include <set>
 #include <tuple>
 
+#include "grade/aligned_lines.h"
 #include "grade/live_statements.h"
 #include "grade/reference_edits.h"
 #include "grade/stage_tokens.h"
@@ -260,15 +260,6 @@ std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage)
 
 namespace {
 
-// A reference stage's lines, spaces aside: whether a student's line reads as one of them.
-struct ReferenceLines {
-  std::set<std::string, std::less<>> lines;
-  explicit ReferenceLines(std::string_view reference_glsl) {
-    for (const auto line : shader::lines_of(reference_glsl)) lines.insert(unspaced(line));
-  }
-  bool has(std::string_view line) const { return lines.contains(unspaced(line)); }
-};
-
 // Whether an edit of this kind adds a statement of its own rather than change one of the student's.
 bool inserts_statement(RepairKind kind) { return kind == RepairKind::statement_restored || kind == RepairKind::write_restored; }
 
@@ -282,20 +273,21 @@ std::string_view line_of(const std::vector<std::string_view>& lines, const Repai
 std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference) {
   const StageLiveness fragment_live = fragment_liveness(student.fragment);
   const StageLiveness vertex_live = vertex_liveness(student.vertex, fragment_live.live_names);
-  const ReferenceLines vertex_lines(reference.vertex), fragment_lines(reference.fragment);
+  const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
   std::vector<RepairEdit> out;
   const auto add = [&](std::string_view glsl, std::string_view reference_glsl, shader::Stage stage, const StageLiveness& live,
-                       const ReferenceLines& lines) {
+                       const AlignedLines& lines) {
     std::vector<RepairEdit> edits = repair_edits(glsl, stage);
     if (!reference_glsl.empty())
       for (auto& e : reference_edits(glsl, reference_glsl, stage)) edits.push_back(std::move(e));
     const auto student_lines = shader::lines_of(glsl);
     for (auto& e : edits) {
       if (live.dead(e.begin)) continue;
-      // A line the student wrote as the reference writes it is right as it is: an edit there
-      // that makes up for a mistake elsewhere would name a change the student never made.
-      if (!inserts_statement(e.kind) && lines.has(line_of(student_lines, e))) continue;
-      e.reads_as_reference = inserts_statement(e.kind) || lines.has(edited_line(glsl, e));
+      // A line the student wrote as the reference writes it (their names for its locals aside) is
+      // right as it is: an edit there that makes up for a mistake elsewhere would name a change
+      // the student never made.
+      if (!inserts_statement(e.kind) && lines.reads_as_reference(line_of(student_lines, e))) continue;
+      e.reads_as_reference = inserts_statement(e.kind) || lines.reads_as_reference(edited_line(glsl, e));
       out.push_back(std::move(e));
     }
   };
@@ -305,7 +297,8 @@ std::vector<RepairEdit> program_repair_edits(const StagePair& student, const Sta
   flat_removals(student.vertex, student.fragment, flat);
   for (auto& e : flat) {
     const RepairEdit in{shader::Stage::fragment, e.kind, e.other_stage->begin, e.other_stage->end, e.other_stage->with};
-    e.reads_as_reference = vertex_lines.has(edited_line(student.vertex, e)) && fragment_lines.has(edited_line(student.fragment, in));
+    e.reads_as_reference =
+        vertex_lines.reads_as_reference(edited_line(student.vertex, e)) && fragment_lines.reads_as_reference(edited_line(student.fragment, in));
     out.push_back(std::move(e));
   }
   std::stable_sort(out.begin(), out.end(), smaller);

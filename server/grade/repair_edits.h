@@ -95,8 +95,9 @@ struct RepairEdit {
                         // operator_swapped: the new operator; matrix_added: the matrix;
                         // literal_refit: the new number
   int nodes = 1;        // syntax nodes the edit changes: "smallest" is fewest
-  // Whether the edited line reads as a line of the reference's stage (spaces aside): such an edit
-  // is tried before any other, as the student's line aligned with the reference's.
+  // Whether the edited line reads as a line of the reference's stage (spaces, comments and the
+  // student's names for its locals aside: grade/aligned_lines.h): such an edit is tried before any
+  // other, as the student's line aligned with the reference's.
   bool reads_as_reference = false;
   std::optional<OtherStageSpan> other_stage;  // flat_removed: the fragment stage's `flat`
   // value_restored: the student's own edit the restored value amounts to, where it is one

@@ -1,0 +1,101 @@
+#include "grade/aligned_lines.h"
+
+#include <algorithm>
+#include <array>
+
+#include "shader/glsl_lines.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+using Kind = shader::GlslToken::Kind;
+
+struct LineTokens {
+  std::vector<std::string> text;
+  std::vector<bool> name;  // an identifier
+};
+
+LineTokens tokens(std::string_view line) {
+  LineTokens out;
+  for (const auto& t : shader::tokens_of(line)) {
+    out.text.emplace_back(t.text);
+    out.name.push_back(t.kind == Kind::identifier);
+  }
+  return out;
+}
+
+bool type_keyword(std::string_view s) {
+  static constexpr std::array<std::string_view, 19> kTypes = {"float", "int",   "uint",  "bool",  "vec2",  "vec3",  "vec4",
+                                                             "ivec2", "ivec3", "ivec4", "uvec2", "uvec3", "uvec4", "bvec2",
+                                                             "bvec3", "bvec4", "mat2",  "mat3",  "mat4"};
+  return std::find(kTypes.begin(), kTypes.end(), s) != kTypes.end();
+}
+
+// The token a local declaration declares (`vec3 L = ...;`, `const float a = ...;`, `vec3 L;`), or
+// size() where the line declares none.
+size_t declared_at(const std::vector<std::string>& t) {
+  const size_t type = !t.empty() && t.front() == "const" ? 1 : 0;
+  if (t.size() < type + 3 || !type_keyword(t[type])) return t.size();
+  return t[type + 2] == "=" || t[type + 2] == ";" ? type + 1 : t.size();
+}
+
+bool is_identifier(const std::string& s) { return !s.empty() && shader::identifier_start(s.front()); }
+
+}  // namespace
+
+AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view reference_glsl) {
+  for (const auto line : shader::lines_of(reference_glsl)) {
+    reference_lines_.push_back(tokens(line).text);
+    if (const size_t at = declared_at(reference_lines_.back()); at < reference_lines_.back().size())
+      names_.reference_declares.insert(reference_lines_.back()[at]);
+  }
+  for (const auto line : shader::lines_of(student_glsl)) {
+    const auto t = tokens(line).text;
+    if (const size_t at = declared_at(t); at < t.size()) names_.student_declares.insert(t[at]);
+  }
+  for (const auto line : shader::lines_of(student_glsl)) {
+    std::pair<std::string, std::string> declared;
+    if (reads_as_reference(tokens(line).text, declared) && !declared.first.empty()) {
+      names_.to_reference.insert(declared);
+      names_.from_reference.emplace(declared.second, declared.first);
+    }
+  }
+}
+
+bool AlignedLines::reads_as_reference(std::string_view line) const {
+  std::pair<std::string, std::string> declared;
+  return reads_as_reference(tokens(line).text, declared);
+}
+
+bool AlignedLines::reads_as_reference(const Tokens& line, std::pair<std::string, std::string>& declared) const {
+  return std::any_of(reference_lines_.begin(), reference_lines_.end(), [&](const Tokens& r) { return aligned(line, r, names_, declared); });
+}
+
+bool AlignedLines::aligned(const Tokens& student, const Tokens& reference, const Names& names, std::pair<std::string, std::string>& declared) {
+  if (student.size() != reference.size()) return false;
+  const size_t at = declared_at(student);
+  std::pair<std::string, std::string> found;
+  for (size_t i = 0; i < student.size(); ++i) {
+    const std::string &s = student[i], &r = reference[i];
+    if (!is_identifier(s) || !is_identifier(r)) {
+      if (s != r) return false;
+      continue;
+    }
+    // A name aligned with another never reads as itself, nor one the reference's aligned name took.
+    const auto to = names.to_reference.find(s);
+    const auto from = names.from_reference.find(r);
+    if (to != names.to_reference.end() || from != names.from_reference.end()) {
+      if (to == names.to_reference.end() || to->second != r) return false;
+      continue;
+    }
+    if (s == r) continue;
+    // Only the declared name aligns anew, and only with a name the other program does not declare.
+    if (i != at || at != declared_at(reference) || names.reference_declares.contains(s) || names.student_declares.contains(r)) return false;
+    found = {s, r};
+  }
+  declared = std::move(found);
+  return true;
+}
+
+}  // namespace shadelab::grade
