@@ -197,10 +197,12 @@ void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown
   std::vector<grade::Repair> repairs;
   for (const auto& e : c.edits) repairs.push_back(repair_of(p, e, shown));
   std::vector<std::string> said, lines;
-  for (const auto& r : repairs) {
-    said.push_back((r.line ? *r.file + " line " + std::to_string(*r.line) + ": " : std::string()) + r.text + ".");
-    if (r.repaired_line) lines.push_back("`" + *r.repaired_line + "`");
-  }
+  for (const auto& r : repairs) said.push_back((r.line ? *r.file + " line " + std::to_string(*r.line) + ": " : std::string()) + r.text + ".");
+  // Every edit of the repair is in its sentence: a restored value (the reference's text, never
+  // shown) by its line, so that a repair of two edits never reads as one.
+  const bool shows_a_line = std::any_of(repairs.begin(), repairs.end(), [](const grade::Repair& r) { return r.repaired_line.has_value(); });
+  for (const auto& r : repairs)
+    if (shows_a_line) lines.push_back(r.repaired_line ? "`" + *r.repaired_line + "`" : r.file.value_or("") + " line " + std::to_string(r.line.value_or(0)) + " as the homework writes it");
   if (!lines.empty())
     said.push_back("With " + lines.front() + (lines.size() > 1 ? " and " + lines.back() : "") +
                    " the frames match the reference's on every frame and light the grade draws.");
@@ -302,10 +304,12 @@ std::vector<Candidate> pair_candidates(const Program& p, const std::vector<Candi
 
 }  // namespace
 
-bool wants_repair(const grade::Report& report) {
+bool wants_repair(const grade::Report& report, const std::vector<grade::StarterConstant>& constants) {
   if (report.pass || report.frames.empty() || !report.diagnostics.empty()) return false;
   if (report.explanation && report.explanation->explained) return false;
-  return report.diagnosis.empty() || report.diagnosis == grade::to_string(grade::Diagnosis::nan);
+  const auto changed = [&](const grade::StarterConstant& c) { return report.diagnosis == grade::changed_constant_diagnosis(c.variable); };
+  return report.diagnosis.empty() || report.diagnosis == grade::to_string(grade::Diagnosis::nan) ||
+         std::any_of(constants.begin(), constants.end(), changed);
 }
 
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,

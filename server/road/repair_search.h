@@ -36,8 +36,10 @@ struct RepairBudget {
 };
 
 // Whether a report is one the search is for: a failing grade that drew its frames and that
-// neither the formula nor the course's catalogue explained.
-bool wants_repair(const grade::Report& report);
+// neither the formula nor the course's catalogue explained. A starter constant the student
+// changed (one of `constants`, the grader's own diagnosis) names one change: whether it is the
+// only one, and where any other is, only a render says, so the search runs for it too.
+bool wants_repair(const grade::Report& report, const std::vector<grade::StarterConstant>& constants);
 
 // Searches the program `failed` drew (a grade job), and writes into `report` what it tried
 // (`repair_search`) and, when a repair is confirmed, as much of it as `shown` says among its

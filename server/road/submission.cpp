@@ -132,10 +132,12 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   }
   grade::Report& report = a.answered->result.report;
   note_attempts(report, a.attempts(), a.retried());
-  // A pass, a compile error, or a failure the grader's own diagnosis names (a changed starter
-  // constant, swapped channels) is the grade as the verdict found it.
+  // A pass, a compile error, or a failure the grader's own diagnosis names (swapped channels) is
+  // the grade as the verdict found it. A changed starter constant is searched on (wants_repair)
+  // before the catalogue gives it the course's words.
+  const bool repairable = searching && wants_repair(report, spec.starter_constants);
   if (searching) grade::name_catalogued_constants(report, spec, job.request.fragment.text);
-  if (!searching || !wants_repair(report)) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
+  if (!repairable) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
   const size_t warned = report.warnings.size();
   search_repair(pool, job, submission.mesh_bytes, submission.repair_shown, report, submission.repair);
   if (report.repair_search && report.repair_search->found) return CodeGrade{std::move(a.answered->result), seconds_since(start)};
