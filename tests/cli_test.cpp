@@ -223,10 +223,17 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   }
   write("class/kim/shaders/phong_vert.js", preset("specular_vert.js"));
   write("class/kim/shaders/phong_frag.js", preset("specular_frag.js"));
+  // leo made ivan's mistake and changed the exponent too: counted by both, apart from ivan and judy.
+  std::string leo = preset("specular_frag.js");
+  leo.replace(leo.find(right), right.size(), "vec3 L = uLightPosition - vPosition;");
+  leo.replace(leo.find("float specularAlpha = 6.0;"), 26, "float specularAlpha = 20.0;");
+  write("class/leo/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/leo/shaders/phong_frag.js", leo);
   const auto run = run_cli("grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades"));
   ASSERT_EQ(run.status, 0) << run.output;
   const std::string words = "`L` is not normalised: a direction must be a unit vector";
-  EXPECT_NE(run.output.find("2 students: " + words), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("2 students: " + words + "\n"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("1 student: " + words + " + `20.0` is not the number the homework uses here"), std::string::npos) << run.output;
   const std::string explanations = read_text(path("grades/explanations.csv"));
   EXPECT_NE(explanations.find(words + ",2,ivan judy\n"), std::string::npos) << explanations;
 }

@@ -30,7 +30,10 @@ Report failed_submission(const Error& e, const std::string& checkpoint, double m
 }
 
 std::string mistake_label(const Report& report) {
-  if (report.repair_search && report.repair_search->found) return report.repair_search->found->text;
+  if (report.repair_search && report.repair_search->found) {
+    const auto& r = *report.repair_search;
+    return r.found->text + (r.also ? " + " + r.also->text : "");
+  }
   return report.explanation ? report.explanation->label : "";
 }
 

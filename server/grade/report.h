@@ -111,8 +111,9 @@ Report report(const GradeResult& result, const std::string& checkpoint, const st
 Report failed_submission(const Error& error, const std::string& checkpoint, double max_score);
 
 // A failing grade's mistake in a few words, to count a class by: its confirmed repair's words
-// ("`L` is not normalised: a direction must be a unit vector"), else the formula's label; "" for
-// neither. Never the line or the repaired line: students share a mistake, not a line number.
+// ("`L` is not normalised: a direction must be a unit vector", a repair of two edits both joined
+// by " + "), else the formula's label; "" for neither. Never the line or the repaired line:
+// students share a mistake, not a line number.
 std::string mistake_label(const Report& report);
 
 // The part of a report under the page's light (`probes` false) or under the probe lights (true),
