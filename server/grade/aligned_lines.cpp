@@ -9,19 +9,10 @@ namespace shadelab::grade {
 
 namespace {
 
-using Kind = shader::GlslToken::Kind;
-
-struct LineTokens {
-  std::vector<std::string> text;
-  std::vector<bool> name;  // an identifier
-};
-
-LineTokens tokens(std::string_view line) {
-  LineTokens out;
-  for (const auto& t : shader::tokens_of(line)) {
-    out.text.emplace_back(t.text);
-    out.name.push_back(t.kind == Kind::identifier);
-  }
+// A line's tokens as text (comments are not tokens).
+std::vector<std::string> tokens(std::string_view line) {
+  std::vector<std::string> out;
+  for (const auto& t : shader::tokens_of(line)) out.emplace_back(t.text);
   return out;
 }
 
@@ -46,17 +37,19 @@ bool is_identifier(const std::string& s) { return !s.empty() && shader::identifi
 
 AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view reference_glsl) {
   for (const auto line : shader::lines_of(reference_glsl)) {
-    reference_lines_.push_back(tokens(line).text);
+    reference_lines_.push_back(tokens(line));
     if (const size_t at = declared_at(reference_lines_.back()); at < reference_lines_.back().size())
       names_.reference_declares.insert(reference_lines_.back()[at]);
   }
+  std::vector<Tokens> student_lines;
   for (const auto line : shader::lines_of(student_glsl)) {
-    const auto t = tokens(line).text;
-    if (const size_t at = declared_at(t); at < t.size()) names_.student_declares.insert(t[at]);
+    student_lines.push_back(tokens(line));
+    if (const size_t at = declared_at(student_lines.back()); at < student_lines.back().size())
+      names_.student_declares.insert(student_lines.back()[at]);
   }
-  for (const auto line : shader::lines_of(student_glsl)) {
+  for (const Tokens& line : student_lines) {
     std::pair<std::string, std::string> declared;
-    if (reads_as_reference(tokens(line).text, declared) && !declared.first.empty()) {
+    if (reads_as_reference(line, declared) && !declared.first.empty()) {
       names_.to_reference.insert(declared);
       names_.from_reference.emplace(declared.second, declared.first);
     }
@@ -65,7 +58,7 @@ AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view refer
 
 bool AlignedLines::reads_as_reference(std::string_view line) const {
   std::pair<std::string, std::string> declared;
-  return reads_as_reference(tokens(line).text, declared);
+  return reads_as_reference(tokens(line), declared);
 }
 
 bool AlignedLines::reads_as_reference(const Tokens& line, std::pair<std::string, std::string>& declared) const {
