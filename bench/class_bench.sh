@@ -6,7 +6,8 @@
 # Every fragment shader differs in a never-taken branch on its own constant (Mesa caches programs
 # by their IR), so no student is served from another's compile; the branch changes a colour, not a
 # `discard`, which would make a grade draw its lights one at a time (docs/grading.md). The reference store is warmed first (`course warm`, as a
-# Gradescope image is built), then both sides run on an idle machine, whole processes counted.
+# Gradescope image is built), then both sides run on an idle machine, whole processes counted; the
+# renders the grades drew are counted too (the journal's `renders`), a figure no load moves.
 #   bench/class_bench.sh [repeats, default 1]      SHADELAB_BIN: another build's shadelab
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -63,4 +64,13 @@ for ((r = 0; r < repeats; r++)); do
   echo "24 renders of the job, one process each: ${render_s} s; the class graded: ${grade_s} s ($(awk -v g="$grade_s" -v r="$render_s" 'BEGIN { printf "%.2f", g / r }')x)"
 done
 echo "passed: $(grep -c ',true,' "$work/grades/summary.csv") of 24 (8 are correct)"
+# The same cost counted, not timed (the same on any machine): the renders each grade drew at the
+# grade's frames (its own, each repair's confirmation, a second grade) and the candidates screened.
+python3 - "$work/grades/graded.jsonl" <<'PY'
+import json, sys
+rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip()]
+renders, screened = sum(r["renders"] for r in rows), sum(r["screened"] for r in rows)
+print("counted: %d renders at the grade's frames for %d students (%.2f a student), %d candidates screened on a small canvas"
+      % (renders, len(rows), renders / len(rows), screened))
+PY
 awk -F, 'NR > 1 { print $0 }' "$work/grades/summary.csv" | cut -d, -f1-5 | sort | head -24

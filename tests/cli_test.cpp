@@ -236,6 +236,22 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   EXPECT_NE(run.output.find("1 student: " + words + " + `20.0` is not the number the homework uses here"), std::string::npos) << run.output;
   const std::string explanations = read_text(path("grades/explanations.csv"));
   EXPECT_NE(explanations.find(words + ",2,ivan judy\n"), std::string::npos) << explanations;
+  // What each grade cost, counted: kim's program drawn once; ivan's, and its repair confirmed by
+  // a render of its own; and the class's sum said on the batch's last lines.
+  std::map<std::string, nlohmann::json> journal;
+  std::istringstream lines(read_text(path("grades/graded.jsonl")));
+  for (std::string line; std::getline(lines, line);) journal[nlohmann::json::parse(line)["student"]] = nlohmann::json::parse(line);
+  EXPECT_EQ(journal["kim"]["renders"], 1);
+  EXPECT_EQ(journal["kim"]["screened"], 0);
+  EXPECT_EQ(journal["ivan"]["renders"], 2);
+  EXPECT_GE(journal["ivan"]["screened"].get<int>(), 1);
+  int renders = 0, screened = 0;
+  for (const auto& [who, j] : journal) renders += j["renders"].get<int>(), screened += j["screened"].get<int>();
+  EXPECT_GE(journal["leo"]["screened"].get<int>(), journal["ivan"]["screened"].get<int>()) << "a pair is screened after the singles";
+  char expected[160];
+  std::snprintf(expected, sizeof expected, "the grader drew %d renders at the grade's frames (%.2f a student) and screened %d repair candidates",
+                renders, renders / 4.0, screened);
+  EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;
 }
 
 // The class's saved frames looked at across the class: two students who hand in the same frames

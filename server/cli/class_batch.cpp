@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -15,6 +16,7 @@
 
 #include "core/hash.h"
 #include "grade/provenance.h"
+#include "road/submission.h"
 
 namespace shadelab::cli {
 
@@ -32,18 +34,21 @@ struct Entry {
   std::string frames;              // the saved frames' fingerprint; empty: none handed in
   std::vector<std::string> flags;  // the grade's flags, in words
   std::string explanation;         // a failing grade's mistake, in a few words (grade::mistake_label); "" for none
+  int renders = 0;                 // drawn at the grade's frames (road::full_renders)
+  int screened = 0;                // repair candidates screened on a small canvas
 };
 
 json to_json(const Entry& e) {
   return {{"student", e.student}, {"score", e.score}, {"maxScore", e.max_score}, {"pass", e.pass},
-          {"diagnosis", e.diagnosis}, {"message", e.message}, {"frames", e.frames}, {"flags", e.flags}, {"explanation", e.explanation}};
+          {"diagnosis", e.diagnosis}, {"message", e.message}, {"frames", e.frames}, {"flags", e.flags}, {"explanation", e.explanation},
+          {"renders", e.renders}, {"screened", e.screened}};
 }
 
 std::optional<Entry> entry_from(const std::string& line) {
   const json j = json::parse(line, nullptr, false);
   if (!j.is_object() || !j.contains("student") || !j["student"].is_string()) return std::nullopt;  // a line cut short by a kill
   Entry e{j["student"], j.value("score", 0.0), j.value("maxScore", 0.0), j.value("pass", false), j.value("diagnosis", ""),
-          j.value("message", ""), j.value("frames", ""), {}, j.value("explanation", "")};
+          j.value("message", ""), j.value("frames", ""), {}, j.value("explanation", ""), j.value("renders", 0), j.value("screened", 0)};
   for (const auto& f : j.value("flags", json::array()))
     if (f.is_string()) e.flags.push_back(f);
   return e;
@@ -52,7 +57,7 @@ std::optional<Entry> entry_from(const std::string& line) {
 Entry entry_of(const std::string& student, const StudentGrade& g) {
   const grade::Report& r = g.report;
   Entry e{student, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0], g.frames_fingerprint, {},
-          grade::mistake_label(r)};
+          grade::mistake_label(r), road::full_renders(r), r.repair_search ? r.repair_search->candidates : 0};
   for (const auto& f : r.flags) e.flags.push_back(f.message);
   return e;
 }
@@ -160,6 +165,17 @@ Status write_explanations(const fs::path& out, const std::map<std::string, Entry
     text += csv(label) + "," + std::to_string(who.size()) + "," + csv(names) + "\n";
   }
   return write_file(out / "explanations.csv", text);
+}
+
+// What the class cost, counted rather than timed: the same on a busy or an idle machine.
+void say_cost(const std::vector<Student>& students, const std::map<std::string, Entry>& entries) {
+  int renders = 0, screened = 0;
+  for (const auto& s : students)
+    if (const auto e = entries.find(s.name); e != entries.end()) renders += e->second.renders, screened += e->second.screened;
+  char per_student[32];
+  std::snprintf(per_student, sizeof per_student, "%.2f", renders / static_cast<double>(std::max<size_t>(students.size(), 1)));
+  std::cerr << "the grader drew " << renders << " renders at the grade's frames (" << per_student << " a student) and screened " << screened
+            << " repair candidates on a small canvas\n";
 }
 
 std::vector<Student> students_of(const BatchOptions& o) {
@@ -287,6 +303,7 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
   for (const auto& [label, who] : by_explanation(entries))
     std::cerr << who.size() << (who.size() == 1 ? " student: " : " students: ") << label << "\n";
   if (flagged > 0) std::cerr << flagged << " students flagged for the TA: see the flags column of " << (o.out / "summary.csv").string() << "\n";
+  say_cost(students, entries);
   std::cerr << "graded " << students.size() << " submissions" << (o.shard.count > 1 ? " in this shard" : "") << ", mean score "
             << total / static_cast<double>(students.size()) << "; results in " << o.out.string() << "/\n";
   return 0;

@@ -230,10 +230,12 @@ struct Search {
   // Screens `candidates` in order, a wave at a time (the machine's speed, never the answer), reads
   // their verdicts in order and renders each screened pass again at the grade's frames until one
   // is confirmed (`winner`) or the confirmations are spent. `distances`: each screen's distance.
+  // The first wave is the smallest candidate alone: it is most often the repair (a median of one
+  // candidate), and a wave's others would be screened for nothing, a class's workers' time.
   Pass try_in_order(const std::vector<Candidate>& candidates, int confirmations, std::vector<double>* distances, const Candidate** winner) {
     const int confirmed_before = spent.confirmations;
-    const size_t wave = static_cast<size_t>(std::max({1, budget.wave, pool.config().workers}));
-    for (size_t first = 0; first < candidates.size(); first += wave) {
+    const size_t width = static_cast<size_t>(std::max({1, budget.wave, pool.config().workers}));
+    for (size_t first = 0, wave = 1; first < candidates.size(); first += wave, wave = width) {
       const size_t last = std::min(candidates.size(), first + wave);
       std::vector<worker::Job> screens;
       for (size_t i = first; i < last; ++i) screens.push_back(candidate_job(failed, candidates[i], budget, &probes));

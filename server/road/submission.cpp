@@ -145,6 +145,12 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   return explained_after_search(pool, job, submission, searched, a, start);
 }
 
+int full_renders(const grade::Report& report) {
+  if (report.frames.empty()) return 0;
+  const auto& search = report.repair_search;
+  return report.attempts + (search ? search->confirmations + (search->found ? 0 : 1) : 0);
+}
+
 Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
                                      const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
   CodeSubmission out{worker::course_job(c, worker::JobKind::grade, std::move(vertex), std::move(fragment)), {}, c.grade_spec(checkpoint, options),

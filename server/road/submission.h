@@ -52,6 +52,13 @@ struct CodeGrade {
 
 Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submission);
 
+// The renders `grade_code` drew at the grade's own frames for `report`: the program's own (a retry
+// is one more), each repair candidate rendered again to confirm it, and the second grade of a
+// failing program no search confirmed a repair for; none for a program that drew nothing. A class's
+// cost counted, not timed (the batch's last line, bench/class_bench.sh); the candidates screened
+// on a small canvas are `report.repair_search->candidates`.
+int full_renders(const grade::Report& report);
+
 // A submission its adapter could not read into a CodeSubmission (a source refused while the
 // request was parsed): its grade by the same rule, labelled with the checkpoint and points.
 Expected<CodeGrade> grade_unreadable(const Error& error, const std::string& checkpoint, double max_score);
