@@ -201,12 +201,16 @@ TEST_F(GradeTest, TheHandoutsExponentIsNamedAndSoIsAnyOther) {
   const json other = grade(student_pair("20.0", true), "specular");
   EXPECT_FALSE(other["pass"]);
   EXPECT_EQ(other["diagnosis"], "changed_specularAlpha") << other.dump();
-  EXPECT_EQ(other["messages"][0], "your shader's exponent is 20.0; the course's starter uses 6.0 (specularAlpha)") << other.dump();
-  // A render confirms the constant is the only change, and says where it is.
+  // A render confirms the constant is the only change, and the grader's words say where it is,
+  // once: not again as the repair's "`20.0` is not the number the homework uses here".
+  EXPECT_EQ(other["messages"][0], "phong_frag.js line 15: your shader's exponent is 20.0; the course's starter uses 6.0 (specularAlpha).")
+      << other.dump();
+  for (const json& m : other["messages"]) EXPECT_EQ(m.get<std::string>().find("not the number"), std::string::npos) << other.dump();
   const json& found = handout["repairSearch"]["found"];
   EXPECT_EQ(found["kind"], "literal_refit") << handout.dump();
   EXPECT_EQ(found["line"], 15) << handout.dump();
   EXPECT_FALSE(handout["repairSearch"].contains("also")) << handout.dump();
+  EXPECT_EQ(handout["messages"][0].get<std::string>().rfind("phong_frag.js line 15: your shader's exponent is 0.6", 0), 0) << handout.dump();
 }
 
 // A changed exponent is one change: a program with another as well is told both, each at its line.
@@ -228,6 +232,12 @@ TEST_F(GradeTest, AChangedExponentBesideAnotherMistakeNamesBothLines) {
       EXPECT_EQ(repair["text"], "`toEye` has the wrong sign") << search.dump();
     }
   }
+  // Each line said once, the exponent in the grader's words about it.
+  const json& m = r["messages"];
+  ASSERT_GE(m.size(), 2u) << m.dump();
+  const std::string said = m[0].get<std::string>() + "\n" + m[1].get<std::string>();
+  EXPECT_NE(said.find("phong_frag.js line 15: your shader's exponent is 20.0; the course's starter uses 6.0"), std::string::npos) << m.dump();
+  EXPECT_NE(said.find("phong_frag.js line 26: `toEye` has the wrong sign"), std::string::npos) << m.dump();
 }
 
 TEST_F(GradeTest, AnOldCheckpointNameIsGradedAsWhatItNowMeansAndSaysSo) {

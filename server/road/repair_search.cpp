@@ -6,10 +6,12 @@
 #include <future>
 #include <thread>
 #include <optional>
+#include <regex>
 #include <set>
 #include <vector>
 
 #include "grade/diagnosis.h"
+#include "grade/starter_constants.h"
 #include "worker/result.h"
 
 namespace shadelab::road {
@@ -191,13 +193,44 @@ grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::Rep
   return repair;
 }
 
+// The line of `glsl` that byte `at` is on.
+std::string_view line_at(std::string_view glsl, size_t at) {
+  const size_t start = at == 0 ? 0 : glsl.rfind('\n', at - 1);
+  const size_t from = start == std::string_view::npos || at == 0 ? 0 : start + 1;
+  return glsl.substr(from, glsl.find('\n', at) - from);
+}
+
+// Where the grader named a changed starter constant ("your shader's exponent is 20.0; the
+// course's starter uses 6.0", the first message: grade/judge_code.h) and `e` refits the number
+// that line gives it, that message is the edit's words at its line: said once, not twice.
+std::optional<std::string> constant_named(const Program& p, const grade::RepairEdit& e, const std::vector<grade::StarterConstant>& constants,
+                                          const grade::Report& report) {
+  if (e.kind != grade::RepairKind::literal_refit || e.stage != shader::Stage::fragment || report.messages.empty()) return std::nullopt;
+  if (report.diagnosis.empty() || report.diagnosis == grade::to_string(grade::Diagnosis::nan)) return std::nullopt;
+  const auto changed = grade::changed_starter_constants(constants, p.fragment.file->text);
+  if (changed.size() != 1) return std::nullopt;  // which message names which constant is not ours to guess
+  const std::regex gives("\\b" + changed.front().variable + "\\s*=");
+  const std::string_view line = line_at(p.fragment.source.glsl, e.begin);
+  if (!std::regex_search(line.begin(), line.end(), gives)) return std::nullopt;
+  const std::string& message = report.messages.front();
+  return message.ends_with('.') ? message : message + ".";
+}
+
 // The confirmed repair, said as far as `shown` allows: "phong_frag.js line 20: L is not normalised:
 // ..." for each edit, then, with the repaired lines, "With `...` the frames match ...".
-void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown, grade::Report& report) {
+void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown, const std::vector<grade::StarterConstant>& constants,
+                  grade::Report& report) {
   std::vector<grade::Repair> repairs;
   for (const auto& e : c.edits) repairs.push_back(repair_of(p, e, shown));
   std::vector<std::string> said, lines;
-  for (const auto& r : repairs) said.push_back((r.line ? *r.file + " line " + std::to_string(*r.line) + ": " : std::string()) + r.text + ".");
+  bool constant_said = false;  // the grader's message on a changed constant, now at its line
+  for (size_t i = 0; i < repairs.size(); ++i) {
+    const grade::Repair& r = repairs[i];
+    const auto named = constant_named(p, c.edits[i], constants, report);
+    constant_said = constant_said || named;
+    std::string text = named ? *named : r.text + ".";
+    said.push_back((r.line ? *r.file + " line " + std::to_string(*r.line) + ": " : std::string()) + text);
+  }
   // Every edit of the repair is in its sentence: a restored value (the reference's text, never
   // shown) by its line, so that a repair of two edits never reads as one.
   const bool shows_a_line = std::any_of(repairs.begin(), repairs.end(), [](const grade::Repair& r) { return r.repaired_line.has_value(); });
@@ -209,7 +242,8 @@ void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown
   // The formula's "cannot say why" is superseded by what a render confirmed.
   auto& m = report.messages;
   if (report.explanation && !report.explanation->explained) m.erase(std::remove(m.begin(), m.end(), report.explanation->text), m.end());
-  m.insert(m.begin() + std::min<size_t>(1, m.size()), said.begin(), said.end());
+  if (constant_said) m.erase(m.begin());
+  m.insert(m.begin() + std::min<size_t>(constant_said ? 0 : 1, m.size()), said.begin(), said.end());
   report.repair_search->found = std::move(repairs.front());
   if (repairs.size() > 1) report.repair_search->also = std::move(repairs.back());
 }
@@ -336,7 +370,7 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   if (pass == Pass::trouble) return;
   search.spent.budget_spent = pass != Pass::confirmed;
   report.repair_search = std::move(search.spent);
-  if (winner) state_repair(*program, *winner, shown, report);
+  if (winner) state_repair(*program, *winner, shown, failed.grade.starter_constants, report);
 }
 
 }  // namespace shadelab::road
