@@ -231,7 +231,7 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   write("class/leo/shaders/phong_frag.js", leo);
   const auto run = run_cli("grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades"));
   ASSERT_EQ(run.status, 0) << run.output;
-  const std::string words = "`L` is not normalised: a direction must be a unit vector";
+  const std::string words = "`L` is not normalised: the direction to the light must be a unit vector";
   EXPECT_NE(run.output.find("2 students: " + words + "\n"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("1 student: " + words + " + `20.0` is not the number the homework uses here"), std::string::npos) << run.output;
   const std::string explanations = read_text(path("grades/explanations.csv"));

@@ -130,6 +130,13 @@ TEST(CourseProfileTest, ABadProfileIsRefusedWithTheFieldAndTheReason) {
             "test.json: checkpoints[0].formula.position: the reference's vertex shader declares no `out vec3 vPosition;`");
   EXPECT_EQ(with([](json& j) { j["checkpoints"][0]["formula"]["geometry"] = "shiny"; }),
             "test.json: checkpoints[0].formula.geometry: 'shiny' is not one of presets");
+  // The formula's vectors: its own names, each a vec3 local of the reference's fragment shader.
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["formula"]["vectors"]["eye"] = "V"; }),
+            "test.json: checkpoints[2].formula.vectors.eye: expected normal, light, view or reflected");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["formula"]["vectors"]["view"] = "toEye"; }),
+            "test.json: checkpoints[2].formula.vectors.view: the reference's fragment shader declares no `vec3 toEye`");
+  EXPECT_EQ(with([](json& j) { j["checkpoints"][2]["formula"]["vectors"]["view"] = "V)"; }),
+            "test.json: checkpoints[2].formula.vectors.view: expected a local's name");
   EXPECT_EQ(error_of(json::array()), "test.json: a course profile must be a JSON object");
   // Through the command line: the same words, and the failure's code.
   const fs::path bad = fs::temp_directory_path() / ("shadelab_course_bad_" + std::to_string(::getpid()) + ".json");
@@ -208,6 +215,7 @@ TEST(CourseProfileTest, TheSchemaAndTheReaderAgree) {
       {"notebook/images/0/file", [](json& j) { j["notebook"]["images"][0]["file"] = "/etc/passwd.png"; }},
       {"camera/fovYDegrees", [](json& j) { j["camera"]["fovYDegrees"] = 180; }},
       {"checkpoints/2/mistakes/2/reading/variant", [](json& j) { j["checkpoints"][2]["mistakes"][2]["reading"] = {{"variant", "blinn"}}; }},
+      {"checkpoints/2/formula/vectors", [](json& j) { j["checkpoints"][2]["formula"]["vectors"]["eye"] = "V"; }},
   };
   for (const auto& [where, change] : bad) {
     json j = builtin_json();

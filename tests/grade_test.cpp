@@ -229,7 +229,8 @@ TEST_F(GradeTest, AChangedExponentBesideAnotherMistakeNamesBothLines) {
   EXPECT_EQ(lines, (std::set<int>{15, 26})) << r["messages"].dump();  // specularAlpha's line and toEye's
   for (const json& repair : {search["found"], search["also"]}) {
     if (repair["line"] == 26) {
-      EXPECT_EQ(repair["text"], "`toEye` has the wrong sign") << search.dump();
+      // The student's own name for the reference's V, said in the homework's terms.
+      EXPECT_EQ(repair["text"], "`toEye`, the direction to the eye, has the wrong sign") << search.dump();
     }
   }
   // Each line said once, the exponent in the grader's words about it.
@@ -237,7 +238,7 @@ TEST_F(GradeTest, AChangedExponentBesideAnotherMistakeNamesBothLines) {
   ASSERT_GE(m.size(), 2u) << m.dump();
   const std::string said = m[0].get<std::string>() + "\n" + m[1].get<std::string>();
   EXPECT_NE(said.find("phong_frag.js line 15: your shader's exponent is 20.0; the course's starter uses 6.0"), std::string::npos) << m.dump();
-  EXPECT_NE(said.find("phong_frag.js line 26: `toEye` has the wrong sign"), std::string::npos) << m.dump();
+  EXPECT_NE(said.find("phong_frag.js line 26: `toEye`, the direction to the eye, has the wrong sign"), std::string::npos) << m.dump();
 }
 
 TEST_F(GradeTest, AnOldCheckpointNameIsGradedAsWhatItNowMeansAndSaysSo) {

@@ -10,6 +10,7 @@
 #include "grade/live_statements.h"
 #include "grade/reference_edits.h"
 #include "grade/repair_edits.h"
+#include "grade/repair_words.h"
 #include "grade/stage_tokens.h"
 #include "road/repair_search.h"
 #include "shader/glsl_lines.h"
@@ -259,6 +260,35 @@ TEST(RepairEditsTest, AStudentsOwnNamesForTheLocalsAlignWithTheReferences) {
     view_negated = view_negated || (e.kind == grade::RepairKind::negation_added && student_lines[e.line - 1].find("toEye =") != std::string_view::npos);
   }
   EXPECT_TRUE(view_negated) << "the view vector's own line is negated";
+}
+
+// The reference's name for a student's local, which a repair's words say in the homework's terms:
+// an aligned name, a name both declare, one a mended declaration aligns; none for a uniform or an
+// expression.
+TEST(RepairEditsTest, AStudentsLocalIsNamedAsTheReferencesVector) {
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string student =
+      typed(typed(typed(typed(reference, "vec3 L = normalize(", "vec3 toLight = normalize("), "dot(N, L)", "dot(N, toLight)"),
+                  "vec3 V = normalize(-vPosition);", "vec3 toEye = normalize(vPosition);"),
+            "dot(V, R)", "dot(toEye, R)");
+  const grade::AlignedLines lines(student, reference);
+  EXPECT_EQ(lines.reference_name("toLight", "float NdotL = dot(N, toLight);"), "L");
+  EXPECT_EQ(lines.reference_name("N", "vec3 N = normalize(vNormal);"), "N") << "a name both declare is one variable";
+  EXPECT_EQ(lines.reference_name("toEye", "vec3 toEye = normalize(-vPosition);"), "V") << "the edit mends its declaration";
+  EXPECT_EQ(lines.reference_name("toEye", "vec3 toEye = -normalize(vPosition);"), "V") << "it stands in for V in dot(toEye, R)";
+  const grade::AlignedLines unused(typed(student, "dot(toEye, R)", "dot(toLight, R)"), reference);
+  EXPECT_EQ(unused.reference_name("toEye", "vec3 toEye = normalize(vPosition);"), "") << "declared unlike V, and used nowhere";
+  EXPECT_EQ(lines.reference_name("uLightColor", "vec4 color = uAmbientColor;"), "");
+  EXPECT_EQ(lines.reference_name("dot(N, toLight)", "float NdotL = dot(N, toLight);"), "");
+  // The words: the student's name, and what it is in the homework's formula.
+  grade::RepairEdit e;
+  e.kind = grade::RepairKind::normalised;
+  e.subject = "toLight";
+  EXPECT_EQ(grade::repair_words(e, "the direction to the light"), "`toLight` is not normalised: the direction to the light must be a unit vector");
+  e.kind = grade::RepairKind::negation_added;
+  e.subject = "toEye";
+  EXPECT_EQ(grade::repair_words(e, "the direction to the eye"), "`toEye`, the direction to the eye, has the wrong sign");
+  EXPECT_EQ(grade::repair_words(e), "`toEye` has the wrong sign");
 }
 
 // A restored value is the reference's text, named and never shown; where it differs from the

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "grade/formula_vectors.h"
 #include "grade/grade_spec.h"
 #include "grade/repair_edits.h"
 #include "render/render_request.h"
@@ -76,6 +77,9 @@ struct CheckpointFormula {
   std::string position, normal;  // vPosition, vNormal
   std::string colour;            // vColor
   std::string geometry;          // a preset, or empty: the reference
+  // The reference fragment shader's locals that are the formula's vectors ({view, "V"}), so a
+  // repair at a student's name for one says what it is (grade/formula_vectors.h).
+  std::vector<std::pair<grade::FormulaVector, std::string>> vectors;
 };
 
 // A deliverable: the frames `images/{frame name with prefix}` and, when `code` names a stem, the

@@ -80,6 +80,7 @@ json checkpoint_json(const Checkpoint& k) {
     entry["formula"] = {{"terms", model::to_string(f->terms)}, {"position", f->position}, {"normal", f->normal}};
     if (!f->colour.empty()) entry["formula"]["colour"] = f->colour;
     if (!f->geometry.empty()) entry["formula"]["geometry"] = f->geometry;
+    for (const auto& [vector, local] : f->vectors) entry["formula"]["vectors"][std::string(name_in(grade::kFormulaVectorNames, vector))] = local;
   }
   return entry;
 }

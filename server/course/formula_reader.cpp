@@ -1,5 +1,7 @@
 #include "course/formula_reader.h"
 
+#include <regex>
+
 #include "grade/formula_geometry.h"
 
 namespace shadelab::course {
@@ -38,10 +40,27 @@ void check_lighting_inputs(const JsonReader& f, model::Terms terms, const Course
     f.fail(f.path() + ": the formula's exponent is the course's specularExponent, and it has none");
 }
 
+// `vectors`: {"view": "V", ...}, each a vector of the formula and a local the reference's
+// fragment shader declares as a vec3.
+void read_vectors(const JsonReader& f, const Preset* reference, CheckpointFormula& out) {
+  if (!f.has("vectors")) return;
+  const JsonReader vectors = f.object("vectors");
+  if (!f.get("vectors").is_object()) return;
+  for (const auto& [name, ignored] : f.get("vectors").items()) {
+    const auto vector = value_in(grade::kFormulaVectorNames, name);
+    const std::string local = vectors.text(name, "");
+    if (!vector) vectors.fail_at(vectors.at(name), "expected normal, light, view or reflected");
+    else if (!std::regex_match(local, std::regex("[A-Za-z_][A-Za-z0-9_]*"))) vectors.fail_at(vectors.at(name), "expected a local's name");
+    else if (reference && !std::regex_search(reference->fragment.text, std::regex("\\bvec3\\s+" + local + "\\s*[=;]")))
+      vectors.fail_at(vectors.at(name), "the reference's fragment shader declares no `vec3 " + local + "`");
+    else out.vectors.emplace_back(*vector, local);
+  }
+}
+
 }  // namespace
 
 CheckpointFormula checkpoint_formula(const JsonReader& f, const Preset* reference, const Course& course) {
-  f.only({"terms", "position", "normal", "colour", "geometry"});
+  f.only({"terms", "position", "normal", "colour", "geometry", "vectors"});
   f.require("terms") && f.require("position") && f.require("normal");
   CheckpointFormula out;
   const std::string terms = f.text("terms", "phong");
@@ -65,6 +84,7 @@ CheckpointFormula checkpoint_formula(const JsonReader& f, const Preset* referenc
     if (f.has("colour")) f.fail_at(f.at("colour"), "only a normalColour formula reads a colour varying");
     check_lighting_inputs(f, out.terms, course);
   }
+  read_vectors(f, reference, out);
   return out;
 }
 

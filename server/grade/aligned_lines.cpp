@@ -41,13 +41,12 @@ AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view refer
     if (const size_t at = declared_at(reference_lines_.back()); at < reference_lines_.back().size())
       names_.reference_declares.insert(reference_lines_.back()[at]);
   }
-  std::vector<Tokens> student_lines;
   for (const auto line : shader::lines_of(student_glsl)) {
-    student_lines.push_back(tokens(line));
-    if (const size_t at = declared_at(student_lines.back()); at < student_lines.back().size())
-      names_.student_declares.insert(student_lines.back()[at]);
+    student_lines_.push_back(tokens(line));
+    if (const size_t at = declared_at(student_lines_.back()); at < student_lines_.back().size())
+      names_.student_declares.insert(student_lines_.back()[at]);
   }
-  for (const Tokens& line : student_lines) {
+  for (const Tokens& line : student_lines_) {
     std::pair<std::string, std::string> declared;
     if (reads_as_reference(line, declared) && !declared.first.empty()) {
       names_.to_reference.insert(declared);
@@ -59,6 +58,46 @@ AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view refer
 bool AlignedLines::reads_as_reference(std::string_view line) const {
   std::pair<std::string, std::string> declared;
   return reads_as_reference(tokens(line), declared);
+}
+
+std::string AlignedLines::reference_name(std::string_view name, std::string_view line) const {
+  if (const auto to = names_.to_reference.find(name); to != names_.to_reference.end()) return to->second;
+  if (names_.student_declares.contains(name) && names_.reference_declares.contains(name)) return std::string(name);
+  std::pair<std::string, std::string> declared;
+  if (reads_as_reference(tokens(line), declared) && declared.first == name) return declared.second;
+  return stands_for(name);
+}
+
+std::string AlignedLines::stands_for(std::string_view name) const {
+  std::string found;
+  for (const Tokens& s : student_lines_)
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (s[i] != name) continue;
+      for (const Tokens& r : reference_lines_)
+        for (size_t j = 0; j < r.size(); ++j) {
+          const std::string& local = r[j];
+          if (!names_.reference_declares.contains(local) || names_.from_reference.contains(local) || names_.student_declares.contains(local))
+            continue;
+          if (!alike_around(s, i, r, j)) continue;
+          if (!found.empty() && found != local) return {};  // two places disagree: the grader cannot tell which
+          found = local;
+        }
+    }
+  return found;
+}
+
+bool AlignedLines::alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at) const {
+  constexpr size_t kAround = 2;
+  if (at < kAround || reference_at < kAround || at + kAround >= student.size() || reference_at + kAround >= reference.size()) return false;
+  for (size_t k = 1; k <= kAround; ++k)
+    if (!same_token(student[at - k], reference[reference_at - k]) || !same_token(student[at + k], reference[reference_at + k])) return false;
+  return true;
+}
+
+bool AlignedLines::same_token(const std::string& s, const std::string& r) const {
+  if (!is_identifier(s) || !is_identifier(r)) return s == r;
+  if (const auto to = names_.to_reference.find(s); to != names_.to_reference.end()) return to->second == r;
+  return s == r && !names_.from_reference.contains(r);
 }
 
 bool AlignedLines::reads_as_reference(const Tokens& line, std::pair<std::string, std::string>& declared) const {

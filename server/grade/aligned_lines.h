@@ -24,6 +24,12 @@ class AlignedLines {
   // makes it read as the reference's.
   bool reads_as_reference(std::string_view line) const;
 
+  // The reference's name for the student's local `name`: the one it aligns with, itself where both
+  // programs declare it, the one `line` (an edit's line, which may mend its declaration) aligns
+  // it with, or else the one it stands in for where the student uses it (`stands_for`); empty
+  // where none does or the places disagree.
+  std::string reference_name(std::string_view name, std::string_view line) const;
+
  private:
   using Tokens = std::vector<std::string>;
   struct Names {
@@ -36,7 +42,15 @@ class AlignedLines {
   static bool aligned(const Tokens& student, const Tokens& reference, const Names& names, std::pair<std::string, std::string>& declared);
   bool reads_as_reference(const Tokens& line, std::pair<std::string, std::string>& declared) const;
 
-  std::vector<Tokens> reference_lines_;
+  // The reference's local `name` stands in for where no declaration aligns it: at every place the
+  // student writes it, the reference's local at the place of a line whose tokens around it (two
+  // either side, names aligned) read alike, where those places agree on one: `dot(toEye,
+  // mirrored)` against `dot(V, R)`, mirrored aligned with R.
+  std::string stands_for(std::string_view name) const;
+  bool alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at) const;
+  bool same_token(const std::string& student, const std::string& reference) const;
+
+  std::vector<Tokens> reference_lines_, student_lines_;
   Names names_;
 };
 

@@ -190,7 +190,6 @@ void matrices(const Stage& s, const std::map<std::string, std::string, std::less
   }
 }
 
-
 // Two arguments in the wrong order: reflect(N, -L) -> reflect(-L, N), pow(a, x) -> pow(x, a). Not
 // where the order cannot matter (dot, max, min, distance), in a constructor or in a declaration.
 void argument_orders(const Stage& s, std::vector<RepairEdit>& out) {
@@ -325,40 +324,6 @@ std::string edited_line(std::string_view glsl, const RepairEdit& edit) {
   std::string line = edited.substr(from, to == std::string::npos ? std::string::npos : to - from);
   const size_t indent = line.find_first_not_of(" \t");
   return indent == std::string::npos ? std::string() : line.substr(indent);
-}
-
-std::string repair_words(const RepairEdit& e) {
-  const std::string x = "`" + e.subject + "`";
-  switch (e.said_as.value_or(e.kind)) {
-    case RepairKind::normalised: return x + " is not normalised: a direction must be a unit vector";
-    case RepairKind::unnormalised: return x + " is normalised where the homework uses its length as it is";
-    case RepairKind::clamped: return x + " is not clamped at 0: a cosine below 0 must count as 0, max(0.0, ...)";
-    case RepairKind::direction_w:
-      return e.other == "0.0" ? x + " is a direction, so its w must be 0: with w = 1 the matrix's translation moves it"
-                              : x + " is a point, so its w must be 1: with w = 0 the matrix's translation is lost";
-    case RepairKind::negation_removed:
-    case RepairKind::negation_added: return x + " has the wrong sign";
-    case RepairKind::operator_swapped:
-      return e.other == "-" ? x + " is added where the homework subtracts it" : x + " is subtracted where the homework adds it";
-    case RepairKind::matrix_added: return x + " is not transformed by `" + e.other + "`";
-    case RepairKind::factor_removed: return x + " should not multiply here: the homework uses the value as it is";
-    case RepairKind::term_removed: return x + " should not be there: it moves the value away from the homework's";
-    case RepairKind::name_replaced: return x + " is not the value the homework uses here";
-    case RepairKind::literal_refit: return x + " is not the number the homework uses here";
-    case RepairKind::arguments_swapped: return x + " has its arguments the wrong way round";
-    case RepairKind::flat_removed:
-      return x + " is declared `flat`: each triangle gets one value, where the homework interpolates it across the triangle (remove "
-                 "`flat` here and where the fragment stage declares " + x + ")";
-    case RepairKind::statement_restored:
-      if (e.stage == shader::Stage::fragment) return x + " is never written: the colour the fragment stage draws is what it writes there";
-      if (e.subject == "gl_Position") return x + " is never written: the vertex stage must say where each vertex lands";
-      return x + " is never written: the fragment stage reads what the vertex stage writes there";
-    case RepairKind::write_restored:
-      return x + " misses a statement the homework has here: it writes " + x + " once more than yours does";
-    case RepairKind::value_restored: return x + " is not computed as the homework computes it";
-    case RepairKind::condition_restored: return "the condition " + x + " is not the one the homework tests here";
-  }
-  return x + " differs from the homework";
 }
 
 }  // namespace shadelab::grade

@@ -129,8 +129,4 @@ std::string with_edit(std::string_view glsl, const RepairEdit& edit);
 // The line `edit` is on, as it reads after the edit.
 std::string edited_line(std::string_view glsl, const RepairEdit& edit);
 
-// What the edit says is wrong, in the homework's words, without the repaired text:
-// "L is not normalised: a direction must be a unit vector".
-std::string repair_words(const RepairEdit& edit);
-
 }  // namespace shadelab::grade

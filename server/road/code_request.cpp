@@ -54,7 +54,8 @@ grade::GradeSpec own_reference_spec(const course::Course& c, ShaderPair referenc
   return spec;
 }
 
-Expected<grade::GradeSpec> spec_of(const course::Course& c, CodeRequest& request, std::vector<std::string>& warnings) {
+// The spec graded against, and the words of its checkpoint's vectors (`vectors`).
+Expected<grade::GradeSpec> spec_of(const course::Course& c, CodeRequest& request, std::vector<std::string>& warnings, VectorWords& vectors) {
   if (request.reference.empty() == !request.own_reference)
     return make_error(ErrorCode::invalid_argument, "give either 'reference' (a checkpoint: " + comma_list(c.checkpoint_names()) +
                                                        ") or 'referenceVertex' and 'referenceFragment'");
@@ -62,6 +63,7 @@ Expected<grade::GradeSpec> spec_of(const course::Course& c, CodeRequest& request
   auto found = c.checkpoint(request.reference);
   if (!found) return found.take_error();
   if (found->alias) warnings.push_back(found->alias->note);
+  vectors = vector_words(*found->checkpoint);
   return c.grade_spec(*found->checkpoint, c.grade_options(*found->checkpoint));
 }
 
@@ -90,7 +92,7 @@ Expected<BuiltCode> code_submission(const course::Course& c, CodeRequest request
   if (auto s = shape_render(c, request.render, out.submission.render); !s) return s.take_error();
   if (auto s = attach_mesh(c, std::move(request.mesh), out.submission); !s) return s.take_error();
   if (auto valid = render::validate(out.submission.render.request, limits); !valid) return valid.take_error();
-  auto spec = spec_of(c, request, out.warnings);
+  auto spec = spec_of(c, request, out.warnings, out.submission.vector_words);
   if (!spec) return spec.take_error();
   if (auto s = apply_tolerance(request.tolerance, spec->options); !s) return s.take_error();
   out.submission.spec = std::move(*spec);

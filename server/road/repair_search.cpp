@@ -10,7 +10,9 @@
 #include <set>
 #include <vector>
 
+#include "grade/aligned_lines.h"
 #include "grade/diagnosis.h"
+#include "grade/repair_words.h"
 #include "grade/starter_constants.h"
 #include "worker/result.h"
 
@@ -179,10 +181,21 @@ Expected<std::vector<Graded>> grade_candidates(worker::WorkerPool& pool, const s
   return out;
 }
 
+// What the edit's subject is in the homework's formula, where it is a local of the student's
+// fragment stage that stands for one of `vectors`, the reference fragment stage's (by the
+// student's own name or the one aligned with it).
+std::string_view meaning_of(const Program& p, const grade::RepairEdit& e, const VectorWords& vectors) {
+  if (vectors.empty() || e.stage != shader::Stage::fragment || p.reference_fragment.empty()) return {};
+  const std::string& glsl = p.fragment.source.glsl;
+  const std::string name = grade::AlignedLines(glsl, p.reference_fragment).reference_name(e.subject, grade::edited_line(glsl, e));
+  const auto found = vectors.find(name);
+  return found == vectors.end() ? std::string_view() : std::string_view(found->second);
+}
+
 // One edit of a confirmed repair, said as far as `shown` allows.
-grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::RepairShown shown) {
+grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::RepairShown shown, const VectorWords& vectors) {
   const StudentStage& stage = p[e.stage];
-  grade::Repair repair{e.kind, std::nullopt, std::nullopt, grade::repair_words(e), std::nullopt};
+  grade::Repair repair{e.kind, std::nullopt, std::nullopt, grade::repair_words(e, meaning_of(p, e, vectors)), std::nullopt};
   if (shown != grade::RepairShown::what) {
     repair.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
     repair.line = stage.source.locate(e.line, 0).file_line;
@@ -218,10 +231,10 @@ std::optional<std::string> constant_named(const Program& p, const grade::RepairE
 
 // The confirmed repair, said as far as `shown` allows: "phong_frag.js line 20: L is not normalised:
 // ..." for each edit, then, with the repaired lines, "With `...` the frames match ...".
-void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown, const std::vector<grade::StarterConstant>& constants,
-                  grade::Report& report) {
+void state_repair(const Program& p, const Candidate& c, grade::RepairShown shown, const VectorWords& vectors,
+                  const std::vector<grade::StarterConstant>& constants, grade::Report& report) {
   std::vector<grade::Repair> repairs;
-  for (const auto& e : c.edits) repairs.push_back(repair_of(p, e, shown));
+  for (const auto& e : c.edits) repairs.push_back(repair_of(p, e, shown, vectors));
   std::vector<std::string> said, lines;
   bool constant_said = false;  // the grader's message on a changed constant, now at its line
   for (size_t i = 0; i < repairs.size(); ++i) {
@@ -349,7 +362,7 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 }
 
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
-                   grade::Report& report, const RepairBudget& budget) {
+                   const VectorWords& vectors, grade::Report& report, const RepairBudget& budget) {
   const auto program = program_of(failed);
   if (!program || budget.confirmations < 1) return;  // nothing screened could be stated
   Search search{pool, failed, mesh_bytes, budget, report};
@@ -370,7 +383,7 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   if (pass == Pass::trouble) return;
   search.spent.budget_spent = pass != Pass::confirmed;
   report.repair_search = std::move(search.spent);
-  if (winner) state_repair(*program, *winner, shown, failed.grade.starter_constants, report);
+  if (winner) state_repair(*program, *winner, shown, vectors, failed.grade.starter_constants, report);
 }
 
 }  // namespace shadelab::road

@@ -9,6 +9,8 @@
 // a screened pass is rendered again at the grade's own frames, and only that render states a
 // repair. The budget is counted, never timed, so the answer is the same on a busy or an idle
 // machine and on any GPU; it lives on the road because only the road may run more jobs.
+#include <functional>
+#include <map>
 #include <string>
 
 #include "grade/report.h"
@@ -35,6 +37,10 @@ struct RepairBudget {
   double screen_deadline_share = 0.25;
 };
 
+// The reference's locals that are vectors of the homework's formula, each with its words
+// (grade/formula_vectors.h): "V": "the direction to the eye".
+using VectorWords = std::map<std::string, std::string, std::less<>>;
+
 // Whether a report is one the search is for: a failing grade that drew its frames and that
 // neither the formula nor the course's catalogue explained. A starter constant the student
 // changed (one of `constants`, the grader's own diagnosis) names one change: whether it is the
@@ -43,10 +49,11 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 
 // Searches the program `failed` drew (a grade job), and writes into `report` what it tried
 // (`repair_search`) and, when a repair is confirmed, as much of it as `shown` says among its
-// messages (what is wrong; where; the repaired line). When the
+// messages (what is wrong; where; the repaired line), an edit at a local `vectors` names said with
+// its words ("`toEye`, the direction to the eye, has the wrong sign"). When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
-                   grade::Report& report, const RepairBudget& budget = {});
+                   const VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {});
 
 }  // namespace shadelab::road

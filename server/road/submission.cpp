@@ -139,7 +139,7 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   if (searching) grade::name_catalogued_constants(report, spec, job.request.fragment.text);
   if (!repairable) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
   const size_t warned = report.warnings.size();
-  search_repair(pool, job, submission.mesh_bytes, submission.repair_shown, report, submission.repair);
+  search_repair(pool, job, submission.mesh_bytes, submission.repair_shown, submission.vector_words, report, submission.repair);
   if (report.repair_search && report.repair_search->found) return CodeGrade{std::move(a.answered->result), seconds_since(start)};
   const Searched searched{report.repair_search, {report.warnings.begin() + static_cast<std::ptrdiff_t>(warned), report.warnings.end()}};
   return explained_after_search(pool, job, submission, searched, a, start);
@@ -151,11 +151,19 @@ int full_renders(const grade::Report& report) {
   return report.attempts + (search ? search->confirmations + (search->found ? 0 : 1) : 0);
 }
 
+VectorWords vector_words(const course::Checkpoint& checkpoint) {
+  VectorWords out;
+  if (checkpoint.formula)
+    for (const auto& [vector, local] : checkpoint.formula->vectors) out.emplace(local, name_in(grade::kFormulaVectorWords, vector));
+  return out;
+}
+
 Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
                                      const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
   CodeSubmission out{worker::course_job(c, worker::JobKind::grade, std::move(vertex), std::move(fragment)), {}, c.grade_spec(checkpoint, options),
                      render.limits};
   out.repair_shown = c.repair_shown;
+  out.vector_words = vector_words(checkpoint);
   if (auto s = worker::attach_course_mesh(c, render.mesh.empty() ? c.default_mesh : render.mesh, out.render, out.mesh_bytes); !s)
     return s.take_error();
   auto& r = out.render.request;

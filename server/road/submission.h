@@ -42,6 +42,7 @@ struct CodeSubmission {
   // How much of a failing grade's repair (road/repair_search.h) is said: the course's choice for
   // its students, the repaired line for whoever may see the references.
   grade::RepairShown repair_shown = grade::RepairShown::where;
+  VectorWords vector_words;  // the checkpoint's formula's vectors, for a repair's words
   RepairBudget repair;  // 0 candidates: no search
 };
 
@@ -72,6 +73,10 @@ Expected<CodeGrade> grade_misread(const Error& field_error, const std::optional<
 // A deliverable not handed in at all (no shader pair in a student's folder): 0, saying what was
 // looked for.
 grade::Report not_handed_in(const std::string& looked_for, const std::string& checkpoint, double max_score);
+
+// The reference's locals that are `checkpoint`'s formula's vectors, with their words ("V": "the
+// direction to the eye"); none where the checkpoint has no formula or names none.
+VectorWords vector_words(const course::Checkpoint& checkpoint);
 
 // How the course draws a checkpoint's code: one of its meshes (empty: its default), its canvas and
 // frames unless a run sets others.

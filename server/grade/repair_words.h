@@ -1,0 +1,17 @@
+#pragma once
+// What a repair's edit says is wrong, in the homework's words and without the repaired text (a
+// student may be shown these; the repaired line is for whoever may see the references).
+#include <string>
+#include <string_view>
+
+#include "grade/repair_edits.h"
+
+namespace shadelab::grade {
+
+// "`L` is not normalised: a direction must be a unit vector". `meaning`: what the edit's subject
+// is in the homework's formula, where the course names it (grade/formula_vectors.h): "`L` is not
+// normalised: the direction to the light must be a unit vector", "`toEye`, the direction to the
+// eye, has the wrong sign".
+std::string repair_words(const RepairEdit& edit, std::string_view meaning = {});
+
+}  // namespace shadelab::grade
