@@ -82,6 +82,15 @@ Status apply_tolerance(const ToleranceShape& t, grade::GradeOptions& options) {
 
 }  // namespace
 
+// Here rather than beside course_code: the request's parsers are built without the road's pool
+// (tests/fuzz), and both need it.
+VectorWords vector_words(const course::Checkpoint& checkpoint) {
+  VectorWords out;
+  if (checkpoint.formula)
+    for (const auto& [vector, local] : checkpoint.formula->vectors) out.emplace(local, name_in(grade::kFormulaVectorWords, vector));
+  return out;
+}
+
 Expected<BuiltCode> code_submission(const course::Course& c, CodeRequest request, const course::Viewer& viewer,
                                     const render::RenderLimits& limits) {
   std::vector<std::string> warnings;

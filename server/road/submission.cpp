@@ -151,13 +151,6 @@ int full_renders(const grade::Report& report) {
   return report.attempts + (search ? search->confirmations + (search->found ? 0 : 1) : 0);
 }
 
-VectorWords vector_words(const course::Checkpoint& checkpoint) {
-  VectorWords out;
-  if (checkpoint.formula)
-    for (const auto& [vector, local] : checkpoint.formula->vectors) out.emplace(local, name_in(grade::kFormulaVectorWords, vector));
-  return out;
-}
-
 Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
                                      const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
   CodeSubmission out{worker::course_job(c, worker::JobKind::grade, std::move(vertex), std::move(fragment)), {}, c.grade_spec(checkpoint, options),
