@@ -279,6 +279,10 @@ TEST(RepairEditsTest, AStudentsLocalIsNamedAsTheReferencesVector) {
   const grade::AlignedLines unused(typed(student, "dot(toEye, R)", "dot(toLight, R)"), reference);
   EXPECT_EQ(unused.reference_name("toEye", "vec3 toEye = normalize(vPosition);"), "") << "declared unlike V, and used nowhere";
   EXPECT_EQ(lines.reference_name("uLightColor", "vec4 color = uAmbientColor;"), "");
+  // A uniform where the reference reads L is the uniform still, never "the direction to the light".
+  const std::string no_l = typed(typed(reference, "vec3 L = normalize(uLightPosition - vPosition);", ""), "dot(N, L)", "dot(N, uLightPosition)");
+  const grade::AlignedLines uniform_for_l(no_l, reference);
+  EXPECT_EQ(uniform_for_l.reference_name("uLightPosition", "float NdotL = dot(N, uLightPosition);"), "");
   EXPECT_EQ(lines.reference_name("dot(N, toLight)", "float NdotL = dot(N, toLight);"), "");
   // The words: the student's name, and what it is in the homework's formula.
   grade::RepairEdit e;

@@ -65,7 +65,8 @@ std::string AlignedLines::reference_name(std::string_view name, std::string_view
   if (names_.student_declares.contains(name) && names_.reference_declares.contains(name)) return std::string(name);
   std::pair<std::string, std::string> declared;
   if (reads_as_reference(tokens(line), declared) && declared.first == name) return declared.second;
-  return stands_for(name);
+  // Only a local the student declares stands in for one: a uniform or an input is what it is.
+  return names_.student_declares.contains(name) ? stands_for(name) : std::string();
 }
 
 std::string AlignedLines::stands_for(std::string_view name) const {
