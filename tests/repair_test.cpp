@@ -12,6 +12,7 @@
 #include "grade/repair_edits.h"
 #include "grade/repair_words.h"
 #include "grade/stage_tokens.h"
+#include "grade/value_variation.h"
 #include "road/repair_search.h"
 #include "shader/glsl_lines.h"
 #include "shader/shader_source.h"
@@ -300,12 +301,14 @@ TEST(RepairEditsTest, AStudentsLocalIsNamedAsTheReferencesVector) {
 // own text. Where it differs by more, no change is claimed.
 TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
-  const auto words = [&](const std::string& find, const std::string& replace, const std::string& restored_line) {
-    const std::string wrong = typed(reference, find, replace);
+  const auto words_in = [&](const std::string& wrong, const std::string& restored_line) {
     for (const auto& e : grade::reference_edits(wrong, reference, shader::Stage::fragment))
       if (e.kind == grade::RepairKind::value_restored && grade::edited_line(wrong, e) == restored_line) return grade::repair_words(e);
     ADD_FAILURE() << "no value restored to " << restored_line;
     return std::string();
+  };
+  const auto words = [&](const std::string& find, const std::string& replace, const std::string& restored_line) {
+    return words_in(typed(reference, find, replace), restored_line);
   };
   const std::string color = "vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);";
   EXPECT_EQ(words("normalize(uLightPosition - vPosition)", "(uLightPosition - vPosition)", "vec3 L = normalize(uLightPosition - vPosition);"),
@@ -324,9 +327,46 @@ TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   for (const auto& e : grade::reference_edits(w0, vertex, shader::Stage::vertex))
     if (e.kind == grade::RepairKind::value_restored) w_words.push_back(grade::repair_words(e));
   EXPECT_EQ(w_words, std::vector<std::string>{"`aVertexPosition` is a point, so its w must be 1: with w = 0 the matrix's translation is lost"});
-  EXPECT_EQ(words("uDiffuseColor * uLightColor * max(0.0, NdotL)", "vec4(0.0)", color), "`color` is not computed as the homework computes it")
+  EXPECT_EQ(words("vec3 R = reflect(-L, N);", "vec3 R = normalize(L + V);", "vec3 R = reflect(-L, N);"), "`R` is not computed as the homework computes it")
       << "a term replaced by another is more than one change";
-  EXPECT_EQ(words("vec3 R = reflect(-L, N);", "vec3 R = normalize(L + V);", "vec3 R = reflect(-L, N);"), "`R` is not computed as the homework computes it");
+  // More than one change, where the student's value is the same everywhere and the reference's is
+  // not: that is said, with the inputs the reference's value reads itself.
+  EXPECT_EQ(words("normalize(-vPosition)", "vec3(0.0, 0.0, 1.0)", "vec3 V = normalize(-vPosition);"),
+            "`V` is the same at every point, where the homework computes it at each point from `vPosition`");
+  EXPECT_EQ(words("normalize(uLightPosition - vPosition)", "normalize(uLightPosition)", "vec3 L = normalize(uLightPosition - vPosition);"),
+            "`L` is the same at every point, where the homework computes it at each point from `vPosition`");
+  EXPECT_EQ(words("uDiffuseColor * uLightColor * max(0.0, NdotL)", "vec4(0.0)", color),
+            "`color` is the same at every point, where the homework's changes from point to point")
+      << "the reference's colour reads NdotL, a local written from the inputs";
+  // Not known to be constant: a local (it may hide an input), or a function of the stage's own.
+  EXPECT_EQ(words("normalize(-vPosition)", "normalize(L + N)", "vec3 V = normalize(-vPosition);"),
+            "`V` is not computed as the homework computes it");
+  const std::string own_function =
+      typed(typed(reference, "void main(void) {", "vec3 eye() { return vec3(0.0, 0.0, 1.0); }\nvoid main(void) {"), "normalize(-vPosition)", "eye()");
+  EXPECT_EQ(words_in(own_function, "vec3 V = normalize(-vPosition);"), "`V` is not computed as the homework computes it");
+}
+
+// What varies from point to point: the stage's inputs, and what it writes from them however many
+// writes away; what is constant: uniforms, numbers and the built-ins of them, nothing else.
+TEST(RepairEditsTest, AValueVariesWhereItReadsAnInputThroughAnyLocal) {
+  const std::string glsl = glsl_of("specular", shader::Stage::fragment);
+  const auto t = shader::tokens_of(glsl);
+  const grade::StageVariation stage(t);
+  const auto value = [](const std::string& text) { return shader::tokens_of(text); };
+  for (const std::string v : {"vPosition", "-vPosition.xyz", "R", "dot(V, R)", "NdotL", "gl_FragCoord.x"}) {
+    const auto tokens = value(v);
+    EXPECT_TRUE(stage.varies(tokens)) << v;
+    EXPECT_FALSE(stage.constant(tokens)) << v;
+  }
+  for (const std::string v : {"vec3(0.0, 0.0, 1.0)", "normalize(uLightPosition)", "uAmbientColor * 0.5", "uLightPosition.xyz"}) {
+    const auto tokens = value(v);
+    EXPECT_TRUE(stage.constant(tokens)) << v;
+    EXPECT_FALSE(stage.varies(tokens)) << v;
+  }
+  EXPECT_FALSE(stage.constant(value("eye()"))) << "a function of the stage's own may read an input";
+  EXPECT_FALSE(stage.varies(value("eye()"))) << "nor is it known to vary";
+  EXPECT_EQ(stage.inputs_read(value("normalize(uLightPosition - vPosition) + vNormal - vPosition")),
+            (std::vector<std::string>{"vPosition", "vNormal"}));
 }
 
 // An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.

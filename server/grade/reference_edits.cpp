@@ -5,8 +5,10 @@
 #include <optional>
 #include <set>
 
+#include "core/words.h"
 #include "grade/stage_tokens.h"
 #include "grade/value_difference.h"
+#include "grade/value_variation.h"
 
 namespace shadelab::grade {
 
@@ -242,6 +244,7 @@ void restored_writes(const Stage& s, const Stage& reference, std::vector<RepairE
 // value of R; the first write of `color` that left the diffuse term out gets it back).
 void restored_values(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
   std::set<std::string_view, std::less<>> seen;
+  const StageVariation student_varies(s.t), reference_varies(reference.t);
   for (size_t i = 1; i + 2 < s.size(); ++i) {
     if (!s.identifier(i) || !s.is(i + 1, "=") || s.is(i + 2, "=") || !seen.insert(s.t[i].text).second) continue;
     const std::string_view name = s.t[i].text;
@@ -262,6 +265,11 @@ void restored_values(const Stage& s, const Stage& reference, std::vector<RepairE
         e.said_as = d->said_as;
         e.subject = d->subject;
         e.other = d->other;
+      } else if (student_varies.constant(student_value) && reference_varies.varies(reference_value)) {
+        e.constant_value = true;
+        std::vector<std::string> inputs;
+        for (const auto& input : reference_varies.inputs_read(reference_value)) inputs.push_back("`" + input + "`");
+        e.other = and_list(inputs);
       }
       out.push_back(std::move(e));
     }

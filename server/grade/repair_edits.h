@@ -103,6 +103,11 @@ struct RepairEdit {
   // value_restored: the student's own edit the restored value amounts to, where it is one
   // (grade/value_difference.h); its words are said, with `subject` and `other` set for them.
   std::optional<RepairKind> said_as;
+  // value_restored, where no one change says it: the student's value is the same at every point
+  // where the reference's varies (grade/value_variation.h); `other` then names, as words, the
+  // stage's inputs the reference's value reads itself ("`vPosition`"), empty where it reads them
+  // through its locals alone.
+  bool constant_value = false;
 };
 
 // Every edit of the kinds above that applies to `glsl` (one stage, as the driver gets it),

@@ -2,6 +2,19 @@
 
 namespace shadelab::grade {
 
+namespace {
+
+// A value the same everywhere where the homework's varies: at every point of the fragment stage,
+// for every vertex of the vertex stage.
+std::string same_everywhere(const RepairEdit& e) {
+  const bool vertex = e.stage == shader::Stage::vertex;
+  const std::string same = vertex ? " is the same for every vertex, where the homework" : " is the same at every point, where the homework";
+  if (e.other.empty()) return same + (vertex ? "'s changes from vertex to vertex" : "'s changes from point to point");
+  return same + (vertex ? " computes it for each vertex from " : " computes it at each point from ") + e.other;
+}
+
+}  // namespace
+
 std::string repair_words(const RepairEdit& e, std::string_view meaning) {
   // The subject, and where the course names what it is, that too: "`toEye`, the direction to the eye,".
   const std::string name = "`" + e.subject + "`", x = meaning.empty() ? name : name + ", " + std::string(meaning) + ",";
@@ -31,7 +44,9 @@ std::string repair_words(const RepairEdit& e, std::string_view meaning) {
       return x + " is never written: the fragment stage reads what the vertex stage writes there";
     case RepairKind::write_restored:
       return x + " misses a statement the homework has here: it writes " + name + " once more than yours does";
-    case RepairKind::value_restored: return x + " is not computed as the homework computes it";
+    case RepairKind::value_restored:
+      if (e.constant_value) return x + same_everywhere(e);
+      return x + " is not computed as the homework computes it";
     case RepairKind::condition_restored: return "the condition " + x + " is not the one the homework tests here";
   }
   return x + " differs from the homework";
