@@ -14,6 +14,7 @@
 #include "grade/diagnosis.h"
 #include "grade/repair_words.h"
 #include "grade/starter_constants.h"
+#include "shader/glsl_lines.h"
 #include "worker/result.h"
 
 namespace shadelab::road {
@@ -206,13 +207,6 @@ grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::Rep
   return repair;
 }
 
-// The line of `glsl` that byte `at` is on.
-std::string_view line_at(std::string_view glsl, size_t at) {
-  const size_t start = at == 0 ? 0 : glsl.rfind('\n', at - 1);
-  const size_t from = start == std::string_view::npos || at == 0 ? 0 : start + 1;
-  return glsl.substr(from, glsl.find('\n', at) - from);
-}
-
 // Where the grader named a changed starter constant ("your shader's exponent is 20.0; the
 // course's starter uses 6.0", the first message: grade/judge_code.h) and `e` refits the number
 // that line gives it, that message is the edit's words at its line: said once, not twice.
@@ -223,7 +217,7 @@ std::optional<std::string> constant_named(const Program& p, const grade::RepairE
   const auto changed = grade::changed_starter_constants(constants, p.fragment.file->text);
   if (changed.size() != 1) return std::nullopt;  // which message names which constant is not ours to guess
   const std::regex gives("\\b" + changed.front().variable + "\\s*=");
-  const std::string_view line = line_at(p.fragment.source.glsl, e.begin);
+  const std::string_view line = shader::line_of(p.fragment.source.glsl, e.line);
   if (!std::regex_search(line.begin(), line.end(), gives)) return std::nullopt;
   const std::string& message = report.messages.front();
   return message.ends_with('.') ? message : message + ".";
