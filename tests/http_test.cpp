@@ -325,10 +325,12 @@ TEST_F(HttpTest, HostileShadersAreStoppedWhileNormalRequestsGoOn) {
   // It waits for one hostile job's worker at most: that job's deadline is CPU time, capped on the
   // wall clock at wall_clock_factor deadlines, which is what a machine busy with other work
   // stretches it to (measured: 13.5 s beside a second full test suite). Behind both hostile jobs it
-  // would wait twice that.
+  // would wait twice that. The bound is halfway between the two: after the wait, a worker is
+  // started again and the render drawn, which a loaded machine stretches too (2.4 s past one wait,
+  // seen beside a full suite, a build and a benchmark on two cores).
   const auto config = testkit::test_config();
   const auto one_worker_freed = config.pool.wall_clock_factor * std::max(config.pool.compile_deadline, config.pool.render_deadline);
-  EXPECT_LT(std::chrono::steady_clock::now() - normal_start, one_worker_freed + std::chrono::seconds(2));
+  EXPECT_LT(std::chrono::steady_clock::now() - normal_start, one_worker_freed * 3 / 2);
 
   const auto loop = hostile_loop.get();
   expect_problem(loop, 422, "render_timeout");
