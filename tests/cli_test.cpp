@@ -210,17 +210,22 @@ TEST_F(CliTest, BatchGradingScoresAHangingSubmissionZeroAndGoesOn) {
 }
 
 // A class's failing students are counted by their mistake: where the repair search confirmed one,
-// by its words (never the line, which differs between students), beside the formula's labels.
+// by its label (never the line, nor the student's own name for a vector, which differ between
+// students), beside the formula's labels.
 TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
+  const auto replaced = [](std::string text, const std::string& find, const std::string& with) {
+    text.replace(text.find(find), find.size(), with);
+    return text;
+  };
   const std::string right = "vec3 L = normalize(uLightPosition - vPosition);";
-  for (const char* who : {"ivan", "judy"}) {
-    std::string fragment = preset("specular_frag.js");
-    // judy's line is one further down: the same mistake at another line
-    fragment.replace(fragment.find(right), right.size(), std::string(who == std::string("judy") ? "\n" : "") + "vec3 L = uLightPosition - vPosition;");
-    write(std::string("class/") + who + "/shaders/phong_vert.js", preset("specular_vert.js"));
-    write(std::string("class/") + who + "/shaders/phong_frag.js", fragment);
-  }
+  write("class/ivan/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/ivan/shaders/phong_frag.js", replaced(preset("specular_frag.js"), right, "vec3 L = uLightPosition - vPosition;"));
+  // judy made ivan's mistake one line further down, and calls the direction to the light toLight.
+  std::string judy = replaced(preset("specular_frag.js"), right, "\nvec3 toLight = uLightPosition - vPosition;");
+  judy = replaced(replaced(judy, "dot(N, L)", "dot(N, toLight)"), "reflect(-L, N)", "reflect(-toLight, N)");
+  write("class/judy/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/judy/shaders/phong_frag.js", judy);
   write("class/kim/shaders/phong_vert.js", preset("specular_vert.js"));
   write("class/kim/shaders/phong_frag.js", preset("specular_frag.js"));
   // leo made ivan's mistake and changed the exponent too: counted by both, apart from ivan and judy.
@@ -231,11 +236,13 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   write("class/leo/shaders/phong_frag.js", leo);
   const auto run = run_cli("grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades"));
   ASSERT_EQ(run.status, 0) << run.output;
-  const std::string words = "`L` is not normalised: the direction to the light must be a unit vector";
-  EXPECT_NE(run.output.find("2 students: " + words + "\n"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("1 student: " + words + " + `20.0` is not the number the homework uses here"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("2 students: L not normalised\n"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("1 student: L not normalised + `20.0` not the homework's number"), std::string::npos) << run.output;
   const std::string explanations = read_text(path("grades/explanations.csv"));
-  EXPECT_NE(explanations.find(words + ",2,ivan judy\n"), std::string::npos) << explanations;
+  EXPECT_NE(explanations.find("L not normalised,2,ivan judy\n"), std::string::npos) << explanations;
+  // Each student still reads the words of their own program, at their own line.
+  EXPECT_NE(read_text(path("grades/judy/results.json")).find("`toLight` is not normalised: the direction to the light must be a unit vector"),
+            std::string::npos);
   // What each grade cost, counted: kim's program drawn once; ivan's, and its repair confirmed by
   // a render of its own; and the class's sum said on the batch's last lines.
   std::map<std::string, nlohmann::json> journal;

@@ -52,4 +52,31 @@ std::string repair_words(const RepairEdit& e, std::string_view meaning) {
   return x + " differs from the homework";
 }
 
+std::string repair_label(const RepairEdit& e, std::string_view symbol) {
+  const std::string s = symbol.empty() ? "`" + e.subject + "`" : std::string(symbol);
+  switch (e.said_as.value_or(e.kind)) {
+    case RepairKind::normalised: return s + " not normalised";
+    case RepairKind::unnormalised: return s + " normalised where the homework uses its length";
+    case RepairKind::clamped: return s + " not clamped at 0";
+    case RepairKind::direction_w: return s + (e.other == "0.0" ? " transformed as a point (w = 1)" : " transformed as a direction (w = 0)");
+    case RepairKind::negation_removed:
+    case RepairKind::negation_added: return s + " with the wrong sign";
+    case RepairKind::operator_swapped: return s + (e.other == "-" ? " added where the homework subtracts it" : " subtracted where the homework adds it");
+    case RepairKind::matrix_added: return s + " not transformed by `" + e.other + "`";
+    case RepairKind::factor_removed: return s + " multiplies where it should not";
+    case RepairKind::term_removed: return s + " added where it should not be";
+    case RepairKind::name_replaced: return s + " in place of another value";
+    case RepairKind::literal_refit: return s + " not the homework's number";
+    case RepairKind::arguments_swapped: return s + " with its arguments swapped";
+    case RepairKind::flat_removed: return s + " declared flat";
+    case RepairKind::statement_restored: return s + " never written";
+    case RepairKind::write_restored: return s + " written once less than the homework writes it";
+    case RepairKind::value_restored:
+      if (!e.constant_value) return s + " computed otherwise";
+      return s + (e.stage == shader::Stage::vertex ? " the same for every vertex" : " the same at every point");
+    case RepairKind::condition_restored: return "the condition " + s + " not the homework's";
+  }
+  return s + " differs from the homework";
+}
+
 }  // namespace shadelab::grade

@@ -14,4 +14,9 @@ namespace shadelab::grade {
 // eye, has the wrong sign".
 std::string repair_words(const RepairEdit& edit, std::string_view meaning = {});
 
+// The same mistake in a few words, alike for every student who made it, to count a class by:
+// "L not normalised" where `symbol` is the formula's name for the edit's subject ("L"), else the
+// subject as written ("`uSpecularColor` in place of another value").
+std::string repair_label(const RepairEdit& edit, std::string_view symbol = {});
+
 }  // namespace shadelab::grade

@@ -32,7 +32,8 @@ Report failed_submission(const Error& e, const std::string& checkpoint, double m
 std::string mistake_label(const Report& report) {
   if (report.repair_search && report.repair_search->found) {
     const auto& r = *report.repair_search;
-    return r.found->text + (r.also ? " + " + r.also->text : "");
+    const auto said = [](const Repair& repair) { return repair.label.empty() ? repair.text : repair.label; };
+    return said(*r.found) + (r.also ? " + " + said(*r.also) : "");
   }
   return report.explanation ? report.explanation->label : "";
 }
@@ -100,7 +101,8 @@ constexpr json_fields::Names kRepairKinds{kRepairKindNames};
 
 SHADELAB_JSON_FIELDS(Repair, field("kind", &Repair::kind, kRepairKinds), field("file", &Repair::file, When::omitted_when_empty),
                      field("line", &Repair::line, When::omitted_when_empty),
-                     field("text", &Repair::text), field("repairedLine", &Repair::repaired_line, When::omitted_when_empty))
+                     field("text", &Repair::text), field("repairedLine", &Repair::repaired_line, When::omitted_when_empty),
+                     field("label", &Repair::label, When::omitted_when_empty))
 
 SHADELAB_JSON_FIELDS(RepairSearch, field("found", &RepairSearch::found, When::omitted_when_empty),
                      field("also", &RepairSearch::also, When::omitted_when_empty),

@@ -73,6 +73,10 @@ struct Repair {
   // The line as the repair writes it: for whoever may see the references (a TA, an open server),
   // and for students only where their course shows it (RepairShown::repaired_line).
   std::optional<std::string> repaired_line;
+  // The mistake in a few words, alike for every student who made it: the formula's name for the
+  // vector where the subject is one, never the student's own ("L not normalised"). A class is
+  // counted by it (cli/class_batch.cpp).
+  std::string label;
 };
 
 // What the repair search of a failing code grade tried, counted (not timed): the same on any machine.

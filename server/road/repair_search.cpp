@@ -182,21 +182,23 @@ Expected<std::vector<Graded>> grade_candidates(worker::WorkerPool& pool, const s
   return out;
 }
 
-// What the edit's subject is in the homework's formula, where it is a local of the student's
-// fragment stage that stands for one of `vectors`, the reference fragment stage's (by the
-// student's own name or the one aligned with it).
-std::string_view meaning_of(const Program& p, const grade::RepairEdit& e, const VectorWords& vectors) {
-  if (vectors.empty() || e.stage != shader::Stage::fragment || p.reference_fragment.empty()) return {};
+// Which of the homework formula's `vectors` the edit's subject is, where it is a local of the
+// student's fragment stage that stands for one of the reference fragment stage's (by the student's
+// own name or the one aligned with it): the formula's name for it ("L") and its words; none else.
+const VectorWords::value_type* vector_of(const Program& p, const grade::RepairEdit& e, const VectorWords& vectors) {
+  if (vectors.empty() || e.stage != shader::Stage::fragment || p.reference_fragment.empty()) return nullptr;
   const std::string& glsl = p.fragment.source.glsl;
   const std::string name = grade::AlignedLines(glsl, p.reference_fragment).reference_name(e.subject, grade::edited_line(glsl, e));
   const auto found = vectors.find(name);
-  return found == vectors.end() ? std::string_view() : std::string_view(found->second);
+  return found == vectors.end() ? nullptr : &*found;
 }
 
 // One edit of a confirmed repair, said as far as `shown` allows.
 grade::Repair repair_of(const Program& p, const grade::RepairEdit& e, grade::RepairShown shown, const VectorWords& vectors) {
   const StudentStage& stage = p[e.stage];
-  grade::Repair repair{e.kind, std::nullopt, std::nullopt, grade::repair_words(e, meaning_of(p, e, vectors)), std::nullopt};
+  const auto* vector = vector_of(p, e, vectors);
+  grade::Repair repair{e.kind, std::nullopt, std::nullopt, grade::repair_words(e, vector ? std::string_view(vector->second) : ""),
+                       std::nullopt, grade::repair_label(e, vector ? std::string_view(vector->first) : "")};
   if (shown != grade::RepairShown::what) {
     repair.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
     repair.line = stage.source.locate(e.line, 0).file_line;
