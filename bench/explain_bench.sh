@@ -113,7 +113,9 @@ def run_grade(args):
     return time.monotonic() - start, json.loads(out[out.index("{"):out.rindex("}") + 1])
 
 def grade(paths, checkpoint, course=None):
-    args = [bin, "grade", "--vert", paths[0], "--frag", paths[1], "--reference", checkpoint, "--cache-dir", store]
+    # The formula's own reading of code: with a repair search, a confirmed repair explains code
+    # and the formula reads only what no repair was found for (bench/mutation_bench.py measures those).
+    args = [bin, "grade", "--vert", paths[0], "--frag", paths[1], "--reference", checkpoint, "--cache-dir", store, "--repair-candidates", "0"]
     return run_grade(args + (["--course", course] if course else []))
 
 PAGE_ANGLES = ["0", "19.88", "39.79", "59.95", "79.7", "99.83", "119.74", "139.91", "159.77"]

@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -19,8 +20,11 @@
 #include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "course/course.h"
 #include "grade/edge_placement.h"
+#include "grade/formula_explanation.h"
 #include "grade/formula_geometry.h"
+#include "grade/grade_renders.h"
 #include "image/encode.h"
 #include "model/fit.h"
 #include "render/sample_positions.h"
@@ -678,3 +682,111 @@ TEST_F(FormulaGradeTest, FramesTooSmallToReadAreSaidToBe) {
 }
 
 }  // namespace
+
+// A reading must not depend on the machine that drew the frames. Another GPU rounds a pixel's
+// colour a step or two apart from llvmpipe (the H100's frames of the course's presets were within
+// 3/255 of llvmpipe's on all but 0.003% of their pixels, README "On a GPU"), and a reading near
+// one of its rules then reads one way here and another there: a fixed view vector with an exponent
+// of 12 was explained on llvmpipe and not on the H100. Each case is read by the formula on its
+// frames as drawn here, then on the student's and the reference's frames with every channel moved
+// by up to `steps` eighth-bit steps either way (a fixed pattern): the same reading each time.
+namespace formula_stability {
+
+// Every channel the shader did not clamp moved by an amount in [-steps, steps] that a hash of the
+// pixel, the channel and `seed` picks: the same frames on every run.
+std::shared_ptr<const image::Image> rounded_apart(const image::Image& frame, int steps, std::uint32_t seed) {
+  auto out = std::make_shared<image::Image>(frame);
+  for (std::size_t i = 0; i < out->bytes.size(); ++i) {
+    // Alpha, and a channel the shader's output clamped: the clamp comes before the rounding, so
+    // every machine stores 0 and 255 alike.
+    if (i % 4 == 3 || out->bytes[i] == 0 || out->bytes[i] == 255) continue;
+    std::uint32_t h = static_cast<std::uint32_t>(i) * 2654435761u ^ seed * 40503u;
+    h ^= h >> 15;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    const int moved = static_cast<int>(out->bytes[i]) + static_cast<int>(h % static_cast<std::uint32_t>(2 * steps + 1)) - steps;
+    out->bytes[i] = static_cast<std::uint8_t>(std::clamp(moved, 1, 254));
+  }
+  return out;
+}
+
+grade::SharedFrames rounded_apart(const grade::SharedFrames& frames, int steps, std::uint32_t seed) {
+  if (steps == 0) return frames;
+  grade::SharedFrames out;
+  for (std::size_t k = 0; k < frames.size(); ++k) out.push_back(rounded_apart(*frames[k], steps, seed + static_cast<std::uint32_t>(k)));
+  return out;
+}
+
+struct Read {
+  std::string label;
+  bool explained = false;
+  double residual = 0;
+};
+
+// The checkpoint's reference with `edits` (find, replace) in its fragment stage, graded as code is
+// and read by the formula on frames moved `steps` apart.
+std::vector<Read> read_apart(const std::string& checkpoint, const std::vector<std::pair<std::string, std::string>>& edits,
+                             const std::vector<int>& steps) {
+  const course::Course& c = testkit::course();
+  grade::GradeSpec spec = c.grade_spec(*c.checkpoint(checkpoint)->checkpoint, {});
+  auto p = *c.preset(checkpoint);
+  for (const auto& [find, replace] : edits) {
+    const auto at = p.fragment.text.find(find);
+    EXPECT_NE(at, std::string::npos) << find;
+    if (at != std::string::npos) p.fragment.text.replace(at, find.size(), replace);
+  }
+  static grade::GradeRenders renders(testkit::shared_renderer());
+  const scene::Mesh& mesh = testkit::builtin(c.default_mesh);
+  renders.begin(spec);
+  render::RenderRequest r = c.render_request(p.vertex, p.fragment);
+  r.pixel_type = image::PixelType::u8;
+  r.semantics = render::FloatSemantics::ieee;
+  auto student = renders.submission_under_lights(spec, r, mesh);
+  render::RenderRequest ref = r;
+  ref.vertex = spec.reference_vertex;
+  ref.fragment = spec.reference_fragment;
+  auto reference = renders.cached_under_lights(spec, ref, mesh, c.default_mesh);
+  const auto* geometry = renders.surfaces(*spec.formula, ref, mesh, c.default_mesh, grade::GeometryKept::in_memory);
+  EXPECT_TRUE(student && reference && geometry);
+  if (!student || !reference || !geometry) return {};
+  std::vector<Read> out;
+  for (const int s : steps) {
+    const auto drawn = rounded_apart(student->frames, s, 1);
+    const auto referenced = rounded_apart(*reference, s, 7919);
+    const auto e = grade::explain_with_formula({&*spec.formula, ref.uniforms, spec.probes, geometry, &drawn, &referenced,
+                                                renders.sampled_surfaces(*spec.formula, ref, mesh, c.default_mesh, grade::GeometryKept::in_memory)},
+                                               spec.options)
+                       .explanation;
+    out.push_back({e.label, e.explained, e.residual});
+  }
+  return out;
+}
+
+}  // namespace formula_stability
+
+TEST(FormulaStabilityTest, AReadingIsTheSameOnFramesAnotherMachineRoundsApart) {
+  using formula_stability::read_apart;
+  const std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>> cases = {
+      {"a fixed view vector and an exponent of 12", {{"normalize(-vPosition)", "vec3(0.0, 0.0, 1.0)"}, {"float specularAlpha = 6.0;", "float specularAlpha = 12.0;"}}},
+      {"an exponent of 12", {{"float specularAlpha = 6.0;", "float specularAlpha = 12.0;"}}},
+      {"an exponent of 0.6", {{"float specularAlpha = 6.0;", "float specularAlpha = 0.6;"}}},
+      {"a fixed view vector", {{"normalize(-vPosition)", "vec3(0.0, 0.0, 1.0)"}}},
+      {"an ambient colour doubled", {{"vec4 color = uAmbientColor +", "vec4 color = 2.0 * uAmbientColor +"}}},
+      {"the normal negated", {{"vec3 N = normalize(vNormal);", "vec3 N = -normalize(vNormal);"}}},
+      {"a light written into the shader elsewhere", {{"normalize(uLightPosition - vPosition)", "normalize(vec3(-10.0, 8.0, 4.0) - vPosition)"}}},
+      {"a fixed view vector and the specular halved", {{"normalize(-vPosition)", "vec3(0.0, 0.0, 1.0)"}, {"uSpecularColor * uLightColor * pow", "0.5 * uSpecularColor * uLightColor * pow"}}},
+      {"Blinn's half vector and an exponent of 24", {{"vec3 R = reflect(-L, N);\n        color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);",
+                                "vec3 H = normalize(L + V);\n        color += uSpecularColor * uLightColor * pow(max(0.0, dot(N, H)), specularAlpha);"}, {"float specularAlpha = 6.0;", "float specularAlpha = 24.0;"}}},
+  };
+  const std::vector<int> steps = {0, 2, 3};
+  for (const auto& [what, edits] : cases) {
+    const auto reads = read_apart("specular", edits, steps);
+    ASSERT_EQ(reads.size(), steps.size()) << what;
+    EXPECT_TRUE(reads[0].explained) << what << ": " << reads[0].label;
+    for (std::size_t i = 1; i < reads.size(); ++i) {
+      EXPECT_EQ(reads[i].label, reads[0].label) << what << ", moved by up to " << steps[i] << "/255 (residual " << reads[i].residual << ", as drawn "
+                                                << reads[0].residual << ")";
+      EXPECT_EQ(reads[i].explained, reads[0].explained) << what << ", moved by up to " << steps[i] << "/255";
+    }
+  }
+}

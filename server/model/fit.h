@@ -72,7 +72,9 @@ struct Fit {
 // Every variant the checkpoint's terms allow, fitted on the sample alone: the course's own values
 // first where the sample finds them close (a variant that reproduces the frames with them keeps
 // them: the fitted values are then what the clamp and the 8 bits blur, not what the student
-// changed), then the fitted ones; variant after variant, as variants() lists them. None checked.
+// changed), then (Phong, where the fitted values come close on the sample and another exponent
+// draws it closer with the course's colours) those colours at that exponent, then every value
+// fitted; variant after variant, as variants() lists them. None checked.
 std::vector<Fit> sample_fits(const std::vector<DrawnFrame>& frames, const FitOptions& options);
 
 // Whether a fit's sample is close enough to be worth a check of every pixel (kSampleMargin).
