@@ -417,6 +417,11 @@ TEST_F(GradescopeTest, TheCourseInTheZipIsTheOneGradedBy) {
 // as setup.sh runs it): grading a student then reads them, and renders only the student's frames,
 // even for a failing submission whose diagnosis needs the whole catalogue.
 TEST_F(GradescopeTest, AStoreWarmedAtSetupMeansNoReferenceIsRenderedPerStudent) {
+  // A store of its own, empty: in the suite's shared one, renders other tests left would hide a
+  // warm that leaves them out (it did: the formula's geometry and the catalogue, which a student
+  // whose frames no repair explains reads, were rendered at the first such student's grade).
+  fs::remove(root_ / "source/reference-store");
+  fs::create_directories(root_ / "source/reference-store");
   const std::string env = "AUTOGRADER_ROOT='" + root_.string() + "' SHADELAB_BIN='" + SHADELAB_CLI + "' ";
   const auto warmed = shadelab::testkit::run_command(env + "bash '" + (kSource / "gradescope/warm_references.sh").string() + "'");
   ASSERT_EQ(warmed.status, 0) << warmed.output;

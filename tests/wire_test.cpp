@@ -68,6 +68,13 @@ TEST(WireTest, AGradeJobCarriesItsWholeSpec) {
   ASSERT_TRUE(back->fit);
   EXPECT_EQ(back->fit->max, job.fit->max);
   EXPECT_EQ(worker::to_message(*back).header, worker::to_message(job).header);
+  EXPECT_FALSE(back->grade.warm);
+  // A warm's grade says so; any other grade's job holds no "warm" at all (its bytes as before).
+  EXPECT_EQ(worker::to_message(job).header.dump().find("\"warm\":"), std::string::npos);
+  job.grade.warm = true;
+  auto warm = worker::job_from_message(worker::to_message(job, "mesh bytes"));
+  ASSERT_TRUE(warm) << warm.error().message;
+  EXPECT_TRUE(warm->grade.warm);
 }
 
 TEST(WireTest, ASceneTravelsParsedAndArrivesUnchanged) {

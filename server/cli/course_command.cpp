@@ -77,9 +77,9 @@ std::vector<grade::SavedFrame> blank_frames(const course::Course& c, const cours
   return out;
 }
 
-// Every checkpoint's reference and catalogue, rendered once into the store: a grade of its first
-// known mistake (a failing submission, so the whole catalogue is rendered), or of the reference
-// itself when it has none.
+// Every checkpoint's references, its formula's geometry and its catalogue under every light,
+// rendered once into the store: a grade that makes them all (grade::GradeSpec::warm) of its first
+// known mistake, or of the reference itself when it has none.
 int run_warm(const GradeFlags& flags) {
   if (flags.cache_dir.empty()) return fail(make_error(ErrorCode::invalid_argument, "course warm needs a --cache-dir to keep the renders in"));
   auto loaded = load_course(flags.course);
@@ -89,6 +89,7 @@ int run_warm(const GradeFlags& flags) {
   for (const auto& checkpoint : c.checkpoints) {
     GradeFlags f = flags;
     f.reference = checkpoint.name;
+    f.warm_store = true;
     const course::Preset& reference = *c.preset(checkpoint.reference);
     const grade::Mistake* first = checkpoint.mistakes.empty() ? nullptr : &checkpoint.mistakes.front().shaders;
     auto graded = grade_pair(pool, c, f, first ? first->vertex : reference.vertex, first ? first->fragment : reference.fragment);

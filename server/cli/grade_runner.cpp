@@ -54,7 +54,8 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
   if (!submission) return submission.take_error();
   submission->spec.reference_store.folder = f.cache_dir;
   submission->spec.heatmap = f.heatmaps;
-  submission->repair.candidates = f.repair_candidates;
+  submission->repair.candidates = f.warm_store ? 0 : f.repair_candidates;
+  submission->spec.warm = f.warm_store;
   if (f.show_repaired_line) submission->repair_shown = grade::RepairShown::repaired_line;
   return submission;
 }

@@ -34,6 +34,9 @@ struct GradeFlags {
   // A TA's own `grade` shows the repaired line; what students receive shows what their course says.
   bool show_repaired_line = false;
   grade::HeatMap heatmaps = grade::HeatMap::never;  // a class batch writes none; a command that does says when
+  // `course warm`: the grade makes every render a student's may read (grade::GradeSpec::warm),
+  // with no repair search (its candidates are the student's own programs, never kept).
+  bool warm_store = false;
   long timeout_ms = 10000;
   bool software = software_from_environment();
 };

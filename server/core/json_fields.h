@@ -36,6 +36,7 @@ enum class When {
   omitted_when_empty,    // an optional: no key when empty; missing or null reads as empty
   null_when_empty,       // an optional: null when empty; missing or null reads as empty
   default_when_missing,  // always written; missing when read: the struct's default stays
+  omitted_when_default,  // a number, flag or enum: no key when it is its type's default (T{}); missing reads as that
 };
 
 // The value as nlohmann writes and reads its type.
@@ -163,6 +164,9 @@ void write_one(nlohmann::json& j, const S& s, const F& f) {
     if (value) j[key] = f.codec.write(*value);
     else if (f.when == When::null_when_empty) j[key] = nullptr;
   } else {
+    using T = std::decay_t<decltype(value)>;
+    if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>)
+      if (f.when == When::omitted_when_default && value == T{}) return;
     j[key] = f.codec.write(value);
   }
 }
@@ -179,7 +183,8 @@ void read_one(const nlohmann::json& j, S& s, const F& f) {
     f.codec.read(*found, inner);
     value = std::move(inner);
   } else {
-    if (found == j.end() && f.when == When::default_when_missing) return;
+    if (found == j.end() && f.when == When::omitted_when_default) value = std::decay_t<decltype(value)>{};
+    if (found == j.end() && (f.when == When::default_when_missing || f.when == When::omitted_when_default)) return;
     f.codec.read(j.at(key), value);  // at(): a missing key throws, naming it
   }
 }

@@ -127,6 +127,11 @@ struct GradeSpec {
   // Saved frames must come from the course's page: ShadeLab's own frames lose the saved-frames
   // test (false: they are flagged only). Course::frames_from_page.
   bool frames_from_page = true;
+  // `shadelab course warm`'s grade: besides its own verdict, every render a failing grade of the
+  // checkpoint may read is made and kept in the store (the formula's geometry, averaged and each
+  // sample's, and every known mistake under every light), so that a store warmed once serves
+  // every student, whichever reading their frames take.
+  bool warm = false;
 
   bool wants_heatmap(bool passed) const { return heatmap == HeatMap::always || (heatmap == HeatMap::when_failing && !passed); }
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <vector>
 
 #include "grade/catalogue_reading.h"
 #include "grade/diagnosis.h"
@@ -45,6 +46,19 @@ std::optional<Explanation> formula_explanation(GradeRenders& renders, const Grad
       .explanation;
 }
 
+// `shadelab course warm` (GradeSpec::warm): every render a failing grade of the checkpoint may
+// read, made now and kept with the references, whatever this grade itself needed: which of them
+// a student's grade reads depends on their frames (the formula's reading, the catalogue's), and a
+// warm that read only its own submission's left the rest to the first student who needed them.
+void warm_the_store(GradeRenders& renders, const GradeSpec& spec, const render::RenderRequest& reference, const scene::Mesh& mesh,
+                    const std::string& mesh_key) {
+  if (spec.formula && renders.surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references))
+    if (const auto each_sample = renders.sampled_surfaces(*spec.formula, reference, mesh, mesh_key, GeometryKept::with_references)) each_sample();
+  std::vector<const Mistake*> every;
+  for (const auto& m : spec.mistakes) every.push_back(&m);
+  renders.rendered_mistakes(spec, every, reference, mesh, mesh_key);
+}
+
 }  // namespace
 
 Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
@@ -86,6 +100,7 @@ Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, c
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
   // The formula and the catalogue only for a submission that fails: a passing one needs no
   // diagnosis. The formula first: a known mistake it reads needs no render (catalogue_work).
+  if (spec.warm) warm_the_store(renders, spec, ref, **mesh, mesh_key);
   GradeResult result = assess(student->frames, student->non_finite, *reference, spec.options);
   std::optional<Explanation> explanation;
   if (!result.pass) {
