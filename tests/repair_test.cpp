@@ -7,6 +7,7 @@
 
 #include "course/course_reader.h"
 #include "grade/aligned_lines.h"
+#include "grade/classmate_edits.h"
 #include "grade/live_statements.h"
 #include "grade/reference_edits.h"
 #include "grade/repair_edits.h"
@@ -16,6 +17,7 @@
 #include "road/repair_search.h"
 #include "shader/glsl_lines.h"
 #include "shader/shader_source.h"
+#include "support/tutorial_program.h"
 #include "worker/course_job.h"
 #include "worker/pool.h"
 
@@ -427,4 +429,37 @@ TEST(RepairSearchTest, AJobsShareOfTheDeadlinesStopsAHangEarlier) {
   const std::string& why = result.error.message;
   EXPECT_TRUE(why.find("used more than 400 ms of CPU time") != std::string::npos || why.find("within 1600 ms of wall-clock time") != std::string::npos)
       << why;
+}
+
+// A student who names their values as a classmate does (`reflectDir`, where the reference writes
+// R) gets the classmate's value of it as an edit, where the course's reference offers none; what
+// the reference offers already is not offered twice, and the nearest classmate is the one whose
+// lines the student's are written like.
+TEST(ClassmateEditsTest, AClassmateWhoNamesAValueAsTheStudentDoesOffersTheirValueOfIt) {
+  const std::string vertex = glsl_of("specular", shader::Stage::vertex), reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string classmate = testkit::with_tutorial_main(reference);
+  const std::string student = typed(classmate, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)");
+  const auto restores_reflect_dir = [](const grade::RepairEdit& e) { return e.kind == grade::RepairKind::value_restored && e.subject == "reflectDir"; };
+
+  const auto own = grade::program_repair_edits({vertex, student}, {vertex, reference});
+  EXPECT_FALSE(std::any_of(own.begin(), own.end(), restores_reflect_dir)) << "the reference never writes reflectDir";
+  const auto offered = grade::classmate_edits({vertex, student}, {vertex, reference}, {{vertex, classmate}});
+  const auto restored = std::find_if(offered.begin(), offered.end(), restores_reflect_dir);
+  ASSERT_NE(restored, offered.end());
+  EXPECT_EQ(grade::edited_line(student, *restored), "vec3 reflectDir = reflect(-lightDir, norm);");
+  EXPECT_TRUE(grade::writes_reference_text(restored->kind)) << "a classmate's text is named, never shown";
+  for (const auto& e : offered) {
+    EXPECT_TRUE(grade::reads_reference(e.kind)) << "only edits that read the other program";
+    for (const auto& o : own)
+      EXPECT_FALSE(o.stage == e.stage && o.begin == e.begin && o.end == e.end && o.with == e.with) << "offered twice: " << e.with;
+  }
+  EXPECT_TRUE(grade::classmate_edits({vertex, student}, {vertex, reference}, {{vertex, reference}}).empty())
+      << "the reference as a classmate offers nothing the reference does not";
+
+  // Nearest: the classmate whose lines are the student's, before the reference; a copy counts once.
+  const auto nearest = grade::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}, {vertex, classmate}}, 3);
+  ASSERT_EQ(nearest.size(), 2u);
+  EXPECT_EQ(nearest[0].fragment, classmate);
+  EXPECT_EQ(nearest[1].fragment, reference);
+  EXPECT_EQ(grade::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}}, 1).front().fragment, classmate);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grade/aligned_lines.h"
+#include "grade/classmate_edits.h"
 #include "grade/diagnosis.h"
 #include "grade/repair_words.h"
 #include "grade/starter_constants.h"
@@ -32,11 +33,13 @@ struct StudentStage {
 struct Candidate {
   std::vector<grade::RepairEdit> edits;  // one, or a pair
   shader::ShaderFile vertex, fragment;   // the program with the edits made
+  bool from_class = false;               // a single a classmate's program offers (grade/classmate_edits.h)
 };
 
 struct Program {
   StudentStage vertex, fragment;
   std::string reference_vertex, reference_fragment;  // the GLSL the grade's reference draws with, or empty
+  std::vector<std::pair<std::string, std::string>> classmates;  // each passing classmate's GLSL: vertex, fragment
   const StudentStage& operator[](shader::Stage s) const { return s == shader::Stage::vertex ? vertex : fragment; }
 };
 
@@ -45,14 +48,20 @@ std::string glsl_or_empty(const shader::ShaderFile& file, shader::Stage stage) {
   return unwrapped ? std::move(unwrapped->glsl) : std::string();
 }
 
-std::optional<Program> program_of(const worker::Job& job) {
+std::optional<Program> program_of(const worker::Job& job, const std::vector<PassingProgram>& classmates) {
   auto vertex = shader::unwrap(job.request.vertex, shader::Stage::vertex);
   auto fragment = shader::unwrap(job.request.fragment, shader::Stage::fragment);
   if (!vertex || !fragment) return std::nullopt;
-  return Program{{&job.request.vertex, std::move(*vertex)},
-                 {&job.request.fragment, std::move(*fragment)},
-                 glsl_or_empty(job.grade.reference_vertex, shader::Stage::vertex),
-                 glsl_or_empty(job.grade.reference_fragment, shader::Stage::fragment)};
+  Program p{{&job.request.vertex, std::move(*vertex)},
+            {&job.request.fragment, std::move(*fragment)},
+            glsl_or_empty(job.grade.reference_vertex, shader::Stage::vertex),
+            glsl_or_empty(job.grade.reference_fragment, shader::Stage::fragment),
+            {}};
+  for (const auto& c : classmates) {
+    auto v = glsl_or_empty(c.vertex, shader::Stage::vertex), f = glsl_or_empty(c.fragment, shader::Stage::fragment);
+    if (!v.empty() && !f.empty()) p.classmates.emplace_back(std::move(v), std::move(f));
+  }
+  return p;
 }
 
 // The program with `edits` made: an edited stage given as the GLSL the edits made (the same
@@ -75,12 +84,31 @@ Candidate candidate_of(const Program& p, std::vector<grade::RepairEdit> edits) {
   return c;
 }
 
-// The budget's single edits, smallest first: the first `budget.candidates` of the student's own
-// and the first `budget.reference_candidates` of those that read the reference.
+// The edits the class's passing programs nearest the student's offer, beyond the reference's.
+std::vector<grade::RepairEdit> class_edits(const Program& p, const grade::StagePair& student, const RepairBudget& budget) {
+  if (p.classmates.empty() || budget.class_candidates <= 0 || p.reference_fragment.empty()) return {};
+  std::vector<grade::StagePair> class_programs;
+  for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
+  const auto nearest = grade::nearest_classmates(student, class_programs, static_cast<size_t>(std::max(0, budget.classmates)));
+  return grade::classmate_edits(student, {p.reference_vertex, p.reference_fragment}, nearest);
+}
+
+// The budget's single edits: the first `budget.class_candidates` the class offers, where it is
+// given, then, smallest first, the first `budget.candidates` of the student's own and the first
+// `budget.reference_candidates` of those that read the reference. The class's come first because
+// a class is given only to a second search, once the same program's first one confirmed none of
+// the others: screened again they would fail again, and could spend the confirmations again.
 std::vector<Candidate> single_candidates(const Program& p, const RepairBudget& budget) {
   int own = std::max(0, budget.candidates), reference = std::max(0, budget.reference_candidates);
+  int from_class = std::max(0, budget.class_candidates);
+  const grade::StagePair student{p.vertex.source.glsl, p.fragment.source.glsl};
   std::vector<Candidate> out;
-  for (auto& e : grade::program_repair_edits({p.vertex.source.glsl, p.fragment.source.glsl}, {p.reference_vertex, p.reference_fragment}))
+  for (auto& e : class_edits(p, student, budget))
+    if (from_class-- > 0) {
+      out.push_back(candidate_of(p, {std::move(e)}));
+      out.back().from_class = true;
+    }
+  for (auto& e : grade::program_repair_edits(student, {p.reference_vertex, p.reference_fragment}))
     if ((grade::reads_reference(e.kind) ? reference : own)-- > 0) out.push_back(candidate_of(p, {std::move(e)}));
   return out;
 }
@@ -320,6 +348,8 @@ struct Search {
 };
 
 // Pairs for a program no single edit repairs, at most `budget.pairs`, in this order:
+// - two singles the class offers (two of a passing program's values, where the student's program
+//   is written as that program is), in the singles' order;
 // - two singles that each make their line read as the reference's (the student's program aligned
 //   with the reference at two lines), in the singles' order;
 // - the single that drew nearest the reference (a mistake of two mended: it must draw nearer than
@@ -336,6 +366,8 @@ std::vector<Candidate> pair_candidates(const Program& p, const std::vector<Candi
     if (!paired.insert(std::minmax(i, j)).second) return;
     out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
   };
+  for (size_t i = 0; i < singles.size() && singles[i].from_class; ++i)
+    for (size_t j = i + 1; j < singles.size() && singles[j].from_class; ++j) add(i, j);
   for (size_t i = 0; i < singles.size(); ++i)
     for (size_t j = i + 1; j < singles.size(); ++j)
       if (singles[i].edits.front().reads_as_reference && singles[j].edits.front().reads_as_reference) add(i, j);
@@ -358,8 +390,9 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 }
 
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
-                   const VectorWords& vectors, grade::Report& report, const RepairBudget& budget) {
-  const auto program = program_of(failed);
+                   const VectorWords& vectors, grade::Report& report, const RepairBudget& budget,
+                   const std::vector<PassingProgram>& classmates) {
+  const auto program = program_of(failed, classmates);
   if (!program || budget.confirmations < 1) return;  // nothing screened could be stated
   Search search{pool, failed, mesh_bytes, budget, report};
   const std::vector<Candidate> singles = single_candidates(*program, budget);

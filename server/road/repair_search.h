@@ -14,6 +14,7 @@
 #include <string>
 
 #include "grade/report.h"
+#include "shader/shader_source.h"
 #include "worker/job.h"
 #include "worker/pool.h"
 
@@ -35,6 +36,17 @@ struct RepairBudget {
   // candidate that hangs is dropped after this share, never the grade's failure. The confirming
   // render has the grade's whole deadlines, as the student's own program had.
   double screen_deadline_share = 0.25;
+  // A class batch's second pass (grade/classmate_edits.h): the edits the class's passing programs
+  // offer that the course's reference does not, at most, from the `classmates` nearest the
+  // student's program; tried first, as the first search tried the others.
+  int class_candidates = 16;
+  int classmates = 3;
+};
+
+// Another program that passes the same checkpoint: a classmate's, read beside the student's in a
+// class batch's second pass.
+struct PassingProgram {
+  shader::ShaderFile vertex, fragment;
 };
 
 // The reference's locals that are vectors of the homework's formula, each with its words
@@ -50,10 +62,12 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 // Searches the program `failed` drew (a grade job), and writes into `report` what it tried
 // (`repair_search`) and, when a repair is confirmed, as much of it as `shown` says among its
 // messages (what is wrong; where; the repaired line), an edit at a local `vectors` names said with
-// its words ("`toEye`, the direction to the eye, has the wrong sign"). When the
+// its words ("`toEye`, the direction to the eye, has the wrong sign"). `classmates`, where a class
+// batch gives them, offer edits of their own after the reference's. When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
-                   const VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {});
+                   const VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {},
+                   const std::vector<PassingProgram>& classmates = {});
 
 }  // namespace shadelab::road

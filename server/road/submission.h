@@ -44,6 +44,7 @@ struct CodeSubmission {
   grade::RepairShown repair_shown = grade::RepairShown::where;
   VectorWords vector_words;  // the checkpoint's formula's vectors, for a repair's words
   RepairBudget repair;  // 0 candidates: no search
+  std::vector<PassingProgram> classmates;  // a class batch's second pass: its passing programs (road/repair_search.h)
 };
 
 struct CodeGrade {

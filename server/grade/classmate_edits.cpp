@@ -1,0 +1,77 @@
+#include "grade/classmate_edits.h"
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <tuple>
+
+#include "grade/aligned_lines.h"
+#include "grade/stage_tokens.h"
+#include "shader/glsl_lines.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+// The stage's lines, unspaced, less the empty ones: what "written alike" compares.
+std::set<std::string> line_set(std::string_view glsl) {
+  std::set<std::string> out;
+  for (const auto line : shader::lines_of(glsl))
+    if (auto u = unspaced(line); !u.empty()) out.insert(std::move(u));
+  return out;
+}
+
+size_t lines_alike(const std::set<std::string>& student, std::string_view classmate_glsl) {
+  size_t n = 0;
+  for (const auto& line : line_set(classmate_glsl)) n += student.contains(line);
+  return n;
+}
+
+// An edit by what it does to the student's text: two programs that offer the same are one offer.
+using EditKey = std::tuple<shader::Stage, size_t, size_t, std::string>;
+EditKey key_of(const RepairEdit& e) { return {e.stage, e.begin, e.end, e.with}; }
+
+}  // namespace
+
+std::vector<StagePair> nearest_classmates(const StagePair& student, const std::vector<StagePair>& classmates, size_t count) {
+  const auto vertex = line_set(student.vertex), fragment = line_set(student.fragment);
+  std::vector<std::pair<size_t, size_t>> alike;  // (lines alike, index), for the distinct programs
+  std::set<std::pair<std::string_view, std::string_view>> seen;
+  for (size_t i = 0; i < classmates.size(); ++i)
+    if (seen.insert({classmates[i].vertex, classmates[i].fragment}).second)
+      alike.push_back({lines_alike(vertex, classmates[i].vertex) + lines_alike(fragment, classmates[i].fragment), i});
+  std::stable_sort(alike.begin(), alike.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<StagePair> out;
+  for (size_t k = 0; k < alike.size() && k < count; ++k) out.push_back(classmates[alike[k].second]);
+  return out;
+}
+
+std::vector<RepairEdit> classmate_edits(const StagePair& student, const StagePair& reference, const std::vector<StagePair>& classmates) {
+  // program_repair_edits keeps what could be the student's line (live, and not written as the
+  // program beside it writes it); the course's reference's own offers are made already.
+  std::set<EditKey> offered;
+  for (const auto& e : program_repair_edits(student, reference)) offered.insert(key_of(e));
+  const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
+  const auto vertex_student = shader::lines_of(student.vertex), fragment_student = shader::lines_of(student.fragment);
+  std::vector<RepairEdit> out;
+  for (const auto& classmate : classmates) {
+    for (auto& e : program_repair_edits(student, classmate)) {
+      if (!reads_reference(e.kind) || !offered.insert(key_of(e)).second) continue;
+      const bool vertex = e.stage == shader::Stage::vertex;
+      const AlignedLines& lines = vertex ? vertex_lines : fragment_lines;
+      const std::string_view glsl = vertex ? student.vertex : student.fragment;
+      const auto& student_lines = vertex ? vertex_student : fragment_student;
+      const bool inserts = e.kind == RepairKind::statement_restored || e.kind == RepairKind::write_restored;
+      const std::string_view own_line =
+          e.line >= 1 && static_cast<size_t>(e.line) <= student_lines.size() ? student_lines[e.line - 1] : std::string_view();
+      // As with the reference's offers: a line the student wrote as the reference writes it is right.
+      if (!inserts && lines.reads_as_reference(own_line)) continue;
+      e.reads_as_reference = inserts || lines.reads_as_reference(edited_line(glsl, e));
+      out.push_back(std::move(e));
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), smaller);
+  return out;
+}
+
+}  // namespace shadelab::grade
