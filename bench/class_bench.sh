@@ -68,7 +68,10 @@ echo "passed: $(grep -c ',true,' "$work/grades/summary.csv") of 24 (8 are correc
 # grade's frames (its own, each repair's confirmation, a second grade) and the candidates screened.
 python3 - "$work/grades/graded.jsonl" <<'PY'
 import json, sys
-rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip()]
+last = {}  # a student searched again beside the class has a second line, counting both searches
+for l in open(sys.argv[1]):
+    if l.strip(): last[json.loads(l)["student"]] = json.loads(l)
+rows = list(last.values())
 renders, screened = sum(r["renders"] for r in rows), sum(r["screened"] for r in rows)
 print("counted: %d renders at the grade's frames for %d students (%.2f a student), %d candidates screened on a small canvas"
       % (renders, len(rows), renders / len(rows), screened))

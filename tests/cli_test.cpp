@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -24,6 +25,7 @@
 #include "support/files.h"
 #include "support/run_command.h"
 #include "support/test_support.h"
+#include "support/tutorial_program.h"
 
 namespace fs = std::filesystem;
 
@@ -259,6 +261,59 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   std::snprintf(expected, sizeof expected, "the grader drew %d renders at the grade's frames (%.2f a student) and screened %d repair candidates",
                 renders, renders / 4.0, screened);
   EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;
+}
+
+// A failing student no search repaired beside the course's reference is searched again beside the
+// class's passing programs: one written as the classmate's is (`reflectDir`, where the reference
+// writes R) is repaired at their line, named and never shown, even on a TA's machine, where the
+// classmate's line would be theirs to copy; one with two such mistakes by a pair of the class's.
+// The journal says so and counts both passes; the same command run again grades nobody twice.
+TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
+  const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
+  const std::string tutorial = shadelab::testkit::with_tutorial_main(preset("specular_frag.js"));
+  std::string half_vector = tutorial;
+  half_vector.replace(half_vector.find("reflect(-lightDir, norm)"), 24, "normalize(lightDir + viewDir)");
+  write("class/ana/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/ana/shaders/phong_frag.js", tutorial);
+  write("class/ben/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/ben/shaders/phong_frag.js", half_vector);
+  // cyd made ben's mistake and left the ambient out: two of ana's values, a pair the class offers.
+  std::string two = half_vector;
+  two.replace(two.find("uAmbientColor + diff * uDiffuseColor"), 36, "diff * uDiffuseColor");
+  write("class/cyd/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/cyd/shaders/phong_frag.js", two);
+  const std::string command = "grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades");
+  const auto run = run_cli(command);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("searching 2 students' repairs again beside the 1 passing program of the class"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("the class's programs repaired 2 of 2"), std::string::npos) << run.output;
+  const auto before = half_vector.substr(0, half_vector.find("vec3 reflectDir"));
+  const std::string line = std::to_string(std::count(before.begin(), before.end(), '\n') + 1);
+  const std::string ben = read_text(path("grades/ben/results.json"));
+  EXPECT_NE(ben.find("phong_frag.js line " + line + ": `reflectDir`, the direction to the light reflected about the normal, is not computed as "
+                     "the homework computes it"), std::string::npos) << ben;
+  EXPECT_EQ(ben.find("reflect(-lightDir, norm)"), std::string::npos) << "ana's line, shown to ben: " << ben;
+  const std::string cyd = read_text(path("grades/cyd/results.json"));
+  EXPECT_NE(cyd.find("line " + line + ": `reflectDir`"), std::string::npos) << cyd;
+  EXPECT_NE(cyd.find("line " + std::to_string(std::stoi(line) - 3) + ": `color` is not computed as the homework computes it"), std::string::npos)
+      << cyd;
+
+  std::vector<nlohmann::json> lines;
+  std::istringstream journal(read_text(path("grades/graded.jsonl")));
+  for (std::string text; std::getline(journal, text);)
+    if (nlohmann::json j = nlohmann::json::parse(text); j["student"] == "ben") lines.push_back(j);
+  ASSERT_EQ(lines.size(), 2u) << "the first pass's line, then the second's";
+  EXPECT_TRUE(lines[0]["unrepaired"].get<bool>());
+  EXPECT_FALSE(lines[0]["withClass"].get<bool>());
+  EXPECT_FALSE(lines[1]["unrepaired"].get<bool>());
+  EXPECT_TRUE(lines[1]["withClass"].get<bool>());
+  EXPECT_GT(lines[1]["screened"].get<int>(), lines[0]["screened"].get<int>()) << "both passes counted";
+  EXPECT_NE(read_text(path("grades/explanations.csv")).find("R computed otherwise,1,ben"), std::string::npos);
+
+  const auto again = run_cli(command);
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("3 of 3 already graded"), std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find("searching"), std::string::npos) << "searched beside the class once: " << again.output;
 }
 
 // The class's saved frames looked at across the class: two students who hand in the same frames

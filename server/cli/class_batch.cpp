@@ -36,19 +36,22 @@ struct Entry {
   std::string explanation;         // a failing grade's mistake, in a few words (grade::mistake_label); "" for none
   int renders = 0;                 // drawn at the grade's frames (road::full_renders)
   int screened = 0;                // repair candidates screened on a small canvas
+  bool unrepaired = false;         // a repair search ran and confirmed none
+  bool with_class = false;         // graded again beside the class's passing programs (the second pass)
 };
 
 json to_json(const Entry& e) {
   return {{"student", e.student}, {"score", e.score}, {"maxScore", e.max_score}, {"pass", e.pass},
           {"diagnosis", e.diagnosis}, {"message", e.message}, {"frames", e.frames}, {"flags", e.flags}, {"explanation", e.explanation},
-          {"renders", e.renders}, {"screened", e.screened}};
+          {"renders", e.renders}, {"screened", e.screened}, {"unrepaired", e.unrepaired}, {"withClass", e.with_class}};
 }
 
 std::optional<Entry> entry_from(const std::string& line) {
   const json j = json::parse(line, nullptr, false);
   if (!j.is_object() || !j.contains("student") || !j["student"].is_string()) return std::nullopt;  // a line cut short by a kill
   Entry e{j["student"], j.value("score", 0.0), j.value("maxScore", 0.0), j.value("pass", false), j.value("diagnosis", ""),
-          j.value("message", ""), j.value("frames", ""), {}, j.value("explanation", ""), j.value("renders", 0), j.value("screened", 0)};
+          j.value("message", ""), j.value("frames", ""), {}, j.value("explanation", ""), j.value("renders", 0), j.value("screened", 0),
+          j.value("unrepaired", false), j.value("withClass", false)};
   for (const auto& f : j.value("flags", json::array()))
     if (f.is_string()) e.flags.push_back(f);
   return e;
@@ -57,7 +60,8 @@ std::optional<Entry> entry_from(const std::string& line) {
 Entry entry_of(const std::string& student, const StudentGrade& g) {
   const grade::Report& r = g.report;
   Entry e{student, r.score, r.max_score, r.pass, r.diagnosis, r.messages.empty() ? "" : r.messages[0], g.frames_fingerprint, {},
-          grade::mistake_label(r), road::full_renders(r), r.repair_search ? r.repair_search->candidates : 0};
+          grade::mistake_label(r), road::full_renders(r), r.repair_search ? r.repair_search->candidates : 0,
+          r.repair_search && !r.repair_search->found};
   for (const auto& f : r.flags) e.flags.push_back(f.message);
   return e;
 }
@@ -231,8 +235,10 @@ std::vector<Student> not_yet_graded(const std::vector<Student>& students, const 
 
 // Grades `todo` on `concurrency` threads, recording each as it ends; the first error stops the
 // others taking new students (those in flight are finished and recorded).
+// `first_pass`, in the second pass: each student's first grade, whose cost the new line adds to
+// its own (the class's cost counts both).
 std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>& todo, const GradeStudent& grade_student, Journal& journal,
-                               ProgressBar& progress) {
+                               ProgressBar& progress, const std::map<std::string, Entry>* first_pass = nullptr) {
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex first_error_mutex;
@@ -256,7 +262,14 @@ std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>
         stop = true;
         return;
       }
-      journal.append(entry_of(s.name, *graded));
+      Entry entry = entry_of(s.name, *graded);
+      if (first_pass) {
+        const Entry& first = first_pass->at(s.name);
+        entry.renders += first.renders;
+        entry.screened += first.screened;
+        entry.with_class = true;
+      }
+      journal.append(entry);
       progress.finished(s.name);
     }
   };
@@ -267,9 +280,32 @@ std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>
   return first_error;
 }
 
+// The second pass: the shard's failing students no search repaired, not yet graded beside the
+// class, graded again with the shard's passing students' programs; none where no one passes.
+std::optional<Error> grade_with_class(const BatchOptions& o, const std::vector<Student>& students, const GradeWithClass& with_class,
+                                      Journal& journal) {
+  const auto entries = read_journals(o.out);
+  std::vector<Student> passing, again;
+  for (const auto& s : students) {
+    const auto e = entries.find(s.name);
+    if (e == entries.end()) continue;
+    if (e->second.pass) passing.push_back(s);
+    else if (e->second.unrepaired && !e->second.with_class) again.push_back(s);
+  }
+  if (passing.empty() || again.empty()) return std::nullopt;
+  std::cerr << "searching " << again.size() << (again.size() == 1 ? " student's repair" : " students' repairs") << " again beside the "
+            << passing.size() << " passing program" << (passing.size() == 1 ? "" : "s") << " of the class\n";
+  ProgressBar progress(again.size(), 0);
+  if (auto error = grade_all(o, again, with_class(passing), journal, progress, &entries)) return error;
+  const auto after = read_journals(o.out);
+  const auto repaired = std::count_if(again.begin(), again.end(), [&](const Student& s) { return !after.at(s.name).unrepaired; });
+  std::cerr << "the class's programs repaired " << repaired << " of " << again.size() << "\n";
+  return std::nullopt;
+}
+
 }  // namespace
 
-int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
+int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student, const GradeWithClass& with_class) {
   const auto students = students_of(o);
   if (students.empty()) {
     std::cerr << "error: no submission folders in " << o.submissions << (o.shard.count > 1 ? " for this shard" : "") << "\n";
@@ -284,6 +320,7 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student) {
   }
   ProgressBar progress(students.size(), students.size() - todo.size());
   auto error = grade_all(o, todo, grade_student, journal, progress);
+  if (!error && with_class) error = grade_with_class(o, students, with_class, journal);
 
   auto entries = read_journals(o.out);
   flag_shared_frames(entries, o.deliverable);

@@ -11,7 +11,12 @@
 // |                                       | what the TA should look at (grade/provenance.h)       |
 //
 // A student with a line in any journal is not graded again, so the same command run again (or a
-// job array's task rerun) carries on where it stopped. `--shard I/N` takes the students whose
+// job array's task rerun) carries on where it stopped.
+//
+// A second pass, where the batch can run one: a failing student for whom the repair search found
+// no repair is graded again with the programs of the shard's passing students beside the course's
+// reference (road/repair_search.h, grade/classmate_edits.h); their line is appended again, saying
+// so, and their results.json rewritten. It runs once a student, resumed like the first. `--shard I/N` takes the students whose
 // name hashes to I modulo N: stable when students are added, so shards never overlap.
 #include <filesystem>
 #include <functional>
@@ -46,6 +51,9 @@ struct StudentGrade {
 // the student is not recorded, and the next run grades them.
 using GradeStudent = std::function<Expected<StudentGrade>(const Student&)>;
 
+// The second pass's grader, given the class's passing students (once, in name order).
+using GradeWithClass = std::function<GradeStudent(const std::vector<Student>& passing)>;
+
 struct BatchOptions {
   std::filesystem::path submissions, out;
   int concurrency = 1;
@@ -54,6 +62,8 @@ struct BatchOptions {
 };
 
 // Exit status: 0 when every student of the shard is graded, 1 when the batch stopped on an error.
-int run_class_batch(const BatchOptions& options, const GradeStudent& grade_student);
+// `with_class`: the second pass's grader; empty where the batch has none (a server grades each
+// student alone).
+int run_class_batch(const BatchOptions& options, const GradeStudent& grade_student, const GradeWithClass& with_class = {});
 
 }  // namespace shadelab::cli

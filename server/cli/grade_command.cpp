@@ -104,12 +104,21 @@ Expected<StudentGrade> grade_student_on_server(const course::Course& c, const co
 }
 
 Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f,
-                                     const Student& s) {
+                                     const Student& s, std::vector<road::PassingProgram> classmates = {}) {
   std::optional<std::pair<fs::path, fs::path>> pair;
   if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
-  auto graded = grade_one(pool, c, f, pair->first, pair->second);
+  auto graded = grade_one(pool, c, f, pair->first, pair->second, std::move(classmates));
   if (!graded) return graded.take_error();
   return StudentGrade{std::move(graded->result.report), graded->seconds, {}};
+}
+
+// The programs of `passing` students, as each handed them in, for a class batch's second pass.
+std::vector<road::PassingProgram> programs_of(const course::Course& c, const course::Checkpoint& checkpoint, const std::vector<Student>& passing) {
+  std::vector<road::PassingProgram> out;
+  for (const auto& s : passing)
+    if (const auto pair = find_pair(c, s.dir, checkpoint))
+      out.push_back({{pair->first.filename().string(), read_text(pair->first)}, {pair->second.filename().string(), read_text(pair->second)}});
+  return out;
 }
 
 int run_batch(const course::Course& c, const GradeFlags& f) {
@@ -136,11 +145,16 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
   worker::WorkerPool pool(config);
   if (options.concurrency <= 0) options.concurrency = config.workers + 1;
   const ClassFrames frames(c, checkpoint, [&] { return reference_frames(pool, c, checkpoint); });
-  return run_class_batch(options, [&](const Student& s) -> Expected<StudentGrade> {
-    auto graded = grade_student(pool, c, checkpoint, f, s);
+  const auto grade = [&](const Student& s, std::vector<road::PassingProgram> classmates) -> Expected<StudentGrade> {
+    auto graded = grade_student(pool, c, checkpoint, f, s, std::move(classmates));
     if (graded) frames.check(s, *graded);
     return graded;  // an error stops the batch, resumable: nobody is graded for the grader's failure
-  });
+  };
+  const auto with_class = [&](const std::vector<Student>& passing) -> GradeStudent {
+    return [&grade, classmates = programs_of(c, checkpoint, passing)](const Student& s) { return grade(s, classmates); };
+  };
+  const bool searched_twice = f.repair_candidates > 0 && f.class_candidates > 0 && !f.warm_store;
+  return run_class_batch(options, [&](const Student& s) { return grade(s, {}); }, searched_twice ? GradeWithClass(with_class) : GradeWithClass());
 }
 
 }  // namespace
@@ -182,6 +196,11 @@ Command add_grade_command(CLI::App& app) {
   cmd->add_option("--timeout-ms", f->timeout_ms, "Compile and render deadline per submission, in CPU time (a timeout is retried once)")->capture_default_str();
   cmd->add_option("--repair-candidates", f->repair_candidates,
                   "A failing grade's repair search: edits of the student's program tried, at most (0: no search)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--class-candidates", f->class_candidates,
+                  "A class batch: a failing student no search repaired is searched again with this many edits the class's passing "
+                  "programs offer, at most (0: no second search)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000));
   f->show_repaired_line = true;  // a TA's machine: the repaired line too

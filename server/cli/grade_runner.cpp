@@ -55,6 +55,7 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
   submission->spec.reference_store.folder = f.cache_dir;
   submission->spec.heatmap = f.heatmaps;
   submission->repair.candidates = f.warm_store ? 0 : f.repair_candidates;
+  submission->repair.class_candidates = f.class_candidates;
   submission->spec.warm = f.warm_store;
   if (f.show_repaired_line) submission->repair_shown = grade::RepairShown::repaired_line;
   return submission;
@@ -63,14 +64,16 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
 }  // namespace
 
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, const fs::path& vert,
-                           const fs::path& frag) {
-  return grade_pair(pool, c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
+                           const fs::path& frag, std::vector<road::PassingProgram> classmates) {
+  return grade_pair(pool, c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)},
+                    std::move(classmates));
 }
 
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, shader::ShaderFile vert,
-                            shader::ShaderFile frag) {
+                            shader::ShaderFile frag, std::vector<road::PassingProgram> classmates) {
   auto submission = submission_of(c, f, std::move(vert), std::move(frag));
   if (!submission) return submission.take_error();
+  submission->classmates = std::move(classmates);
   return road::grade_code(pool, std::move(*submission));
 }
 

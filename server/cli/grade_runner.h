@@ -31,6 +31,7 @@ struct GradeFlags {
   double max_score = 1.0;
   bool spatial = false;
   int repair_candidates = road::RepairBudget{}.candidates;  // a failing grade's repair search (road/repair_search.h); 0: none
+  int class_candidates = road::RepairBudget{}.class_candidates;  // a class batch's second search, beside its passing programs; 0: none
   // A TA's own `grade` shows the repaired line; what students receive shows what their course says.
   bool show_repaired_line = false;
   grade::HeatMap heatmaps = grade::HeatMap::never;  // a class batch writes none; a command that does says when
@@ -54,12 +55,13 @@ std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair
 // One submission's grade, by the grading road (road/submission.h): whatever the submission
 // causes (it does not compile, hangs, crashes the driver) is its grade, 0 with the reason; what it
 // does not cause (the grader's own work failed, no worker could start, a bad flag) is an error.
+// `classmates`: a class batch's passing programs, read beside the student's by a repair search.
 using Graded = road::CodeGrade;
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
-                 const std::filesystem::path& frag);
+                           const std::filesystem::path& frag, std::vector<road::PassingProgram> classmates = {});
 // The same for shaders already in memory.
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, shader::ShaderFile vert,
-                            shader::ShaderFile frag);
+                            shader::ShaderFile frag, std::vector<road::PassingProgram> classmates = {});
 
 // A deliverable's saved frames (`files`, relative to `root`) graded against `checkpoint`'s
 // reference and, with `code` (vertex, fragment; relative to `root`), against what that code
