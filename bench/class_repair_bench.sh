@@ -107,6 +107,8 @@ print("repaired after the second (beside the class's %d passing programs): %d of
       % (sum(r["pass"] for r in last.values()), sum(repaired(last[s]) for s in failing), len(failing)))
 print("the second search: %d students, %d candidates screened, %d renders at the grade's frames"
       % (len(again), sum(last[s]["screened"] - first[s]["screened"] for s in again), sum(last[s]["renders"] - first[s]["renders"] for s in again)))
+print("renders at the grade's frames a student: %.2f after the first search, %.2f after both"
+      % (sum(r["renders"] for r in first.values()) / len(first), sum(r["renders"] for r in last.values()) / len(last)))
 for s in failing:
     how = "second search" if last[s]["withClass"] and repaired(last[s]) else "first search" if repaired(first[s]) else "not repaired"
     print("  %-45s %-14s %s" % (mistakes.get(s, s), how, last[s]["explanation"]))
