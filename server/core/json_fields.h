@@ -183,8 +183,10 @@ void read_one(const nlohmann::json& j, S& s, const F& f) {
     f.codec.read(*found, inner);
     value = std::move(inner);
   } else {
-    if (found == j.end() && f.when == When::omitted_when_default) value = std::decay_t<decltype(value)>{};
-    if (found == j.end() && (f.when == When::default_when_missing || f.when == When::omitted_when_default)) return;
+    if (found == j.end()) {
+      if (f.when == When::omitted_when_default) value = std::decay_t<decltype(value)>{};  // written only when it was not
+      if (f.when == When::default_when_missing || f.when == When::omitted_when_default) return;
+    }
     f.codec.read(j.at(key), value);  // at(): a missing key throws, naming it
   }
 }

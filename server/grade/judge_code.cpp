@@ -98,9 +98,9 @@ Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, c
   ref.fragment = spec.reference_fragment;
   auto reference = renders.cached_under_lights(spec, ref, **mesh, mesh_key);
   if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
+  if (spec.warm) warm_the_store(renders, spec, ref, **mesh, mesh_key);
   // The formula and the catalogue only for a submission that fails: a passing one needs no
   // diagnosis. The formula first: a known mistake it reads needs no render (catalogue_work).
-  if (spec.warm) warm_the_store(renders, spec, ref, **mesh, mesh_key);
   GradeResult result = assess(student->frames, student->non_finite, *reference, spec.options);
   std::optional<Explanation> explanation;
   if (!result.pass) {
