@@ -266,8 +266,9 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
 // A failing student no search repaired beside the course's reference is searched again beside the
 // class's passing programs: one written as the classmate's is (`reflectDir`, where the reference
 // writes R) is repaired at their line, named and never shown, even on a TA's machine, where the
-// classmate's line would be theirs to copy; one with two such mistakes by a pair of the class's.
-// The journal says so and counts both passes; the same command run again grades nobody twice.
+// classmate's line would be theirs to copy; one with two such mistakes by a pair of the class's;
+// one the class offers nothing keeps their first grade, not drawn again. The journal says so and
+// counts both passes; the same command run again grades nobody twice.
 TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
   const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
   const std::string tutorial = shadelab::testkit::with_tutorial_main(preset("specular_frag.js"));
@@ -282,11 +283,19 @@ TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
   two.replace(two.find("uAmbientColor + diff * uDiffuseColor"), 36, "diff * uDiffuseColor");
   write("class/cyd/shaders/phong_vert.js", preset("specular_vert.js"));
   write("class/cyd/shaders/phong_frag.js", two);
+  // dee wrote the reference's names and made three mistakes: ana's values name locals dee never
+  // declares, so the class offers nothing to try and dee's first grade stands, drawn once.
+  std::string three = preset("specular_frag.js");
+  three.replace(three.find("reflect(-L, N)"), 14, "normalize(L + V)");
+  three.replace(three.find("uAmbientColor + uDiffuseColor"), 29, "uDiffuseColor");
+  three.replace(three.find("specularAlpha = 6.0"), 19, "specularAlpha = 12.0");
+  write("class/dee/shaders/phong_vert.js", preset("specular_vert.js"));
+  write("class/dee/shaders/phong_frag.js", three);
   const std::string command = "grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades");
   const auto run = run_cli(command);
   ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("searching 2 students' repairs again beside the 1 passing program of the class"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("the class's programs repaired 2 of 2"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("searching 3 students' repairs again beside the 1 passing program of the class"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("the class's programs repaired 2 of 3"), std::string::npos) << run.output;
   const auto before = half_vector.substr(0, half_vector.find("vec3 reflectDir"));
   const std::string line = std::to_string(std::count(before.begin(), before.end(), '\n') + 1);
   const std::string ben = read_text(path("grades/ben/results.json"));
@@ -298,21 +307,28 @@ TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
   EXPECT_NE(cyd.find("line " + std::to_string(std::stoi(line) - 3) + ": `color` is not computed as the homework computes it"), std::string::npos)
       << cyd;
 
-  std::vector<nlohmann::json> lines;
+  std::map<std::string, std::vector<nlohmann::json>> lines;
   std::istringstream journal(read_text(path("grades/graded.jsonl")));
-  for (std::string text; std::getline(journal, text);)
-    if (nlohmann::json j = nlohmann::json::parse(text); j["student"] == "ben") lines.push_back(j);
-  ASSERT_EQ(lines.size(), 2u) << "the first pass's line, then the second's";
-  EXPECT_TRUE(lines[0]["unrepaired"].get<bool>());
-  EXPECT_FALSE(lines[0]["withClass"].get<bool>());
-  EXPECT_FALSE(lines[1]["unrepaired"].get<bool>());
-  EXPECT_TRUE(lines[1]["withClass"].get<bool>());
-  EXPECT_GT(lines[1]["screened"].get<int>(), lines[0]["screened"].get<int>()) << "both passes counted";
+  for (std::string text; std::getline(journal, text);) {
+    nlohmann::json j = nlohmann::json::parse(text);
+    lines[j["student"]].push_back(j);
+  }
+  ASSERT_EQ(lines["ben"].size(), 2u) << "the first pass's line, then the second's";
+  EXPECT_TRUE(lines["ben"][0]["unrepaired"].get<bool>());
+  EXPECT_FALSE(lines["ben"][0]["withClass"].get<bool>());
+  EXPECT_FALSE(lines["ben"][1]["unrepaired"].get<bool>());
+  EXPECT_TRUE(lines["ben"][1]["withClass"].get<bool>());
+  EXPECT_GT(lines["ben"][1]["screened"].get<int>(), lines["ben"][0]["screened"].get<int>()) << "both passes counted";
+  ASSERT_EQ(lines["dee"].size(), 2u);
+  EXPECT_TRUE(lines["dee"][1]["withClass"].get<bool>());
+  EXPECT_TRUE(lines["dee"][1]["unrepaired"].get<bool>());
+  EXPECT_EQ(lines["dee"][1]["renders"], lines["dee"][0]["renders"]) << "nothing to try: not drawn again";
+  EXPECT_EQ(lines["dee"][1]["screened"], lines["dee"][0]["screened"]);
   EXPECT_NE(read_text(path("grades/explanations.csv")).find("R computed otherwise,1,ben"), std::string::npos);
 
   const auto again = run_cli(command);
   ASSERT_EQ(again.status, 0) << again.output;
-  EXPECT_NE(again.output.find("3 of 3 already graded"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find("4 of 4 already graded"), std::string::npos) << again.output;
   EXPECT_EQ(again.output.find("searching"), std::string::npos) << "searched beside the class once: " << again.output;
 }
 

@@ -455,6 +455,10 @@ TEST(ClassmateEditsTest, AClassmateWhoNamesAValueAsTheStudentDoesOffersTheirValu
   }
   EXPECT_TRUE(grade::classmate_edits({vertex, student}, {vertex, reference}, {{vertex, reference}}).empty())
       << "the reference as a classmate offers nothing the reference does not";
+  // To a student written as the reference is, the tutorial's values and conditions name its own
+  // locals (`diff > 0.0`), which that student never declares: none could compile, none is offered.
+  for (const auto& e : grade::classmate_edits({vertex, reference}, {vertex, reference}, {{vertex, classmate}}))
+    ADD_FAILURE() << "offered an edit naming a local the student never declares: " << e.with;
 
   // Nearest: the classmate whose lines are the student's, before the reference; a copy counts once.
   const auto nearest = grade::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}, {vertex, classmate}}, 3);

@@ -253,6 +253,13 @@ std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>
         stop = true;
         return;
       }
+      if (first_pass && graded->first_grade_stands) {
+        Entry entry = first_pass->at(s.name);
+        entry.with_class = true;  // searched beside the class: nothing to try
+        journal.append(entry);
+        progress.finished(s.name);
+        continue;
+      }
       const auto& r = graded->report;
       // A student whose results cannot be written (a full disk) is not journaled: the batch
       // stops, and the next run grades them again.

@@ -45,6 +45,9 @@ struct StudentGrade {
   // The student's saved frames of the deliverable by their pixels (grade::fingerprint); empty when
   // they handed in none. Students who share one are flagged in the summary.
   std::string frames_fingerprint;
+  // A second search with nothing to try (the class offers no edit the first did not): the student's
+  // first grade stands, and is not graded again.
+  bool first_grade_stands = false;
 };
 
 // Grades one student. An Error stops the batch (a wrong API key, a server gone for minutes):

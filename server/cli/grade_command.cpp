@@ -107,6 +107,11 @@ Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Cou
                                      const Student& s, std::vector<road::PassingProgram> classmates = {}) {
   std::optional<std::pair<fs::path, fs::path>> pair;
   if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
+  if (!classmates.empty()) {
+    auto offers = class_offers_edits(c, f, pair->first, pair->second, classmates);
+    if (!offers) return offers.take_error();
+    if (!*offers) return StudentGrade{{}, 0, {}, true};  // nothing the first search did not try
+  }
   auto graded = grade_one(pool, c, f, pair->first, pair->second, std::move(classmates));
   if (!graded) return graded.take_error();
   return StudentGrade{std::move(graded->result.report), graded->seconds, {}};
@@ -147,7 +152,7 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
   const ClassFrames frames(c, checkpoint, [&] { return reference_frames(pool, c, checkpoint); });
   const auto grade = [&](const Student& s, std::vector<road::PassingProgram> classmates) -> Expected<StudentGrade> {
     auto graded = grade_student(pool, c, checkpoint, f, s, std::move(classmates));
-    if (graded) frames.check(s, *graded);
+    if (graded && !graded->first_grade_stands) frames.check(s, *graded);
     return graded;  // an error stops the batch, resumable: nobody is graded for the grader's failure
   };
   const auto with_class = [&](const std::vector<Student>& passing) -> GradeStudent {

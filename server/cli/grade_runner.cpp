@@ -69,6 +69,14 @@ Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& c, co
                     std::move(classmates));
 }
 
+Expected<bool> class_offers_edits(const course::Course& c, const GradeFlags& f, const fs::path& vert, const fs::path& frag,
+                                  std::vector<road::PassingProgram> classmates) {
+  auto submission = submission_of(c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
+  if (!submission) return submission.take_error();
+  submission->classmates = std::move(classmates);
+  return road::class_offers_edits(*submission);
+}
+
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, shader::ShaderFile vert,
                             shader::ShaderFile frag, std::vector<road::PassingProgram> classmates) {
   auto submission = submission_of(c, f, std::move(vert), std::move(frag));

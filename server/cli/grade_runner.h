@@ -59,6 +59,10 @@ std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair
 using Graded = road::CodeGrade;
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
                            const std::filesystem::path& frag, std::vector<road::PassingProgram> classmates = {});
+// Whether a second search of the pair beside `classmates` has anything to try
+// (road::class_offers_edits).
+Expected<bool> class_offers_edits(const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
+                                  const std::filesystem::path& frag, std::vector<road::PassingProgram> classmates);
 // The same for shaders already in memory.
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, shader::ShaderFile vert,
                             shader::ShaderFile frag, std::vector<road::PassingProgram> classmates = {});

@@ -27,6 +27,25 @@ size_t lines_alike(const std::set<std::string>& student, std::string_view classm
   return n;
 }
 
+// The locals a stage declares (`vec3 reflectDir = ...`, `float spec;`): a type's name, then the
+// name declared, then `=`, `;` or `,`.
+std::set<std::string_view> declared_locals(const StageTokens& s) {
+  std::set<std::string_view> out;
+  for (size_t i = 1; i + 1 < s.size(); ++i)
+    if (s.identifier(i - 1) && s.identifier(i) && (s.is(i + 1, "=") || s.is(i + 1, ";") || s.is(i + 1, ","))) out.insert(s.t[i].text);
+  return out;
+}
+
+// Whether an edit's text names a local the classmate declares and the student's stage never
+// writes at all: it cannot compile, and a screen of it would be spent for nothing.
+bool names_a_local_missing(const RepairEdit& e, const std::set<std::string_view>& classmate_locals, const StageTokens& student) {
+  for (const auto& token : shader::tokens_of(e.with)) {
+    if (token.kind != shader::GlslToken::Kind::identifier || !classmate_locals.contains(token.text)) continue;
+    if (std::none_of(student.t.begin(), student.t.end(), [&](const auto& t) { return t.text == token.text; })) return true;
+  }
+  return false;
+}
+
 // An edit by what it does to the student's text: two programs that offer the same are one offer.
 using EditKey = std::tuple<shader::Stage, size_t, size_t, std::string>;
 EditKey key_of(const RepairEdit& e) { return {e.stage, e.begin, e.end, e.with}; }
@@ -53,11 +72,16 @@ std::vector<RepairEdit> classmate_edits(const StagePair& student, const StagePai
   for (const auto& e : program_repair_edits(student, reference)) offered.insert(key_of(e));
   const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
   const auto vertex_student = shader::lines_of(student.vertex), fragment_student = shader::lines_of(student.fragment);
+  const StageTokens student_vertex{student.vertex, shader::tokens_of(student.vertex), shader::Stage::vertex};
+  const StageTokens student_fragment{student.fragment, shader::tokens_of(student.fragment), shader::Stage::fragment};
   std::vector<RepairEdit> out;
   for (const auto& classmate : classmates) {
+    const auto vertex_locals = declared_locals({classmate.vertex, shader::tokens_of(classmate.vertex), shader::Stage::vertex});
+    const auto fragment_locals = declared_locals({classmate.fragment, shader::tokens_of(classmate.fragment), shader::Stage::fragment});
     for (auto& e : program_repair_edits(student, classmate)) {
       if (!reads_reference(e.kind) || !offered.insert(key_of(e)).second) continue;
       const bool vertex = e.stage == shader::Stage::vertex;
+      if (names_a_local_missing(e, vertex ? vertex_locals : fragment_locals, vertex ? student_vertex : student_fragment)) continue;
       const AlignedLines& lines = vertex ? vertex_lines : fragment_lines;
       const std::string_view glsl = vertex ? student.vertex : student.fragment;
       const auto& student_lines = vertex ? vertex_student : fragment_student;

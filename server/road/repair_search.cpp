@@ -381,6 +381,11 @@ std::vector<Candidate> pair_candidates(const Program& p, const std::vector<Candi
 
 }  // namespace
 
+bool class_offers_edits(const worker::Job& failed, const std::vector<PassingProgram>& classmates, const RepairBudget& budget) {
+  const auto program = program_of(failed, classmates);
+  return program && !class_edits(*program, {program->vertex.source.glsl, program->fragment.source.glsl}, budget).empty();
+}
+
 bool wants_repair(const grade::Report& report, const std::vector<grade::StarterConstant>& constants) {
   if (report.pass || report.frames.empty() || !report.diagnostics.empty()) return false;
   if (report.explanation && report.explanation->explained) return false;

@@ -66,6 +66,11 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 // batch gives them, offer edits of their own after the reference's. When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
+// Whether `classmates` offer any edit of the program `failed` drew (a grade job) that its first
+// search, beside the reference alone, did not try: where none, a second search would screen again
+// what the first screened, and is not run.
+bool class_offers_edits(const worker::Job& failed, const std::vector<PassingProgram>& classmates, const RepairBudget& budget = {});
+
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
                    const VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {},
                    const std::vector<PassingProgram>& classmates = {});

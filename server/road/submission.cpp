@@ -146,6 +146,12 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   return explained_after_search(pool, job, submission, searched, a, start);
 }
 
+bool class_offers_edits(const CodeSubmission& submission) {
+  worker::Job job = submission.render;
+  job.grade = submission.spec;
+  return class_offers_edits(job, submission.classmates, submission.repair);
+}
+
 int full_renders(const grade::Report& report) {
   if (report.frames.empty()) return 0;
   const auto& search = report.repair_search;
