@@ -108,11 +108,12 @@ Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Cou
   std::optional<std::pair<fs::path, fs::path>> pair;
   if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
   if (!classmates.empty()) {
-    auto offers = class_offers_edits(c, f, pair->first, pair->second, classmates);
-    if (!offers) return offers.take_error();
-    if (!*offers) return StudentGrade{{}, 0, {}, true};  // nothing the first search did not try
+    auto again = grade_beside_class(pool, c, f, pair->first, pair->second, std::move(classmates));
+    if (!again) return again.take_error();
+    if (!*again) return StudentGrade{{}, 0, {}, true};  // nothing the first search did not try
+    return StudentGrade{std::move((*again)->result.report), (*again)->seconds, {}};
   }
-  auto graded = grade_one(pool, c, f, pair->first, pair->second, std::move(classmates));
+  auto graded = grade_one(pool, c, f, pair->first, pair->second);
   if (!graded) return graded.take_error();
   return StudentGrade{std::move(graded->result.report), graded->seconds, {}};
 }

@@ -64,25 +64,26 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
 }  // namespace
 
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, const fs::path& vert,
-                           const fs::path& frag, std::vector<road::PassingProgram> classmates) {
-  return grade_pair(pool, c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)},
-                    std::move(classmates));
-}
-
-Expected<bool> class_offers_edits(const course::Course& c, const GradeFlags& f, const fs::path& vert, const fs::path& frag,
-                                  std::vector<road::PassingProgram> classmates) {
-  auto submission = submission_of(c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
-  if (!submission) return submission.take_error();
-  submission->classmates = std::move(classmates);
-  return road::class_offers_edits(*submission);
+                           const fs::path& frag) {
+  return grade_pair(pool, c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
 }
 
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f, shader::ShaderFile vert,
-                            shader::ShaderFile frag, std::vector<road::PassingProgram> classmates) {
+                            shader::ShaderFile frag) {
   auto submission = submission_of(c, f, std::move(vert), std::move(frag));
   if (!submission) return submission.take_error();
-  submission->classmates = std::move(classmates);
   return road::grade_code(pool, std::move(*submission));
+}
+
+Expected<std::optional<Graded>> grade_beside_class(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
+                                                   const fs::path& vert, const fs::path& frag, std::vector<road::PassingProgram> classmates) {
+  auto submission = submission_of(c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
+  if (!submission) return submission.take_error();
+  submission->classmates = std::move(classmates);
+  if (!road::second_search_has_candidates(*submission)) return std::optional<Graded>();
+  auto graded = road::grade_code(pool, std::move(*submission));
+  if (!graded) return graded.take_error();
+  return std::optional<Graded>(std::move(*graded));
 }
 
 namespace {

@@ -58,14 +58,16 @@ std::optional<std::pair<std::filesystem::path, std::filesystem::path>> find_pair
 // `classmates`: a class batch's passing programs, read beside the student's by a repair search.
 using Graded = road::CodeGrade;
 Expected<Graded> grade_one(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
-                           const std::filesystem::path& frag, std::vector<road::PassingProgram> classmates = {});
-// Whether a second search of the pair beside `classmates` has anything to try
-// (road::class_offers_edits).
-Expected<bool> class_offers_edits(const course::Course& course, const GradeFlags& f, const std::filesystem::path& vert,
-                                  const std::filesystem::path& frag, std::vector<road::PassingProgram> classmates);
+                           const std::filesystem::path& frag);
 // The same for shaders already in memory.
 Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f, shader::ShaderFile vert,
-                            shader::ShaderFile frag, std::vector<road::PassingProgram> classmates = {});
+                            shader::ShaderFile frag);
+// A class batch's second search: the pair graded again with `classmates`, the class's passing
+// programs, read beside it by the repair search; none where they offer nothing the first search
+// did not try (road::second_search_has_candidates).
+Expected<std::optional<Graded>> grade_beside_class(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f,
+                                                   const std::filesystem::path& vert, const std::filesystem::path& frag,
+                                                   std::vector<road::PassingProgram> classmates);
 
 // A deliverable's saved frames (`files`, relative to `root`) graded against `checkpoint`'s
 // reference and, with `code` (vertex, fragment; relative to `root`), against what that code

@@ -146,7 +146,7 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   return explained_after_search(pool, job, submission, searched, a, start);
 }
 
-bool class_offers_edits(const CodeSubmission& submission) {
+bool second_search_has_candidates(const CodeSubmission& submission) {
   worker::Job job = submission.render;
   job.grade = submission.spec;
   return class_offers_edits(job, submission.classmates, submission.repair);

@@ -56,7 +56,7 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
 
 // Whether a second search of `submission` beside its `classmates` has anything to try
 // (road::class_offers_edits): a class batch grades a student again only where it has.
-bool class_offers_edits(const CodeSubmission& submission);
+bool second_search_has_candidates(const CodeSubmission& submission);
 
 // The renders `grade_code` drew at the grade's own frames for `report`: the program's own (a retry
 // is one more), each repair candidate rendered again to confirm it, and the second grade of a
