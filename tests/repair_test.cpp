@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 
 #include "course/course_reader.h"
 #include "grade/aligned_lines.h"
 #include "grade/classmate_edits.h"
 #include "grade/live_statements.h"
 #include "grade/reference_edits.h"
+#include "grade/repair_candidates.h"
 #include "grade/repair_edits.h"
 #include "grade/repair_words.h"
 #include "grade/stage_tokens.h"
@@ -466,4 +468,96 @@ TEST(ClassmateEditsTest, AClassmateWhoNamesAValueAsTheStudentDoesOffersTheirValu
   EXPECT_EQ(nearest[0].fragment, classmate);
   EXPECT_EQ(nearest[1].fragment, reference);
   EXPECT_EQ(grade::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}}, 1).front().fragment, classmate);
+}
+
+// What a search tries, in its order, decided without a worker (grade/repair_candidates.h): the
+// class's singles first, each kind within its count, every candidate the student's program with
+// its edits made and nothing else, and pairs within their count, none twice, none of two edits
+// that touch.
+TEST(RepairCandidatesTest, TheClassComesFirstEachKindWithinItsCountAndNoPairTouchesOrRepeats) {
+  const course::Course& c = course::builtin_course();
+  const course::Preset* specular = c.preset("specular");
+  ASSERT_NE(specular, nullptr);
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string classmate = testkit::with_tutorial_main(reference);
+  const shader::ShaderFile vertex = specular->vertex;
+  const shader::ShaderFile fragment{"phong_frag.glsl", typed(classmate, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)")};
+  const auto program = grade::repair_program(vertex, fragment, specular->vertex, specular->fragment,
+                                             {{specular->vertex, {"classmate.glsl", classmate}}});
+  ASSERT_TRUE(program.has_value());
+  ASSERT_EQ(program->classmates.size(), 1u);
+
+  const grade::CandidateCounts counts{40, 4, 3, 3, 4};
+  const size_t offered = grade::class_edits(*program, counts).size();
+  ASSERT_GT(offered, 0u) << "the classmate writes reflectDir as the homework computes it";
+  const auto singles = grade::single_candidates(*program, counts);
+  const size_t from_class = std::min<size_t>(offered, 3);
+  int own = 0, reads = 0;
+  for (size_t i = 0; i < singles.size(); ++i) {
+    const auto& s = singles[i];
+    ASSERT_EQ(s.edits.size(), 1u);
+    EXPECT_EQ(s.from_class, i < from_class) << "candidate " << i;
+    if (!s.from_class) ++(grade::reads_reference(s.edits.front().kind) ? reads : own);
+    const grade::RepairEdit& e = s.edits.front();
+    const auto& edited = e.stage == shader::Stage::vertex ? s.vertex : s.fragment;
+    const auto& kept = e.stage == shader::Stage::vertex ? s.fragment : s.vertex;
+    EXPECT_EQ(edited.text, grade::with_edit((*program)[e.stage].source.glsl, e)) << "candidate " << i;
+    if (!e.other_stage) {
+      EXPECT_EQ(kept.text, (e.stage == shader::Stage::vertex ? fragment : vertex).text) << "candidate " << i;
+    }
+  }
+  EXPECT_EQ(own, counts.own);
+  EXPECT_LE(reads, counts.reference);
+  EXPECT_TRUE(grade::single_candidates(*program, {0, 0, 0, 0, 0}).empty());
+
+  // The nearest single, one that drew nearer than the student's own program, is paired with the
+  // others after the class's pairs.
+  const auto touch = [](const grade::RepairEdit& a, const grade::RepairEdit& b) { return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end; };
+  size_t nearest = singles.size();  // a single another touches, so that pairing it has one pair to leave out
+  for (size_t i = 0; i < singles.size() && nearest == singles.size(); ++i)
+    for (size_t j = 0; j < singles.size(); ++j)
+      if (i != j && touch(singles[i].edits.front(), singles[j].edits.front())) nearest = i;
+  ASSERT_LT(nearest, singles.size());
+  std::vector<double> distances(singles.size(), 0.5);
+  distances[nearest] = 0.1;
+  const auto pairs = grade::pair_candidates(*program, singles, distances, 0.4, counts);
+  ASSERT_FALSE(pairs.empty());
+  EXPECT_LE(pairs.size(), static_cast<size_t>(counts.pairs));
+  const auto all = grade::pair_candidates(*program, singles, distances, 0.4, {40, 4, 3, 3, 1000});
+  ASSERT_GT(all.size(), pairs.size());
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const auto& pair : all) {
+    ASSERT_EQ(pair.edits.size(), 2u);
+    const grade::RepairEdit &a = pair.edits[0], &b = pair.edits[1];
+    EXPECT_FALSE(touch(a, b)) << "two edits that touch: " << a.with << " and " << b.with;
+    EXPECT_FALSE(grade::smaller(b, a)) << "a pair's edits in the singles' order of size";
+    EXPECT_TRUE(seen.emplace(a.with + "@" + std::to_string(a.begin), b.with + "@" + std::to_string(b.begin)).second) << "a pair twice";
+  }
+  const auto same = [](const grade::RepairEdit& x, const grade::RepairEdit& y) { return x.stage == y.stage && x.begin == y.begin && x.with == y.with; };
+  const auto is_single = [&](const grade::RepairEdit& e, size_t i) { return same(e, singles[i].edits.front()); };
+  // The class's pairs first, then those of two lines that each read as the reference's.
+  const auto& first = pairs.front().edits;
+  const size_t as_reference = static_cast<size_t>(
+      std::count_if(singles.begin(), singles.end(), [](const auto& s) { return s.edits.front().reads_as_reference; }));
+  if (from_class >= 2) {
+    EXPECT_TRUE((is_single(first[0], 0) && is_single(first[1], 1)) || (is_single(first[0], 1) && is_single(first[1], 0)))
+        << "the class's two first singles are the first pair";
+  } else if (as_reference >= 2) {
+    EXPECT_TRUE(first[0].reads_as_reference && first[1].reads_as_reference) << "two lines read as the reference's are the first pair";
+  }
+  EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const auto& pair) {
+    return is_single(pair.edits[0], nearest) || is_single(pair.edits[1], nearest);
+  })) << "the single nearer than the student's own program is paired";
+  const auto from_the_class = [&](const grade::RepairEdit& e) {
+    for (size_t i = 0; i < from_class; ++i)
+      if (is_single(e, i)) return true;
+    return false;
+  };
+  for (const auto& pair : all) {
+    const grade::RepairEdit &a = pair.edits[0], &b = pair.edits[1];
+    EXPECT_TRUE((from_the_class(a) && from_the_class(b)) || (a.reads_as_reference && b.reads_as_reference) ||
+                is_single(a, nearest) || is_single(b, nearest))
+        << "a pair is two of the class's, two lines read as the reference's, or has the nearest single: " << a.with << " and " << b.with;
+  }
+  EXPECT_TRUE(grade::pair_candidates(*program, singles, distances, 0.4, {40, 4, 3, 3, 0}).empty());
 }

@@ -104,7 +104,7 @@ Expected<StudentGrade> grade_student_on_server(const course::Course& c, const co
 }
 
 Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f,
-                                     const Student& s, std::vector<road::PassingProgram> classmates = {}) {
+                                     const Student& s, std::vector<grade::PassingProgram> classmates = {}) {
   std::optional<std::pair<fs::path, fs::path>> pair;
   if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
   if (!classmates.empty()) {
@@ -119,8 +119,8 @@ Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Cou
 }
 
 // The programs of `passing` students, as each handed them in, for a class batch's second pass.
-std::vector<road::PassingProgram> programs_of(const course::Course& c, const course::Checkpoint& checkpoint, const std::vector<Student>& passing) {
-  std::vector<road::PassingProgram> out;
+std::vector<grade::PassingProgram> programs_of(const course::Course& c, const course::Checkpoint& checkpoint, const std::vector<Student>& passing) {
+  std::vector<grade::PassingProgram> out;
   for (const auto& s : passing)
     if (const auto pair = find_pair(c, s.dir, checkpoint))
       out.push_back({{pair->first.filename().string(), read_text(pair->first)}, {pair->second.filename().string(), read_text(pair->second)}});
@@ -151,7 +151,7 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
   worker::WorkerPool pool(config);
   if (options.concurrency <= 0) options.concurrency = config.workers + 1;
   const ClassFrames frames(c, checkpoint, [&] { return reference_frames(pool, c, checkpoint); });
-  const auto grade = [&](const Student& s, std::vector<road::PassingProgram> classmates) -> Expected<StudentGrade> {
+  const auto grade = [&](const Student& s, std::vector<grade::PassingProgram> classmates) -> Expected<StudentGrade> {
     auto graded = grade_student(pool, c, checkpoint, f, s, std::move(classmates));
     if (graded && !graded->first_grade_stands) frames.check(s, *graded);
     return graded;  // an error stops the batch, resumable: nobody is graded for the grader's failure

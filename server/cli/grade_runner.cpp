@@ -76,7 +76,7 @@ Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, c
 }
 
 Expected<std::optional<Graded>> grade_beside_class(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
-                                                   const fs::path& vert, const fs::path& frag, std::vector<road::PassingProgram> classmates) {
+                                                   const fs::path& vert, const fs::path& frag, std::vector<grade::PassingProgram> classmates) {
   auto submission = submission_of(c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
   if (!submission) return submission.take_error();
   submission->classmates = std::move(classmates);

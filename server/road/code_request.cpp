@@ -55,7 +55,7 @@ grade::GradeSpec own_reference_spec(const course::Course& c, ShaderPair referenc
 }
 
 // The spec graded against, and the words of its checkpoint's vectors (`vectors`).
-Expected<grade::GradeSpec> spec_of(const course::Course& c, CodeRequest& request, std::vector<std::string>& warnings, VectorWords& vectors) {
+Expected<grade::GradeSpec> spec_of(const course::Course& c, CodeRequest& request, std::vector<std::string>& warnings, grade::VectorWords& vectors) {
   if (request.reference.empty() == !request.own_reference)
     return make_error(ErrorCode::invalid_argument, "give either 'reference' (a checkpoint: " + comma_list(c.checkpoint_names()) +
                                                        ") or 'referenceVertex' and 'referenceFragment'");
@@ -84,8 +84,8 @@ Status apply_tolerance(const ToleranceShape& t, grade::GradeOptions& options) {
 
 // Here rather than beside course_code: the request's parsers are built without the road's pool
 // (tests/fuzz), and both need it.
-VectorWords vector_words(const course::Checkpoint& checkpoint) {
-  VectorWords out;
+grade::VectorWords vector_words(const course::Checkpoint& checkpoint) {
+  grade::VectorWords out;
   if (checkpoint.formula)
     for (const auto& [vector, local] : checkpoint.formula->vectors) out.emplace(local, name_in(grade::kFormulaVectorWords, vector));
   return out;

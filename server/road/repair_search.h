@@ -1,7 +1,9 @@
 #pragma once
 // The repair search of a failing code grade (docs/grading.md, "Repairs"): the smallest edit of
 // the student's own program (grade/repair_edits.h) that makes it draw what the reference draws,
-// under every light the grade uses and within its tolerance.
+// under every light the grade uses and within its tolerance. What to try, in what order, is
+// grade/repair_candidates.h's; how a confirmed repair is said, grade/repair_statement.h's; this
+// file runs the candidates.
 //
 // Each candidate is a grade of its own in a worker, killable like any: one that does not pass
 // ShadeLab's compile verdict, hangs, crashes or draws NaN fails its own grade and is passed over,
@@ -9,12 +11,12 @@
 // a screened pass is rendered again at the grade's own frames, and only that render states a
 // repair. The budget is counted, never timed, so the answer is the same on a busy or an idle
 // machine and on any GPU; it lives on the road because only the road may run more jobs.
-#include <functional>
-#include <map>
 #include <string>
+#include <vector>
 
+#include "grade/formula_vectors.h"
+#include "grade/repair_candidates.h"
 #include "grade/report.h"
-#include "shader/shader_source.h"
 #include "worker/job.h"
 #include "worker/pool.h"
 
@@ -41,17 +43,9 @@ struct RepairBudget {
   // student's program; tried first, as the first search tried the others.
   int class_candidates = 16;
   int classmates = 3;
-};
 
-// Another program that passes the same checkpoint: a classmate's, read beside the student's in a
-// class batch's second pass.
-struct PassingProgram {
-  shader::ShaderFile vertex, fragment;
+  grade::CandidateCounts candidate_counts() const { return {candidates, reference_candidates, class_candidates, classmates, pairs}; }
 };
-
-// The reference's locals that are vectors of the homework's formula, each with its words
-// (grade/formula_vectors.h): "V": "the direction to the eye".
-using VectorWords = std::map<std::string, std::string, std::less<>>;
 
 // Whether a report is one the search is for: a failing grade that drew its frames and that
 // neither the formula nor the course's catalogue explained. A starter constant the student
@@ -66,13 +60,13 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 // batch gives them, offer edits of their own after the reference's. When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
+void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
+                   const grade::VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {},
+                   const std::vector<grade::PassingProgram>& classmates = {});
+
 // Whether `classmates` offer any edit of the program `failed` drew (a grade job) that its first
 // search, beside the reference alone, did not try: where none, a second search would screen again
 // what the first screened, and is not run.
-bool class_offers_edits(const worker::Job& failed, const std::vector<PassingProgram>& classmates, const RepairBudget& budget = {});
-
-void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
-                   const VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {},
-                   const std::vector<PassingProgram>& classmates = {});
+bool class_offers_edits(const worker::Job& failed, const std::vector<grade::PassingProgram>& classmates, const RepairBudget& budget = {});
 
 }  // namespace shadelab::road

@@ -42,9 +42,9 @@ struct CodeSubmission {
   // How much of a failing grade's repair (road/repair_search.h) is said: the course's choice for
   // its students, the repaired line for whoever may see the references.
   grade::RepairShown repair_shown = grade::RepairShown::where;
-  VectorWords vector_words;  // the checkpoint's formula's vectors, for a repair's words
+  grade::VectorWords vector_words;  // the checkpoint's formula's vectors, for a repair's words
   RepairBudget repair;  // 0 candidates: no search
-  std::vector<PassingProgram> classmates;  // a class batch's second pass: its passing programs (road/repair_search.h)
+  std::vector<grade::PassingProgram> classmates;  // a class batch's second pass: its passing programs (road/repair_search.h)
 };
 
 struct CodeGrade {
@@ -81,7 +81,7 @@ grade::Report not_handed_in(const std::string& looked_for, const std::string& ch
 
 // The reference's locals that are `checkpoint`'s formula's vectors, with their words ("V": "the
 // direction to the eye"); none where the checkpoint has no formula or names none.
-VectorWords vector_words(const course::Checkpoint& checkpoint);
+grade::VectorWords vector_words(const course::Checkpoint& checkpoint);
 
 // How the course draws a checkpoint's code: one of its meshes (empty: its default), its canvas and
 // frames unless a run sets others.

@@ -1,0 +1,103 @@
+#include "grade/repair_candidates.h"
+
+#include <algorithm>
+#include <set>
+
+#include "grade/classmate_edits.h"
+
+namespace shadelab::grade {
+
+namespace {
+
+std::string glsl_or_empty(const shader::ShaderFile& file, shader::Stage stage) {
+  auto unwrapped = shader::unwrap(file, stage);
+  return unwrapped ? std::move(unwrapped->glsl) : std::string();
+}
+
+bool overlapping(const RepairEdit& a, const RepairEdit& b) {
+  return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end;  // touching spans count: one token's edits
+}
+
+}  // namespace
+
+std::optional<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
+                                            const shader::ShaderFile& reference_vertex, const shader::ShaderFile& reference_fragment,
+                                            const std::vector<PassingProgram>& classmates) {
+  auto v = shader::unwrap(vertex, shader::Stage::vertex);
+  auto f = shader::unwrap(fragment, shader::Stage::fragment);
+  if (!v || !f) return std::nullopt;
+  RepairProgram p{{&vertex, std::move(*v)},
+                  {&fragment, std::move(*f)},
+                  glsl_or_empty(reference_vertex, shader::Stage::vertex),
+                  glsl_or_empty(reference_fragment, shader::Stage::fragment),
+                  {}};
+  for (const auto& c : classmates) {
+    auto cv = glsl_or_empty(c.vertex, shader::Stage::vertex), cf = glsl_or_empty(c.fragment, shader::Stage::fragment);
+    if (!cv.empty() && !cf.empty()) p.classmates.emplace_back(std::move(cv), std::move(cf));
+  }
+  return p;
+}
+
+RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edits) {
+  RepairCandidate c{std::move(edits), *p.vertex.file, *p.fragment.file};
+  for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment}) {
+    std::vector<OtherStageSpan> here;  // each span this stage's text changes
+    for (const auto& e : c.edits) {
+      if (e.stage == stage) here.push_back({e.begin, e.end, e.with});
+      else if (e.other_stage) here.push_back(*e.other_stage);
+    }
+    if (here.empty()) continue;
+    // The later span first, so the earlier one's bytes are still where it says.
+    std::sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.begin > b.begin; });
+    std::string glsl = p[stage].source.glsl;
+    for (const auto& span : here) glsl = glsl.substr(0, span.begin) + span.with + glsl.substr(span.end);
+    (stage == shader::Stage::vertex ? c.vertex : c.fragment).text = std::move(glsl);
+  }
+  return c;
+}
+
+std::vector<RepairEdit> class_edits(const RepairProgram& p, const CandidateCounts& counts) {
+  if (p.classmates.empty() || counts.from_class <= 0 || p.reference_fragment.empty()) return {};
+  std::vector<StagePair> class_programs;
+  for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
+  const auto nearest = nearest_classmates(p.student(), class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
+  return classmate_edits(p.student(), p.reference(), nearest);
+}
+
+std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const CandidateCounts& counts) {
+  int own = std::max(0, counts.own), reference = std::max(0, counts.reference), from_class = std::max(0, counts.from_class);
+  std::vector<RepairCandidate> out;
+  for (auto& e : class_edits(p, counts))
+    if (from_class-- > 0) {
+      out.push_back(candidate_of(p, {std::move(e)}));
+      out.back().from_class = true;
+    }
+  for (auto& e : program_repair_edits(p.student(), p.reference()))
+    if ((reads_reference(e.kind) ? reference : own)-- > 0) out.push_back(candidate_of(p, {std::move(e)}));
+  return out;
+}
+
+std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::vector<RepairCandidate>& singles,
+                                             const std::vector<double>& distances, double own, const CandidateCounts& counts) {
+  std::vector<RepairCandidate> out;
+  std::set<std::pair<size_t, size_t>> paired;
+  const auto add = [&](size_t i, size_t j) {
+    const RepairEdit &a = singles[i].edits.front(), &b = singles[j].edits.front();
+    if (i == j || overlapping(a, b) || out.size() >= static_cast<size_t>(std::max(0, counts.pairs))) return;
+    if (!paired.insert(std::minmax(i, j)).second) return;
+    out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
+  };
+  for (size_t i = 0; i < singles.size() && singles[i].from_class; ++i)
+    for (size_t j = i + 1; j < singles.size() && singles[j].from_class; ++j) add(i, j);
+  for (size_t i = 0; i < singles.size(); ++i)
+    for (size_t j = i + 1; j < singles.size(); ++j)
+      if (singles[i].edits.front().reads_as_reference && singles[j].edits.front().reads_as_reference) add(i, j);
+  size_t nearest = distances.size();
+  for (size_t i = 0; i < distances.size(); ++i)
+    if (distances[i] < own && (nearest == distances.size() || distances[i] < distances[nearest])) nearest = i;
+  if (nearest < distances.size())
+    for (size_t i = 0; i < singles.size(); ++i) add(nearest, i);
+  return out;
+}
+
+}  // namespace shadelab::grade

@@ -1,0 +1,88 @@
+#pragma once
+// What a repair search tries, in its order (docs/grading.md, "Repairs"): a failing program's
+// single edits (the class's where a class batch gives its passing programs, the student's own,
+// those that read the reference), then, where no single one repairs it, pairs of them. Decided
+// from tokens alone; whether a candidate repairs anything only a render says, and the road runs
+// those (road/repair_search.h).
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "grade/repair_edits.h"
+#include "shader/shader_source.h"
+
+namespace shadelab::grade {
+
+// Another program that passes the same checkpoint: a classmate's, read beside the student's in a
+// class batch's second search.
+struct PassingProgram {
+  shader::ShaderFile vertex, fragment;
+};
+
+// One stage of the student's program as the driver gets it, and the file it came from.
+struct StudentStage {
+  const shader::ShaderFile* file = nullptr;
+  shader::UnwrappedSource source;
+};
+
+// The program a search edits, and what it is read beside.
+struct RepairProgram {
+  StudentStage vertex, fragment;
+  std::string reference_vertex, reference_fragment;              // the GLSL the grade's reference draws with, or empty
+  std::vector<std::pair<std::string, std::string>> classmates;  // each passing classmate's GLSL: vertex, fragment
+  const StudentStage& operator[](shader::Stage s) const { return s == shader::Stage::vertex ? vertex : fragment; }
+  StagePair student() const { return {vertex.source.glsl, fragment.source.glsl}; }
+  StagePair reference() const { return {reference_vertex, reference_fragment}; }
+};
+
+// The student's program (the files the grade draws; none where a stage cannot be unwrapped) read
+// beside the grade's reference and the classmates' programs that can be.
+std::optional<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
+                                            const shader::ShaderFile& reference_vertex, const shader::ShaderFile& reference_fragment,
+                                            const std::vector<PassingProgram>& classmates);
+
+// How many candidates of each kind a search may try (road::RepairBudget counts them).
+struct CandidateCounts {
+  int own = 0;          // single edits of the student's own program
+  int reference = 0;    // single edits that read the reference (grade/reference_edits.h)
+  int from_class = 0;   // single edits the class offers, from the `classmates` nearest the student's program
+  int classmates = 0;
+  int pairs = 0;
+};
+
+struct RepairCandidate {
+  std::vector<RepairEdit> edits;        // one, or a pair
+  shader::ShaderFile vertex, fragment;  // the program with the edits made
+  bool from_class = false;              // a single a classmate's program offers (grade/classmate_edits.h)
+};
+
+// The program with `edits` made: an edited stage given as the GLSL the edits made (the same
+// program the driver compiles), the other as the student's file. No edits: the student's own.
+RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edits);
+
+// The edits the class's programs nearest the student's offer beyond the reference's: none without
+// classmates, a reference or a count for them.
+std::vector<RepairEdit> class_edits(const RepairProgram& p, const CandidateCounts& counts);
+
+// The single edits, in the order they are tried: the first `from_class` the class offers, then,
+// smallest first, the first `own` of the student's own and the first `reference` of those that
+// read the reference. The class's come first because a class is given only to a second search,
+// once the same program's first one confirmed none of the others: screened again they would fail
+// again, and could spend the confirmations again.
+std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const CandidateCounts& counts);
+
+// Pairs for a program no single edit repairs, at most `counts.pairs`, in this order:
+// - two singles the class offers (two of a passing program's values, where the student's program
+//   is written as that program is), in the singles' order;
+// - two singles that each make their line read as the reference's (the student's program aligned
+//   with the reference at two lines), in the singles' order;
+// - the single that drew nearest the reference (`distances`, each single's screen; a mistake of two
+//   mended must draw nearer than the student's `own` program) with each other single, in the
+//   singles' order. A second mistake's edit need not draw nearer alone: the first mistake's error
+//   can hide it.
+// No pair twice, and none of two edits that touch.
+std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::vector<RepairCandidate>& singles,
+                                             const std::vector<double>& distances, double own, const CandidateCounts& counts);
+
+}  // namespace shadelab::grade
