@@ -80,9 +80,23 @@ grade::Report not_handed_in(const std::string& looked_for, const std::string& ch
   return grade::failed_submission(make_error(ErrorCode::invalid_argument, looked_for), checkpoint, max_score);
 }
 
-// A failing program no repair was confirmed for: graded again whole, the formula and the catalogue reading its frames, as with no search. What the
-// search said (`searched`, when it ran) is kept in the report: what it tried, and that none passed,
-// or that it could not run.
+namespace {
+
+// A code grade no worker answered (`failed`): its grade by the rule (the submission's 0, or the
+// service's Error), with the attempts `stopped` made said and the time since `start`.
+Expected<CodeGrade> unanswered(const Error& failed, const grade::GradeSpec& spec, const worker::Attempted<worker::GradeResult>& stopped,
+                               std::chrono::steady_clock::time_point start) {
+  auto grade = grade_unreadable(failed, spec.reference_name, spec.options.max_score);
+  if (grade) {
+    note_attempts(grade->result.report, stopped.attempts(), stopped.retried());
+    grade->seconds = seconds_since(start);  // the attempts' time: no worker answered
+  }
+  return grade;
+}
+
+// A failing program no repair was confirmed for: graded again whole, the formula and the
+// catalogue reading its frames, as with no search. What the search said (`searched`, when it ran)
+// is kept in the report: what it tried, and that none passed, or that it could not run.
 struct Searched {
   std::optional<grade::RepairSearch> tally;
   std::vector<std::string> warnings;
@@ -94,20 +108,15 @@ Expected<CodeGrade> explained_after_search(worker::WorkerPool& pool, const worke
   const grade::GradeSpec& spec = job.grade;
   auto b = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(job, submission.mesh_bytes));
   const auto& stopped = verdict.attempts() > 1 ? verdict : b;  // a stop in either is said
-  if (!b.answered) {
-    auto failed = grade_unreadable(b.answered.error(), spec.reference_name, spec.options.max_score);
-    if (failed) {
-      note_attempts(failed->result.report, stopped.attempts(), stopped.retried());
-      failed->seconds = seconds_since(start);
-    }
-    return failed;
-  }
+  if (!b.answered) return unanswered(b.answered.error(), spec, stopped, start);
   grade::Report& report = b.answered->result.report;
   note_attempts(report, stopped.attempts(), stopped.retried());
   report.repair_search = searched.tally;
   report.warnings.insert(report.warnings.end(), searched.warnings.begin(), searched.warnings.end());
   return CodeGrade{std::move(b.answered->result), seconds_since(start)};
 }
+
+}  // namespace
 
 Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submission) {
   worker::Job& job = submission.render;
@@ -122,14 +131,7 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   // (docs/grading.md, "One explainer"), so the formula and the catalogue read only what the
   // search could not repair, in a second grade of the same program.
   auto a = worker::run_twice_if_stopped<worker::GradeResult>(pool, worker::to_message(searching ? verdict_job(job) : job, submission.mesh_bytes));
-  if (!a.answered) {
-    auto failed = grade_unreadable(a.answered.error(), spec.reference_name, spec.options.max_score);
-    if (failed) {
-      note_attempts(failed->result.report, a.attempts(), a.retried());
-      failed->seconds = seconds_since(start);  // the attempts' time: no worker answered
-    }
-    return failed;
-  }
+  if (!a.answered) return unanswered(a.answered.error(), spec, a, start);
   grade::Report& report = a.answered->result.report;
   note_attempts(report, a.attempts(), a.retried());
   // A pass, a compile error, or a failure the grader's own diagnosis names (swapped channels) is
