@@ -30,6 +30,11 @@ void add_grader_options(CLI::App* command, std::string& course, std::string& cac
   add_software_option(command, software);
 }
 
+void add_shader_options(CLI::App* command, std::string& vert, std::string& frag) {
+  command->add_option("--vert", vert, "Vertex shader: GLSL or the homework's JS module (phong_vert.js)");
+  command->add_option("--frag", frag, "Fragment shader: GLSL or JS module");
+}
+
 Expected<std::shared_ptr<const course::Course>> load_course(const std::string& path) {
   if (path.empty()) return std::shared_ptr<const course::Course>(&course::builtin_course(), [](const course::Course*) {});
   auto loaded = course::load_course_file(path);

@@ -22,6 +22,8 @@ void add_software_option(CLI::App* command, bool& software);
 void add_cache_option(CLI::App* command, std::string& folder);
 // What every command that grades takes: --course, --cache-dir and --software.
 void add_grader_options(CLI::App* command, std::string& course, std::string& cache_dir, bool& software);
+// --vert and --frag: a student's two shaders, each GLSL or the homework's JS module.
+void add_shader_options(CLI::App* command, std::string& vert, std::string& frag);
 // The course at `path`, or the built-in one for an empty path; shared, never copied per job.
 Expected<std::shared_ptr<const course::Course>> load_course(const std::string& path);
 

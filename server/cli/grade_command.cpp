@@ -168,8 +168,7 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
 Command add_grade_command(CLI::App& app) {
   auto f = std::make_shared<GradeFlags>();
   auto* cmd = app.add_subcommand("grade", "Grade shaders against a checkpoint (one submission, or a folder of them)");
-  cmd->add_option("--vert", f->vert, "Submission's vertex shader");
-  cmd->add_option("--frag", f->frag, "Submission's fragment shader");
+  add_shader_options(cmd, f->vert, f->frag);
   cmd->add_option("--saved-frames", f->saved_frames,
                   "A folder holding the deliverable's frames as the page saves them (images/hw2_specular_0.png ...): graded "
                   "at the lag each was drawn with, and against --vert/--frag's render when given")

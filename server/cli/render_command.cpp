@@ -159,8 +159,7 @@ int run_render(const RenderFlags& f) {
 Command add_render_command(CLI::App& app) {
   auto flags = std::make_shared<RenderFlags>();
   auto* cmd = app.add_subcommand("render", "Render the spinning-mesh frames and the 3x3 grid");
-  cmd->add_option("--vert", flags->vert, "Vertex shader: GLSL or the homework's JS module (phong_vert.js)");
-  cmd->add_option("--frag", flags->frag, "Fragment shader: GLSL or JS module");
+  add_shader_options(cmd, flags->vert, flags->frag);
   const course::Course& builtin = course::builtin_course();
   add_course_option(cmd, flags->course);
   cmd->add_option("--preset", flags->preset, "Reference shaders of the course (built-in: " + comma_list(builtin.preset_names()) +

@@ -117,36 +117,36 @@ class Arithmetic {
     return false;
   }
 
-  std::optional<double> sum() {
-    auto v = product();
+  // The operator at the cursor when it is one of `ops` (taken), else 0.
+  char take_operator(std::string_view ops) {
+    skip();
+    if (at_ < s_.size() && ops.find(s_[at_]) != std::string_view::npos) return s_[at_++];
+    return 0;
+  }
+
+  // One level of left-associative operators, `operand (op operand)*`; `apply` has no value where
+  // the operation has none (a division by 0), and nothing after it has one either.
+  template <class Apply>
+  std::optional<double> chain(std::optional<double> (Arithmetic::*operand)(), std::string_view ops, Apply apply) {
+    auto v = (this->*operand)();
     while (v) {
-      if (eat('+')) {
-        const auto r = product();
-        v = r ? std::optional(*v + *r) : std::nullopt;
-      } else if (eat('-')) {
-        const auto r = product();
-        v = r ? std::optional(*v - *r) : std::nullopt;
-      } else {
-        break;
-      }
+      const char op = take_operator(ops);
+      if (op == 0) break;
+      const auto r = (this->*operand)();
+      v = r ? apply(op, *v, *r) : std::nullopt;
     }
     return v;
   }
 
+  std::optional<double> sum() {
+    return chain(&Arithmetic::product, "+-", [](char op, double a, double b) { return std::optional(op == '+' ? a + b : a - b); });
+  }
+
   std::optional<double> product() {
-    auto v = unary();
-    while (v) {
-      if (eat('*')) {
-        const auto r = unary();
-        v = r ? std::optional(*v * *r) : std::nullopt;
-      } else if (eat('/')) {
-        const auto r = unary();
-        v = r && *r != 0 ? std::optional(*v / *r) : std::nullopt;
-      } else {
-        break;
-      }
-    }
-    return v;
+    return chain(&Arithmetic::unary, "*/", [](char op, double a, double b) -> std::optional<double> {
+      if (op == '*') return a * b;
+      return b != 0 ? std::optional(a / b) : std::nullopt;
+    });
   }
 
   std::optional<double> unary() {

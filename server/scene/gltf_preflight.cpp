@@ -80,6 +80,19 @@ const json& array_field(const json& root, const char* key) {
   return it != root.end() && it->is_array() ? *it : empty;
 }
 
+// Each element of the array `key` (none when absent) as an object, with its path ("buffers[2]");
+// the first problem `check` finds ends the walk.
+template <class Check>
+Status each_object(const json& root, const char* key, const Fail& fail, Check check) {
+  const json& list = array_field(root, key);
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string where = std::string(key) + "[" + std::to_string(i) + "]";
+    if (!list[i].is_object()) return fail(where, "expected an object");
+    if (auto s = check(list[i], i, where); !s) return s;
+  }
+  return Ok{};
+}
+
 // The bytes that hold a buffer: the GLB's BIN chunk (no uri) or a base64 data: URI's payload.
 Expected<std::uint64_t> buffer_capacity(const json& buffer, size_t index, const std::optional<std::uint64_t>& bin_size,
                                         const std::string& where, const Fail& fail) {
@@ -98,18 +111,17 @@ Expected<std::uint64_t> buffer_capacity(const json& buffer, size_t index, const 
 
 Expected<std::vector<std::uint64_t>> check_buffers(const json& root, const std::optional<std::uint64_t>& bin_size, const Fail& fail) {
   std::vector<std::uint64_t> lengths;
-  const json& buffers = array_field(root, "buffers");
-  for (size_t i = 0; i < buffers.size(); ++i) {
-    const std::string where = "buffers[" + std::to_string(i) + "]";
-    if (!buffers[i].is_object()) return fail(where, "expected an object");
-    auto length = size_field(buffers[i], "byteLength", where, fail);
+  const auto checked = each_object(root, "buffers", fail, [&](const json& buffer, size_t i, const std::string& where) -> Status {
+    auto length = size_field(buffer, "byteLength", where, fail);
     if (!length) return length.error();
-    auto capacity = buffer_capacity(buffers[i], i, bin_size, where, fail);
+    auto capacity = buffer_capacity(buffer, i, bin_size, where, fail);
     if (!capacity) return capacity.error();
     if (*length > *capacity)
       return fail(where + ".byteLength", std::to_string(*length) + " bytes, and the file holds " + std::to_string(*capacity) + " for it");
     lengths.push_back(*length);
-  }
+    return Ok{};
+  });
+  if (!checked) return checked.error();
   return lengths;
 }
 
@@ -120,21 +132,20 @@ struct View {
 
 Expected<std::vector<View>> check_views(const json& root, const std::vector<std::uint64_t>& buffers, const Fail& fail) {
   std::vector<View> views;
-  const json& list = array_field(root, "bufferViews");
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string where = "bufferViews[" + std::to_string(i) + "]";
-    if (!list[i].is_object()) return fail(where, "expected an object");
-    auto buffer = size_field(list[i], "buffer", where, fail);
+  const auto checked = each_object(root, "bufferViews", fail, [&](const json& view, size_t, const std::string& where) -> Status {
+    auto buffer = size_field(view, "buffer", where, fail);
     if (!buffer) return buffer.error();
     if (*buffer >= buffers.size()) return fail(where + ".buffer", "there is no buffer " + std::to_string(*buffer));
-    auto offset = size_field(list[i], "byteOffset", where, fail, 0);
-    auto length = size_field(list[i], "byteLength", where, fail);
-    auto stride = size_field(list[i], "byteStride", where, fail, 0);
+    auto offset = size_field(view, "byteOffset", where, fail, 0);
+    auto length = size_field(view, "byteLength", where, fail);
+    auto stride = size_field(view, "byteStride", where, fail, 0);
     for (const auto* f : {&offset, &length, &stride})
       if (!*f) return f->error();
     if (*offset + *length > buffers[*buffer]) return fail(where, "runs past the end of buffer " + std::to_string(*buffer));
     views.push_back({*length, *stride});
-  }
+    return Ok{};
+  });
+  if (!checked) return checked.error();
   return views;
 }
 
@@ -189,25 +200,22 @@ Status check_sparse(const json& sparse, const std::string& where, std::uint64_t 
 }
 
 Status check_accessors(const json& root, const std::vector<View>& views, const MeshLimits& limits, const Fail& fail) {
-  const json& list = array_field(root, "accessors");
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string where = "accessors[" + std::to_string(i) + "]";
-    if (!list[i].is_object()) return fail(where, "expected an object");
-    auto count = size_field(list[i], "count", where, fail);
-    auto type = size_field(list[i], "componentType", where, fail);
+  return each_object(root, "accessors", fail, [&](const json& accessor, size_t, const std::string& where) -> Status {
+    auto count = size_field(accessor, "count", where, fail);
+    auto type = size_field(accessor, "componentType", where, fail);
     for (const auto* f : {&count, &type})
       if (!*f) return f->error();
-    const std::uint64_t element = component_size(*type) * components(list[i].value("type", json()));
+    const std::uint64_t element = component_size(*type) * components(accessor.value("type", json()));
     if (element == 0) return fail(where, "componentType and type must be ones glTF 2.0 defines");
     // An accessor without a buffer view is zeros assimp allocates: bounded by the triangle limit.
     if (*count > 3 * std::uint64_t{limits.max_triangles})
       return fail(where + ".count", std::to_string(*count) + " elements, more than three per triangle of the limit (" +
                                         std::to_string(limits.max_triangles) + ")", ErrorCode::mesh_too_large);
-    if (auto s = fits_in_view(list[i], where, *count, element, views, fail); !s) return s;
-    if (const auto sparse = list[i].find("sparse"); sparse != list[i].end())
+    if (auto s = fits_in_view(accessor, where, *count, element, views, fail); !s) return s;
+    if (const auto sparse = accessor.find("sparse"); sparse != accessor.end())
       if (auto s = check_sparse(*sparse, where + ".sparse", *count, element, views, fail); !s) return s;
-  }
-  return Ok{};
+    return Ok{};
+  });
 }
 
 }  // namespace

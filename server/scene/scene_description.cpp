@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <set>
+#include <string_view>
+#include <variant>
 
 #include "core/json_reader.h"
 
@@ -25,26 +28,90 @@ using Reader = JsonReader;
 
 constexpr double kCoordinate = 1e7;  // metres; beyond this a float32 vertex has no precision left
 
+// A number or a vector a struct of the scene reads as it is, within a range: its key, where it
+// goes, the range. Each key is written once, for the read and for the list of keys known.
+template <class T>
+struct Field {
+  std::string_view key;
+  std::variant<double T::*, glm::dvec3 T::*> member;
+  double lo, hi;
+};
+
+template <class T, std::size_t N>
+void read_fields(const Reader& r, T& into, const Field<T> (&fields)[N]) {
+  for (const auto& f : fields) {
+    const std::string key(f.key);
+    if (const auto* number = std::get_if<double T::*>(&f.member)) into.*(*number) = r.number(key, into.*(*number), f.lo, f.hi);
+    else if (const auto* vector = std::get_if<glm::dvec3 T::*>(&f.member)) into.*(*vector) = r.vec3(key, into.*(*vector), f.lo, f.hi);
+  }
+}
+
+// The keys of the tables, and those the reader handles itself, as the format knows them.
+template <class T, std::size_t... N>
+std::set<std::string> keys_of(std::initializer_list<std::string_view> others, const Field<T> (&... tables)[N]) {
+  std::set<std::string> keys(others.begin(), others.end());
+  (..., [&](const auto& table) {
+    for (const auto& f : table) keys.emplace(f.key);
+  }(tables));
+  return keys;
+}
+
+constexpr Field<Material> kMaterialFields[] = {
+    {"baseColor", &Material::base_color, 0, 1},
+    {"metallic", &Material::metallic, 0, 1},
+    {"roughness", &Material::roughness, 0, 1},
+    {"specular", &Material::specular, 0, 1},
+    {"subsurface", &Material::subsurface, 0, 1},
+    {"subsurfaceColor", &Material::subsurface_color, 0, 1},
+    {"subsurfaceRadius", &Material::subsurface_radius, 0, 100},
+    {"emission", &Material::emission, 0, 1},
+    {"emissionStrength", &Material::emission_strength, 0, 1e6},
+    {"alpha", &Material::alpha, 0, 1},
+};
+
+// Blender's own limits: lens 1 mm and up, sensor 1..100 mm, clip start > 0.
+constexpr Field<Camera> kCameraFields[] = {
+    {"lens", &Camera::lens_mm, 1, 5000},         {"sensorWidth", &Camera::sensor_width_mm, 1, 100},
+    {"orthoScale", &Camera::ortho_scale, 1e-6, 1e7}, {"clipStart", &Camera::clip_start, 1e-6, 1e7},
+    {"clipEnd", &Camera::clip_end, 1e-6, 1e9},
+};
+
+constexpr Field<Light> kLightPlace[] = {
+    {"color", &Light::color, 0, 1e3},
+    {"location", &Light::location, -kCoordinate, kCoordinate},
+};
+constexpr Field<Light> kLightSize[] = {
+    {"power", &Light::power_w, 0, 1e9},          {"strength", &Light::strength, 0, 1e6},
+    {"radius", &Light::radius, 0, 1e4},          {"angle", &Light::angle_degrees, 0, 180},
+    {"spotSize", &Light::spot_size_degrees, 1, 180}, {"spotBlend", &Light::spot_blend, 0, 1},
+    {"size", &Light::size, 0, 1e4},
+};
+
+constexpr Field<Ground> kGroundFields[] = {
+    {"size", &Ground::size, 1e-6, 1e7},
+    {"height", &Ground::height, -kCoordinate, kCoordinate},
+};
+constexpr Field<World> kWorldFields[] = {
+    {"color", &World::color, 0, 1e3},
+    {"strength", &World::strength, 0, 1e6},
+};
+
 Material read_material(const Reader& r) {
-  r.only({"baseColor", "metallic", "roughness", "specular", "subsurface", "subsurfaceColor", "subsurfaceRadius",
-          "emission", "emissionStrength", "alpha"});
+  r.only(keys_of({}, kMaterialFields));
   Material m;
-  m.base_color = r.vec3("baseColor", m.base_color, 0, 1);
-  m.metallic = r.number("metallic", m.metallic, 0, 1);
-  m.roughness = r.number("roughness", m.roughness, 0, 1);
-  m.specular = r.number("specular", m.specular, 0, 1);
-  m.subsurface = r.number("subsurface", m.subsurface, 0, 1);
-  m.subsurface_color = r.vec3("subsurfaceColor", m.subsurface_color, 0, 1);
-  m.subsurface_radius = r.vec3("subsurfaceRadius", m.subsurface_radius, 0, 100);
-  m.emission = r.vec3("emission", m.emission, 0, 1);
-  m.emission_strength = r.number("emissionStrength", m.emission_strength, 0, 1e6);
-  m.alpha = r.number("alpha", m.alpha, 0, 1);
+  read_fields(r, m, kMaterialFields);
   return m;
 }
 
 Material material_at(const Reader& parent, const std::string& key, std::string* error) {
   if (!parent.has(key)) return {};
   return read_material(Reader(parent.get(key), parent.at(key), error));
+}
+
+// Where a camera or a light points: Euler angles or a point it looks at, never both.
+void read_rotation(const Reader& r, std::optional<glm::dvec3>& rotation) {
+  if (r.has("rotation") && r.has("target")) r.fail(r.at("rotation") + ": give rotation or target, not both");
+  if (r.has("rotation")) rotation = r.vec3("rotation", {0, 0, 0}, -1e6, 1e6);
 }
 
 Object read_object(const Reader& r, size_t index, std::string* error) {
@@ -66,43 +133,28 @@ Object read_object(const Reader& r, size_t index, std::string* error) {
 }
 
 Camera read_camera(const Reader& r) {
-  r.only({"location", "rotation", "target", "type", "lens", "sensorWidth", "sensorFit", "orthoScale", "clipStart", "clipEnd"});
+  r.only(keys_of({"location", "rotation", "target", "type", "sensorFit"}, kCameraFields));
   Camera c;
   c.location = r.vec3("location", c.location, -kCoordinate, kCoordinate);
-  if (r.has("rotation") && r.has("target")) r.fail(r.at("rotation") + ": give rotation or target, not both");
-  if (r.has("rotation")) c.rotation_degrees = r.vec3("rotation", {0, 0, 0}, -1e6, 1e6);
+  read_rotation(r, c.rotation_degrees);
   c.target = r.vec3("target", c.target, -kCoordinate, kCoordinate);
   c.type = named(r, "type", c.type, kProjectionNames);
-  // Blender's own limits: lens 1 mm and up, sensor 1..100 mm, clip start > 0.
-  c.lens_mm = r.number("lens", c.lens_mm, 1, 5000);
-  c.sensor_width_mm = r.number("sensorWidth", c.sensor_width_mm, 1, 100);
   c.sensor_fit = named(r, "sensorFit", c.sensor_fit, kSensorFitNames);
-  c.ortho_scale = r.number("orthoScale", c.ortho_scale, 1e-6, 1e7);
-  c.clip_start = r.number("clipStart", c.clip_start, 1e-6, 1e7);
-  c.clip_end = r.number("clipEnd", c.clip_end, 1e-6, 1e9);
+  read_fields(r, c, kCameraFields);
   if (c.clip_end <= c.clip_start) r.fail(r.at("clipEnd") + ": must be greater than clipStart");
   return c;
 }
 
 Light read_light(const Reader& r, size_t index) {
-  r.only({"name", "type", "color", "location", "rotation", "target", "power", "strength", "radius", "angle", "spotSize",
-          "spotBlend", "size", "castShadow"});
+  r.only(keys_of({"name", "type", "rotation", "target", "castShadow"}, kLightPlace, kLightSize));
   Light l;
   l.name = r.text("name", "Light." + std::to_string(index));
   if (!r.has("type")) r.fail(r.at("type") + ": required (point, sun, spot or area)");
   l.type = named(r, "type", l.type, kLightTypeNames);
-  l.color = r.vec3("color", l.color, 0, 1e3);
-  l.location = r.vec3("location", l.location, -kCoordinate, kCoordinate);
-  if (r.has("rotation") && r.has("target")) r.fail(r.at("rotation") + ": give rotation or target, not both");
-  if (r.has("rotation")) l.rotation_degrees = r.vec3("rotation", {0, 0, 0}, -1e6, 1e6);
+  read_fields(r, l, kLightPlace);
+  read_rotation(r, l.rotation_degrees);
   if (r.has("target")) l.target = r.vec3("target", {0, 0, 0}, -kCoordinate, kCoordinate);
-  l.power_w = r.number("power", l.power_w, 0, 1e9);
-  l.strength = r.number("strength", l.strength, 0, 1e6);
-  l.radius = r.number("radius", l.radius, 0, 1e4);
-  l.angle_degrees = r.number("angle", l.angle_degrees, 0, 180);
-  l.spot_size_degrees = r.number("spotSize", l.spot_size_degrees, 1, 180);
-  l.spot_blend = r.number("spotBlend", l.spot_blend, 0, 1);
-  l.size = r.number("size", l.size, 0, 1e4);
+  read_fields(r, l, kLightSize);
   l.cast_shadow = r.boolean("castShadow", l.cast_shadow);
   return l;
 }
@@ -149,10 +201,9 @@ Expected<SceneDescription> parse_scene(const json& j, const SceneLimits& limits)
 
   if (root.has("ground")) {
     Reader g(root.get("ground"), "ground", &error);
-    g.only({"size", "height", "material"});
+    g.only(keys_of({"material"}, kGroundFields));
     Ground ground;
-    ground.size = g.number("size", ground.size, 1e-6, 1e7);
-    ground.height = g.number("height", ground.height, -kCoordinate, kCoordinate);
+    read_fields(g, ground, kGroundFields);
     ground.material = material_at(g, "material", &error);
     scene.ground = ground;
   }
@@ -169,9 +220,8 @@ Expected<SceneDescription> parse_scene(const json& j, const SceneLimits& limits)
   }
   if (root.has("world")) {
     Reader w(root.get("world"), "world", &error);
-    w.only({"color", "strength"});
-    scene.world.color = w.vec3("color", scene.world.color, 0, 1e3);
-    scene.world.strength = w.number("strength", scene.world.strength, 0, 1e6);
+    w.only(keys_of({}, kWorldFields));
+    read_fields(w, scene.world, kWorldFields);
   }
   if (root.has("render")) scene.render = read_render(Reader(root.get("render"), "render", &error), limits);
 

@@ -23,11 +23,32 @@ GLuint gen_texture() {
   return id;
 }
 
+// A 2D texture, clamped at its edges and bound, with `levels` levels of `format`.
+gl::TextureName clamped_texture(int levels, GLenum format, int width, int height, GLenum min_filter, GLenum mag_filter) {
+  gl::TextureName texture(gen_texture());
+  glBindTexture(GL_TEXTURE_2D, texture.get());
+  glTexStorage2D(GL_TEXTURE_2D, levels, format, width, height);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(min_filter));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(mag_filter));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
 Status complete(const std::string& what) {
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status == GL_FRAMEBUFFER_COMPLETE) return Ok{};
   return make_error(ErrorCode::gl_error, "the driver rejected the " + what + " framebuffer (status 0x" +
                                              [&] { char b[16]; std::snprintf(b, sizeof b, "%x", status); return std::string(b); }() + ")");
+}
+
+// `fbo` becomes a new framebuffer drawing into `color` and, when given, testing against `depth`.
+Status attach_renderbuffers(gl::FramebufferName& fbo, const gl::RenderbufferName& color, const gl::RenderbufferName* depth,
+                            const std::string& what) {
+  fbo = bound_framebuffer();
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color.get());
+  if (depth) glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth->get());
+  return complete(what);
 }
 
 }  // namespace
@@ -39,26 +60,15 @@ Expected<FrameTargets> FrameTargets::create(int width, int height, int samples) 
   t.hdr_color = gl::make_renderbuffer(GL_RGBA16F, width, height, samples);
   glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &t.samples);
   t.hdr_depth = gl::make_renderbuffer(GL_DEPTH_COMPONENT32F, width, height, samples);
-  t.hdr_fbo = bound_framebuffer();
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.hdr_color.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.hdr_depth.get());
-  if (auto s = complete("HDR"); !s) return s.take_error();
+  if (auto s = attach_renderbuffers(t.hdr_fbo, t.hdr_color, &t.hdr_depth, "HDR"); !s) return s.take_error();
 
-  t.resolved = gl::TextureName(gen_texture());
-  glBindTexture(GL_TEXTURE_2D, t.resolved.get());
-  glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, width, height);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  t.resolved = clamped_texture(1, GL_RGBA16F, width, height, GL_NEAREST, GL_NEAREST);
   t.resolve_fbo = bound_framebuffer();
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.resolved.get(), 0);
   if (auto s = complete("resolve"); !s) return s.take_error();
 
   t.display_color = gl::make_renderbuffer(GL_RGBA8, width, height, 0);
-  t.display_fbo = bound_framebuffer();
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.display_color.get());
-  if (auto s = complete("display"); !s) return s.take_error();
+  if (auto s = attach_renderbuffers(t.display_fbo, t.display_color, nullptr, "display"); !s) return s.take_error();
   return t;
 }
 
@@ -68,10 +78,7 @@ Expected<IdTarget> IdTarget::create(int width, int height) {
   t.height = height;
   t.color = gl::make_renderbuffer(GL_RGBA8, width, height, 0);
   t.depth = gl::make_renderbuffer(GL_DEPTH_COMPONENT32F, width, height, 0);
-  t.fbo = bound_framebuffer();
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth.get());
-  if (auto s = complete("object-id"); !s) return s.take_error();
+  if (auto s = attach_renderbuffers(t.fbo, t.color, &t.depth, "object-id"); !s) return s.take_error();
   return t;
 }
 
@@ -116,13 +123,7 @@ Expected<ReflectionMap> ReflectionMap::create(int size) {
   ReflectionMap r;
   r.size = size;
   r.levels = static_cast<int>(std::floor(std::log2(size))) + 1;
-  r.color = gl::TextureName(gen_texture());
-  glBindTexture(GL_TEXTURE_2D, r.color.get());
-  glTexStorage2D(GL_TEXTURE_2D, r.levels, GL_RGBA16F, size, size);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  r.color = clamped_texture(r.levels, GL_RGBA16F, size, size, GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
   r.fbo = bound_framebuffer();
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r.color.get(), 0);
   if (auto s = complete("reflection"); !s) return s.take_error();
