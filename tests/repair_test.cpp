@@ -131,7 +131,7 @@ TEST(RepairEditsTest, AnAssignmentThatCannotReachTheOutputGetsNoCandidate) {
 TEST(RepairEditsTest, AMissingOutputIsRestoredWhereTheReferenceWritesItAndOnlyForeignNumbersAreRefit) {
   const std::string reference = glsl_of("specular", shader::Stage::vertex);
   const std::string deleted = typed(reference, "vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;", "");
-  const auto edits = grade::reference_edits(deleted, reference, shader::Stage::vertex);
+  const auto edits = grade::reference_edits({deleted, shader::Stage::vertex}, {reference, shader::Stage::vertex});
   const auto restored = std::find_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; });
   ASSERT_NE(restored, edits.end());
   EXPECT_EQ(restored->subject, "vNormal");
@@ -146,7 +146,7 @@ TEST(RepairEditsTest, AMissingOutputIsRestoredWhereTheReferenceWritesItAndOnlyFo
   const std::string fragment = glsl_of("specular", shader::Stage::fragment);
   const std::string accumulation = "color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);";
   const std::string unlit = typed(fragment, "        " + accumulation + "\n", "");
-  const auto fragment_edits = grade::reference_edits(unlit, fragment, shader::Stage::fragment);
+  const auto fragment_edits = grade::reference_edits({unlit, shader::Stage::fragment}, {fragment, shader::Stage::fragment});
   const auto write = std::find_if(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::write_restored; });
   ASSERT_NE(write, fragment_edits.end());
   EXPECT_EQ(grade::unspaced(grade::with_edit(unlit, *write)), grade::unspaced(fragment)) << "restored after the statement before it";
@@ -155,11 +155,11 @@ TEST(RepairEditsTest, AMissingOutputIsRestoredWhereTheReferenceWritesItAndOnlyFo
   EXPECT_FALSE(std::any_of(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; }))
       << "the stage writes its colour: nothing is never written";
 
-  for (const auto& e : grade::reference_edits(fragment, fragment, shader::Stage::fragment))
+  for (const auto& e : grade::reference_edits({fragment, shader::Stage::fragment}, {fragment, shader::Stage::fragment}))
     ADD_FAILURE() << "the reference itself has an edit: " << grade::edited_line(fragment, e);
   const std::string halved = typed(fragment, "float specularAlpha = 6.0;", "float specularAlpha = 3.0;");
   std::vector<std::string> refits;
-  for (const auto& e : grade::reference_edits(halved, fragment, shader::Stage::fragment))
+  for (const auto& e : grade::reference_edits({halved, shader::Stage::fragment}, {fragment, shader::Stage::fragment}))
     if (e.kind == grade::RepairKind::literal_refit) refits.push_back(grade::edited_line(halved, e));
   EXPECT_EQ(refits, (std::vector<std::string>{"float specularAlpha = 6.0;", "float specularAlpha = 0.0;"}));
 }
@@ -198,7 +198,7 @@ TEST(RepairEditsTest, AStudentsExtraIfOrFieldWriteDoesNotHideTheChangedStatement
   const std::string extra = typed(reference, "    fragColor = color;", "    if (gl_FragCoord.x < -1.0) color.r += 1.0;\n    fragColor = color;");
   const auto restored = [](const std::string& wrong, const std::string& ref) {
     std::vector<std::string> lines;
-    for (const auto& e : grade::reference_edits(wrong, ref, shader::Stage::fragment))
+    for (const auto& e : grade::reference_edits({wrong, shader::Stage::fragment}, {ref, shader::Stage::fragment}))
       if (e.kind != grade::RepairKind::literal_refit) lines.push_back(grade::edited_line(wrong, e));
     return lines;
   };
@@ -306,7 +306,7 @@ TEST(RepairEditsTest, AStudentsLocalIsNamedAsTheReferencesVector) {
 TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
   const auto words_in = [&](const std::string& wrong, const std::string& restored_line) {
-    for (const auto& e : grade::reference_edits(wrong, reference, shader::Stage::fragment))
+    for (const auto& e : grade::reference_edits({wrong, shader::Stage::fragment}, {reference, shader::Stage::fragment}))
       if (e.kind == grade::RepairKind::value_restored && grade::edited_line(wrong, e) == restored_line) return grade::repair_words(e);
     ADD_FAILURE() << "no value restored to " << restored_line;
     return std::string();
@@ -328,7 +328,7 @@ TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   const std::string w0 = typed(vertex, "uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition",
                                "uWorldToClipSpaceMatrix * uMeshToWorldMatrix * vec4(aVertexPosition.xyz, 0.0)");
   std::vector<std::string> w_words;
-  for (const auto& e : grade::reference_edits(w0, vertex, shader::Stage::vertex))
+  for (const auto& e : grade::reference_edits({w0, shader::Stage::vertex}, {vertex, shader::Stage::vertex}))
     if (e.kind == grade::RepairKind::value_restored) w_words.push_back(grade::repair_words(e));
   EXPECT_EQ(w_words, std::vector<std::string>{"`aVertexPosition` is a point, so its w must be 1: with w = 0 the matrix's translation is lost"});
   EXPECT_EQ(words("vec3 R = reflect(-L, N);", "vec3 R = normalize(L + V);", "vec3 R = reflect(-L, N);"), "`R` is not computed as the homework computes it")
@@ -376,7 +376,7 @@ TEST(RepairEditsTest, AValueVariesWhereItReadsAnInputThroughAnyLocal) {
 // An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.
 TEST(RepairEditsTest, AnEditChangesItsSpanAloneAndSaysWhatIsWrong) {
   const std::string glsl = "void main() {\n    vec3 L = uLightPosition - vPosition;\n}\n";
-  const auto edits = grade::repair_edits(glsl, shader::Stage::fragment);
+  const auto edits = grade::repair_edits({glsl, shader::Stage::fragment});
   ASSERT_FALSE(edits.empty());
   const grade::RepairEdit& first = edits.front();
   EXPECT_EQ(first.kind, grade::RepairKind::normalised);
@@ -390,7 +390,7 @@ TEST(LiveStatementsTest, AConditionIsLiveWhereAnyOfItsBranchesIs) {
   const std::string glsl =
       "out vec4 fragColor;\nin vec3 vN;\nvoid main() {\n  float c = vN.x;\n  float unused = 2.0;\n  float d = vN.y;\n"
       "  if (c > 0.0) { d += 1.0; } else { fragColor = vec4(1.0); }\n  if (unused > 1.0) { d = 0.0; }\n}\n";
-  const grade::StageLiveness live = grade::fragment_liveness(glsl);
+  const grade::StageLiveness live = grade::fragment_liveness({glsl, shader::Stage::fragment});
   EXPECT_TRUE(live.live_names.count("c")) << "read by a condition whose else block writes the output";
   EXPECT_TRUE(live.live_names.count("vN"));
   EXPECT_FALSE(live.live_names.count("unused")) << "read only by a condition whose block is dead";

@@ -16,7 +16,7 @@
 #include "core/expected.h"
 #include "grade/formula_vectors.h"
 #include "grade/grade_spec.h"
-#include "grade/repair_edits.h"
+#include "grade/repair_edit.h"
 #include "render/render_request.h"
 #include "scene/mesh.h"
 #include "scene/scene_description.h"

@@ -31,21 +31,27 @@ size_t declared_at(const std::vector<std::string>& t) {
   return t[type + 2] == "=" || t[type + 2] == ";" ? type + 1 : t.size();
 }
 
+// Each line's tokens, as text: a token is on the line it starts on (a comment is none, over as
+// many lines as it runs).
+std::vector<std::vector<std::string>> line_tokens(const StageTokens& s) {
+  std::vector<std::vector<std::string>> lines(static_cast<size_t>(std::count(s.glsl.begin(), s.glsl.end(), '\n')) + 1);
+  for (const auto& t : s.t) lines[static_cast<size_t>(t.line) - 1].emplace_back(t.text);
+  return lines;
+}
+
 bool is_identifier(const std::string& s) { return !s.empty() && shader::identifier_start(s.front()); }
 
 }  // namespace
 
-AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view reference_glsl) {
-  for (const auto line : shader::lines_of(reference_glsl)) {
-    reference_lines_.push_back(tokens(line));
-    if (const size_t at = declared_at(reference_lines_.back()); at < reference_lines_.back().size())
-      names_.reference_declares.insert(reference_lines_.back()[at]);
-  }
-  for (const auto line : shader::lines_of(student_glsl)) {
-    student_lines_.push_back(tokens(line));
-    if (const size_t at = declared_at(student_lines_.back()); at < student_lines_.back().size())
-      names_.student_declares.insert(student_lines_.back()[at]);
-  }
+AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view reference_glsl)
+    : AlignedLines(StageTokens(student_glsl, shader::Stage::fragment), StageTokens(reference_glsl, shader::Stage::fragment)) {}
+
+AlignedLines::AlignedLines(const StageTokens& student, const StageTokens& reference)
+    : reference_lines_(line_tokens(reference)), student_lines_(line_tokens(student)) {
+  for (const Tokens& line : reference_lines_)
+    if (const size_t at = declared_at(line); at < line.size()) names_.reference_declares.insert(line[at]);
+  for (const Tokens& line : student_lines_)
+    if (const size_t at = declared_at(line); at < line.size()) names_.student_declares.insert(line[at]);
   for (const Tokens& line : student_lines_) {
     std::pair<std::string, std::string> declared;
     if (reads_as_reference(line, declared) && !declared.first.empty()) {

@@ -13,10 +13,13 @@
 #include <string_view>
 #include <vector>
 
+#include "grade/stage_tokens.h"
+
 namespace shadelab::grade {
 
 class AlignedLines {
  public:
+  AlignedLines(const StageTokens& student, const StageTokens& reference);
   AlignedLines(std::string_view student_glsl, std::string_view reference_glsl);
 
   // Whether `line` (one the student wrote, or one an edit rewrites) reads as a reference line.

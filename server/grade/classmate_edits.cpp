@@ -65,32 +65,30 @@ std::vector<StagePair> nearest_classmates(const StagePair& student, const std::v
   return out;
 }
 
-std::vector<RepairEdit> classmate_edits(const StagePair& student, const StagePair& reference, const std::vector<StagePair>& classmates) {
+std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
+                                        const std::vector<StagePair>& classmates) {
   // program_repair_edits keeps what could be the student's line (live, and not written as the
   // program beside it writes it); the course's reference's own offers are made already.
   std::set<EditKey> offered;
   for (const auto& e : program_repair_edits(student, reference)) offered.insert(key_of(e));
   const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
-  const auto vertex_student = shader::lines_of(student.vertex), fragment_student = shader::lines_of(student.fragment);
-  const StageTokens student_vertex{student.vertex, shader::tokens_of(student.vertex), shader::Stage::vertex};
-  const StageTokens student_fragment{student.fragment, shader::tokens_of(student.fragment), shader::Stage::fragment};
+  const auto vertex_student = shader::lines_of(student.vertex.glsl), fragment_student = shader::lines_of(student.fragment.glsl);
   std::vector<RepairEdit> out;
-  for (const auto& classmate : classmates) {
-    const auto vertex_locals = declared_locals({classmate.vertex, shader::tokens_of(classmate.vertex), shader::Stage::vertex});
-    const auto fragment_locals = declared_locals({classmate.fragment, shader::tokens_of(classmate.fragment), shader::Stage::fragment});
+  for (const auto& glsl : classmates) {
+    const ProgramTokens classmate(glsl);
+    const auto vertex_locals = declared_locals(classmate.vertex), fragment_locals = declared_locals(classmate.fragment);
     for (auto& e : program_repair_edits(student, classmate)) {
       if (!reads_reference(e.kind) || !offered.insert(key_of(e)).second) continue;
       const bool vertex = e.stage == shader::Stage::vertex;
-      if (names_a_local_missing(e, vertex ? vertex_locals : fragment_locals, vertex ? student_vertex : student_fragment)) continue;
+      if (names_a_local_missing(e, vertex ? vertex_locals : fragment_locals, student[e.stage])) continue;
       const AlignedLines& lines = vertex ? vertex_lines : fragment_lines;
-      const std::string_view glsl = vertex ? student.vertex : student.fragment;
       const auto& student_lines = vertex ? vertex_student : fragment_student;
       const bool inserts = e.kind == RepairKind::statement_restored || e.kind == RepairKind::write_restored;
       const std::string_view own_line =
           e.line >= 1 && static_cast<size_t>(e.line) <= student_lines.size() ? student_lines[e.line - 1] : std::string_view();
       // As with the reference's offers: a line the student wrote as the reference writes it is right.
       if (!inserts && lines.reads_as_reference(own_line)) continue;
-      e.reads_as_reference = inserts || lines.reads_as_reference(edited_line(glsl, e));
+      e.reads_as_reference = inserts || lines.reads_as_reference(edited_line(student[e.stage].glsl, e));
       out.push_back(std::move(e));
     }
   }

@@ -25,6 +25,7 @@ std::vector<StagePair> nearest_classmates(const StagePair& student, const std::v
 // program could be its line (not a dead statement, not a line the student wrote as the reference
 // writes it) and could compile (it names no local of the classmate's the student's stage never
 // mentions), marked `reads_as_reference` by the course's reference, smallest first.
-std::vector<RepairEdit> classmate_edits(const StagePair& student, const StagePair& reference, const std::vector<StagePair>& classmates);
+std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
+                                        const std::vector<StagePair>& classmates);
 
 }  // namespace shadelab::grade

@@ -128,8 +128,8 @@ std::set<std::string, std::less<>> declared_as(const std::vector<GlslToken>& t, 
   return names;
 }
 
-StageLiveness liveness(std::string_view glsl, std::set<std::string, std::less<>> outputs) {
-  const auto t = shader::tokens_of(glsl);
+StageLiveness liveness(const StageTokens& stage, std::set<std::string, std::less<>> outputs) {
+  const std::vector<GlslToken>& t = stage.t;
   const auto all = statements(t);
   StageLiveness out{std::move(outputs), {}};
   const auto read_names = [&](const Statement& s) {
@@ -151,7 +151,7 @@ StageLiveness liveness(std::string_view glsl, std::set<std::string, std::less<>>
       changed |= read_names(s);
     }
   }
-  const auto byte = [&](const GlslToken& token) { return static_cast<size_t>(token.text.data() - glsl.data()); };
+  const auto byte = [&](const GlslToken& token) { return static_cast<size_t>(token.text.data() - stage.glsl.data()); };
   // Dead: an assignment to a name nothing live reads, and a condition whose blocks hold nothing live.
   for (size_t i = 0; i < all.size(); ++i) {
     const Statement& s = all[i];
@@ -167,17 +167,17 @@ bool StageLiveness::dead(size_t byte) const {
   return std::any_of(dead_spans.begin(), dead_spans.end(), [&](const auto& s) { return byte >= s.first && byte < s.second; });
 }
 
-StageLiveness fragment_liveness(std::string_view glsl) {
-  auto outputs = declared_as(shader::tokens_of(glsl), {"out"});
+StageLiveness fragment_liveness(const StageTokens& fragment) {
+  auto outputs = declared_as(fragment.t, {"out"});
   outputs.insert({"gl_FragColor", "gl_FragData"});
-  return liveness(glsl, std::move(outputs));
+  return liveness(fragment, std::move(outputs));
 }
 
-StageLiveness vertex_liveness(std::string_view glsl, const std::set<std::string, std::less<>>& fragment_reads) {
+StageLiveness vertex_liveness(const StageTokens& vertex, const std::set<std::string, std::less<>>& fragment_reads) {
   std::set<std::string, std::less<>> outputs{"gl_Position", "gl_PointSize"};
-  for (const auto& name : declared_as(shader::tokens_of(glsl), {"out", "varying"}))
+  for (const auto& name : declared_as(vertex.t, {"out", "varying"}))
     if (fragment_reads.count(name)) outputs.insert(name);
-  return liveness(glsl, std::move(outputs));
+  return liveness(vertex, std::move(outputs));
 }
 
 }  // namespace shadelab::grade

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "shader/shader_source.h"
+#include "grade/stage_tokens.h"
 
 namespace shadelab::grade {
 
@@ -21,10 +21,10 @@ struct StageLiveness {
 };
 
 // The fragment stage's liveness: what reaches its outputs (its `out` variables, gl_FragColor).
-StageLiveness fragment_liveness(std::string_view glsl);
+StageLiveness fragment_liveness(const StageTokens& fragment);
 
 // The vertex stage's: what reaches gl_Position and the outputs the fragment stage reads
 // (`fragment_reads`: the fragment stage's live names).
-StageLiveness vertex_liveness(std::string_view glsl, const std::set<std::string, std::less<>>& fragment_reads);
+StageLiveness vertex_liveness(const StageTokens& vertex, const std::set<std::string, std::less<>>& fragment_reads);
 
 }  // namespace shadelab::grade

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/words.h"
+#include "grade/repair_edits.h"
 #include "grade/stage_tokens.h"
 #include "grade/value_difference.h"
 #include "grade/value_variation.h"
@@ -309,8 +310,7 @@ void restored_conditions(const Stage& s, const Stage& reference, std::vector<Rep
 
 }  // namespace
 
-std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view reference, shader::Stage stage) {
-  const StageTokens s{glsl, shader::tokens_of(glsl), stage}, r{reference, shader::tokens_of(reference), stage};
+std::vector<RepairEdit> reference_edits(const Stage& s, const Stage& r) {
   std::vector<RepairEdit> out;
   literals(s, r, out);
   restored_statements(s, r, out);

@@ -3,10 +3,10 @@
 // (docs/grading.md, "Repairs"): the student's stage aligned with the reference's by the names
 // each statement writes. Like every repair edit, reading tokens only: a render says whether one
 // repairs anything.
-#include <string_view>
 #include <vector>
 
-#include "grade/repair_edits.h"
+#include "grade/repair_edit.h"
+#include "grade/stage_tokens.h"
 
 namespace shadelab::grade {
 
@@ -15,6 +15,6 @@ namespace shadelab::grade {
 // restored, a value it computes otherwise than the reference restored. A restored statement or
 // value is the reference's text, so it is never shown as a repaired line
 // (grade::Repair::repaired_line), only named by what it writes.
-std::vector<RepairEdit> reference_edits(std::string_view glsl, std::string_view reference, shader::Stage stage);
+std::vector<RepairEdit> reference_edits(const StageTokens& student, const StageTokens& reference);
 
 }  // namespace shadelab::grade

@@ -14,6 +14,17 @@ std::string glsl_or_empty(const shader::ShaderFile& file, shader::Stage stage) {
   return unwrapped ? std::move(unwrapped->glsl) : std::string();
 }
 
+// The edits the class offers, read beside the student's and the reference's programs, each
+// tokenised once by the caller.
+std::vector<RepairEdit> class_edits(const RepairProgram& p, const ProgramTokens& student, const ProgramTokens& reference,
+                                    const CandidateCounts& counts) {
+  if (p.classmates.empty() || counts.from_class <= 0 || p.reference_fragment.empty()) return {};
+  std::vector<StagePair> class_programs;
+  for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
+  const auto nearest = nearest_classmates(p.student(), class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
+  return classmate_edits(student, reference, nearest);
+}
+
 bool overlapping(const RepairEdit& a, const RepairEdit& b) {
   return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end;  // touching spans count: one token's edits
 }
@@ -57,23 +68,20 @@ RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edi
 }
 
 std::vector<RepairEdit> class_edits(const RepairProgram& p, const CandidateCounts& counts) {
-  if (p.classmates.empty() || counts.from_class <= 0 || p.reference_fragment.empty()) return {};
-  std::vector<StagePair> class_programs;
-  for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
-  const auto nearest = nearest_classmates(p.student(), class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
-  return classmate_edits(p.student(), p.reference(), nearest);
+  return class_edits(p, ProgramTokens(p.student()), ProgramTokens(p.reference()), counts);
 }
 
 std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const CandidateCounts& counts) {
-  int own = std::max(0, counts.own), reference = std::max(0, counts.reference), from_class = std::max(0, counts.from_class);
+  int own_left = std::max(0, counts.own), reference_left = std::max(0, counts.reference), class_left = std::max(0, counts.from_class);
+  const ProgramTokens student(p.student()), reference(p.reference());
   std::vector<RepairCandidate> out;
-  for (auto& e : class_edits(p, counts))
-    if (from_class-- > 0) {
+  for (auto& e : class_edits(p, student, reference, counts))
+    if (class_left-- > 0) {
       out.push_back(candidate_of(p, {std::move(e)}));
       out.back().from_class = true;
     }
-  for (auto& e : program_repair_edits(p.student(), p.reference()))
-    if ((reads_reference(e.kind) ? reference : own)-- > 0) out.push_back(candidate_of(p, {std::move(e)}));
+  for (auto& e : program_repair_edits(student, reference))
+    if ((reads_reference(e.kind) ? reference_left : own_left)-- > 0) out.push_back(candidate_of(p, {std::move(e)}));
   return out;
 }
 

@@ -228,9 +228,7 @@ std::map<std::string, size_t, std::less<>> flat_varyings(const Stage& s, std::st
 }
 
 // A varying flat in both stages -> interpolated in both: one edit, said at the vertex stage's line.
-void flat_removals(std::string_view vertex, std::string_view fragment, std::vector<RepairEdit>& out) {
-  const Stage v{vertex, shader::tokens_of(vertex), shader::Stage::vertex};
-  const Stage f{fragment, shader::tokens_of(fragment), shader::Stage::fragment};
+void flat_removals(const Stage& v, const Stage& f, std::vector<RepairEdit>& out) {
   const auto inputs = flat_varyings(f, "in");
   for (const auto& [name, i] : flat_varyings(v, "out")) {
     const auto in = inputs.find(name);
@@ -243,8 +241,7 @@ void flat_removals(std::string_view vertex, std::string_view fragment, std::vect
 
 }  // namespace
 
-std::vector<RepairEdit> repair_edits(std::string_view glsl, shader::Stage stage) {
-  const Stage s{glsl, shader::tokens_of(glsl), stage};
+std::vector<RepairEdit> repair_edits(const Stage& s) {
   const auto types = declared_types(s);
   std::vector<RepairEdit> out;
   vector_values(s, types, out);
@@ -269,35 +266,34 @@ std::string_view line_of(const std::vector<std::string_view>& lines, const Repai
 
 }  // namespace
 
-std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference) {
+std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference) {
   const StageLiveness fragment_live = fragment_liveness(student.fragment);
   const StageLiveness vertex_live = vertex_liveness(student.vertex, fragment_live.live_names);
   const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
   std::vector<RepairEdit> out;
-  const auto add = [&](std::string_view glsl, std::string_view reference_glsl, shader::Stage stage, const StageLiveness& live,
-                       const AlignedLines& lines) {
-    std::vector<RepairEdit> edits = repair_edits(glsl, stage);
-    if (!reference_glsl.empty())
-      for (auto& e : reference_edits(glsl, reference_glsl, stage)) edits.push_back(std::move(e));
-    const auto student_lines = shader::lines_of(glsl);
+  const auto add = [&](const Stage& s, const Stage& theirs, const StageLiveness& live, const AlignedLines& lines) {
+    std::vector<RepairEdit> edits = repair_edits(s);
+    if (!theirs.glsl.empty())
+      for (auto& e : reference_edits(s, theirs)) edits.push_back(std::move(e));
+    const auto student_lines = shader::lines_of(s.glsl);
     for (auto& e : edits) {
       if (live.dead(e.begin)) continue;
       // A line the student wrote as the reference writes it (their names for its locals aside) is
       // right as it is: an edit there that makes up for a mistake elsewhere would name a change
       // the student never made.
       if (!inserts_statement(e.kind) && lines.reads_as_reference(line_of(student_lines, e))) continue;
-      e.reads_as_reference = inserts_statement(e.kind) || lines.reads_as_reference(edited_line(glsl, e));
+      e.reads_as_reference = inserts_statement(e.kind) || lines.reads_as_reference(edited_line(s.glsl, e));
       out.push_back(std::move(e));
     }
   };
-  add(student.vertex, reference.vertex, shader::Stage::vertex, vertex_live, vertex_lines);
-  add(student.fragment, reference.fragment, shader::Stage::fragment, fragment_live, fragment_lines);
+  add(student.vertex, reference.vertex, vertex_live, vertex_lines);
+  add(student.fragment, reference.fragment, fragment_live, fragment_lines);
   std::vector<RepairEdit> flat;
   flat_removals(student.vertex, student.fragment, flat);
   for (auto& e : flat) {
     const RepairEdit in{shader::Stage::fragment, e.kind, e.other_stage->begin, e.other_stage->end, e.other_stage->with};
-    e.reads_as_reference =
-        vertex_lines.reads_as_reference(edited_line(student.vertex, e)) && fragment_lines.reads_as_reference(edited_line(student.fragment, in));
+    e.reads_as_reference = vertex_lines.reads_as_reference(edited_line(student.vertex.glsl, e)) &&
+                           fragment_lines.reads_as_reference(edited_line(student.fragment.glsl, in));
     out.push_back(std::move(e));
   }
   std::stable_sort(out.begin(), out.end(), smaller);

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "grade/repair_edits.h"
+#include "grade/repair_edit.h"
 
 namespace shadelab::grade {
 

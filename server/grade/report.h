@@ -30,7 +30,7 @@
 
 #include "core/expected.h"
 #include "core/json_fields.h"
-#include "grade/repair_edits.h"
+#include "grade/repair_edit.h"
 #include "grade/grader.h"
 #include "grade/provenance.h"
 

@@ -1,6 +1,7 @@
 #pragma once
 // One stage's GLSL as the repair edits read it (grade/repair_edits.h, grade/reference_edits.h): its
-// tokens, the bytes each covers, and how far a call, an operand or an expression reaches.
+// tokens, the bytes each covers, and how far a call, an operand or an expression reaches. A
+// search reads each stage of each program into tokens once, for every edit it looks for.
 #include <algorithm>
 #include <initializer_list>
 #include <string>
@@ -8,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "grade/repair_edits.h"
+#include "grade/repair_edit.h"
 #include "shader/glsl_lines.h"
 
 namespace shadelab::grade {
@@ -25,11 +26,13 @@ inline bool before_operand(std::string_view s) {
   return one_of(s, {"(", ",", "=", "+", "-", "*", "/", "?", ":", "return", "{", ";", "<", ">", "!"});
 }
 
-// One stage's tokens, with the spans they cover in its GLSL.
+// One stage's tokens, with the spans they cover in its GLSL (a view: the text outlives them).
 struct StageTokens {
   std::string_view glsl;
   std::vector<GlslToken> t;
   shader::Stage stage;
+
+  StageTokens(std::string_view text, shader::Stage s) : glsl(text), t(shader::tokens_of(text)), stage(s) {}
 
   size_t size() const { return t.size(); }
   bool is(size_t i, std::string_view s) const { return i < t.size() && t[i].text == s; }
@@ -107,6 +110,18 @@ struct StageTokens {
   RepairEdit replace(RepairKind kind, size_t first, size_t last, std::string with, std::string_view subject) const {
     return edit(kind, begin(first), end(last), std::move(with), first, subject);
   }
+};
+
+// A program's two stages, each read into tokens; empty stages for a program there is none of
+// (a grade with no reference).
+struct ProgramTokens {
+  StageTokens vertex, fragment;
+
+  ProgramTokens() : ProgramTokens(std::string_view(), std::string_view()) {}
+  ProgramTokens(std::string_view vertex_glsl, std::string_view fragment_glsl)
+      : vertex(vertex_glsl, shader::Stage::vertex), fragment(fragment_glsl, shader::Stage::fragment) {}
+  explicit ProgramTokens(const StagePair& p) : ProgramTokens(p.vertex, p.fragment) {}
+  const StageTokens& operator[](shader::Stage s) const { return s == shader::Stage::vertex ? vertex : fragment; }
 };
 
 // `text` without its spaces, tabs and newlines: two lines that differ only there read the same.

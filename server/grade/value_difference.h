@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "grade/repair_edits.h"
+#include "grade/repair_edit.h"
 #include "shader/glsl_lines.h"
 
 namespace shadelab::grade {
