@@ -60,7 +60,7 @@ void add_worker_flags(CLI::App* cmd, http::ServiceConfig& config, int& lp_thread
   cmd->add_option("--wall-clock-factor", config.pool.wall_clock_factor,
                   "Wall-clock cap on a compile or render, in deadlines (the backstop for a worker that stops using the CPU)")
       ->envname("SHADELAB_WALL_CLOCK_FACTOR")->capture_default_str();
-  cmd->add_option("--memory-mb", memory_mb, "Memory cap per worker (cgroup v2 memory.max, else resident-set watchdog)")
+  cmd->add_option("--memory-mb", memory_mb, "Memory cap per worker (a resident-set watchdog; cgroup v2 memory.max only in the root cgroup)")
       ->envname("SHADELAB_MEMORY_MB")->capture_default_str();
   cmd->add_option("--cpu-limit-s", config.pool.cpu_limit_seconds, "RLIMIT_CPU per worker process (a backstop)")
       ->envname("SHADELAB_CPU_LIMIT_S")->capture_default_str();

@@ -36,9 +36,12 @@ size_t resident_bytes(pid_t pid) {
   return pages_resident * static_cast<size_t>(sysconf(_SC_PAGESIZE));
 }
 
-// cgroup v2: a child cgroup of our own with memory.max, where the hierarchy is delegated to us.
-// Returns false where that is not possible (cgroup v1, no write access, no memory controller);
-// the resident-memory watchdog then enforces the limit instead.
+// cgroup v2: a child cgroup of our own with memory.max, where the service's cgroup gives its
+// children the memory controller. cgroup v2 lets a cgroup other than the root do that only while
+// it holds no process, and the service is in its own cgroup: so outside the root cgroup the child
+// has no memory.max and this returns false, as it does on cgroup v1 or without write access. The
+// resident-memory watchdog then enforces the limit. (A cap that worked everywhere would first move
+// the service into a leaf of its cgroup, as systemd's Delegate=yes asks of a delegated unit.)
 bool cap_with_cgroup(pid_t pid, int slot, size_t limit) {
   namespace fs = std::filesystem;
   std::ifstream self("/proc/self/cgroup");
