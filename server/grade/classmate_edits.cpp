@@ -67,10 +67,15 @@ std::vector<StagePair> nearest_classmates(const StagePair& student, const std::v
 
 std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
                                         const std::vector<StagePair>& classmates) {
+  return classmate_edits(student, reference, program_repair_edits(student, reference), classmates);
+}
+
+std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
+                                        const std::vector<RepairEdit>& reference_edits, const std::vector<StagePair>& classmates) {
   // program_repair_edits keeps what could be the student's line (live, and not written as the
   // program beside it writes it); the course's reference's own offers are made already.
   std::set<EditKey> offered;
-  for (const auto& e : program_repair_edits(student, reference)) offered.insert(key_of(e));
+  for (const auto& e : reference_edits) offered.insert(key_of(e));
   const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
   const auto vertex_student = shader::lines_of(student.vertex.glsl), fragment_student = shader::lines_of(student.fragment.glsl);
   std::vector<RepairEdit> out;

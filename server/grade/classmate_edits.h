@@ -25,6 +25,10 @@ std::vector<StagePair> nearest_classmates(const StagePair& student, const std::v
 // program could be its line (not a dead statement, not a line the student wrote as the reference
 // writes it) and could compile (it names no local of the classmate's the student's stage never
 // mentions), marked `reads_as_reference` by the course's reference, smallest first.
+// `reference_edits` are what the reference offers already (program_repair_edits(student,
+// reference)): a caller that tries those too reads them once.
+std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
+                                        const std::vector<RepairEdit>& reference_edits, const std::vector<StagePair>& classmates);
 std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
                                         const std::vector<StagePair>& classmates);
 

@@ -14,15 +14,19 @@ std::string glsl_or_empty(const shader::ShaderFile& file, shader::Stage stage) {
   return unwrapped ? std::move(unwrapped->glsl) : std::string();
 }
 
-// The edits the class offers, read beside the student's and the reference's programs, each
-// tokenised once by the caller.
+bool class_may_offer(const RepairProgram& p, const CandidateCounts& counts) {
+  return !p.classmates.empty() && counts.from_class > 0 && !p.reference_fragment.empty();
+}
+
+// The edits the class offers beyond `reference_edits` (the reference's), read beside the
+// student's and the reference's programs, each tokenised once by the caller.
 std::vector<RepairEdit> class_edits(const RepairProgram& p, const ProgramTokens& student, const ProgramTokens& reference,
-                                    const CandidateCounts& counts) {
-  if (p.classmates.empty() || counts.from_class <= 0 || p.reference_fragment.empty()) return {};
+                                    const std::vector<RepairEdit>& reference_edits, const CandidateCounts& counts) {
+  if (!class_may_offer(p, counts)) return {};
   std::vector<StagePair> class_programs;
   for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
   const auto nearest = nearest_classmates(p.student(), class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
-  return classmate_edits(student, reference, nearest);
+  return classmate_edits(student, reference, reference_edits, nearest);
 }
 
 bool overlapping(const RepairEdit& a, const RepairEdit& b) {
@@ -68,19 +72,22 @@ RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edi
 }
 
 std::vector<RepairEdit> class_edits(const RepairProgram& p, const CandidateCounts& counts) {
-  return class_edits(p, ProgramTokens(p.student()), ProgramTokens(p.reference()), counts);
+  if (!class_may_offer(p, counts)) return {};
+  const ProgramTokens student(p.student()), reference(p.reference());
+  return class_edits(p, student, reference, program_repair_edits(student, reference), counts);
 }
 
 std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const CandidateCounts& counts) {
   int own_left = std::max(0, counts.own), reference_left = std::max(0, counts.reference), class_left = std::max(0, counts.from_class);
   const ProgramTokens student(p.student()), reference(p.reference());
+  std::vector<RepairEdit> own_and_reference = program_repair_edits(student, reference);
   std::vector<RepairCandidate> out;
-  for (auto& e : class_edits(p, student, reference, counts))
+  for (auto& e : class_edits(p, student, reference, own_and_reference, counts))
     if (class_left-- > 0) {
       out.push_back(candidate_of(p, {std::move(e)}));
       out.back().from_class = true;
     }
-  for (auto& e : program_repair_edits(student, reference))
+  for (auto& e : own_and_reference)
     if ((reads_reference(e.kind) ? reference_left : own_left)-- > 0) out.push_back(candidate_of(p, {std::move(e)}));
   return out;
 }
