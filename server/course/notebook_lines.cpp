@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/client_json.h"
 #include "core/text.h"
 
 namespace shadelab::course {
@@ -56,6 +57,8 @@ size_t cell_end(const std::vector<NotebookLine>& lines, size_t at) {
 bool NotebookLine::code() const { return text == kCodeCell; }
 
 Expected<std::vector<NotebookCell>> notebook_cells(const std::string& ipynb) {
+  // A student's notebook: client bytes, read within the budget a request's JSON has.
+  if (auto within = check_json_budget(ipynb, "the notebook"); !within) return within.take_error();
   const json nb = json::parse(ipynb, nullptr, false);
   if (nb.is_discarded() || !nb.is_object() || !nb.contains("cells") || !nb["cells"].is_array())
     return make_error(ErrorCode::invalid_argument, "the notebook is not a Jupyter notebook (JSON with \"cells\")");

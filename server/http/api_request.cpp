@@ -4,6 +4,7 @@
 #include <regex>
 #include <set>
 
+#include "core/client_json.h"
 #include "core/hash.h"
 #include "http/request_fields.h"
 #include "scene/mesh.h"
@@ -16,9 +17,10 @@ using nlohmann::json;
 namespace {
 
 // A string from a form: JSON literal where it is one ("9", "true", "[1,2]"), else the string.
+// A form value over the JSON budget stays the string it was sent as.
 json form_value(const std::string& text) {
-  json parsed = json::parse(text, nullptr, false);
-  if (!parsed.is_discarded() && !parsed.is_string()) return parsed;
+  auto parsed = parse_client_json(text, "a form field");
+  if (parsed && !parsed->is_string()) return std::move(*parsed);
   return text;
 }
 
@@ -41,8 +43,9 @@ std::string mesh_id(const std::string& bytes) { return "m" + sha256_hex(bytes).s
 
 Expected<RawRequest> from_json_body(const std::string& body) {
   RawRequest raw;
-  raw.fields = json::parse(body, nullptr, false);
-  if (raw.fields.is_discarded()) return bad_request("the request body is not valid JSON");
+  auto parsed = parse_client_json(body, "the request body");
+  if (!parsed) return parsed.take_error();
+  raw.fields = std::move(*parsed);
   if (!raw.fields.is_object()) return bad_request("the request body must be a JSON object");
   return raw;
 }

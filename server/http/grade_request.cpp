@@ -3,6 +3,7 @@
 #include <set>
 
 #include "core/base64.h"
+#include "core/client_json.h"
 #include "http/request_fields.h"
 #include "scene/mesh.h"
 
@@ -69,7 +70,7 @@ Status json_frames(const json& list, std::vector<road::HandedInFile>& out) {
   if (!list.is_array()) return bad_request("'savedFrames' must be an array of {\"name\", \"png\"} (the PNG in base64)");
   for (const auto& item : list) {
     if (!item.is_object() || !item.contains("name") || !item["name"].is_string() || !item.contains("png") || !item["png"].is_string())
-      return bad_request("each of 'savedFrames' must be {\"name\": \"hw2_specular_0.png\", \"png\": \"<base64>\"}; got " + item.dump().substr(0, 80));
+      return bad_request("each of 'savedFrames' must be {\"name\": \"hw2_specular_0.png\", \"png\": \"<base64>\"}; got " + describe_client_value(item));
     auto bytes = base64_decode(item["png"].get<std::string>());
     if (!bytes) return bad_request("'savedFrames' item '" + item["name"].get<std::string>() + "': 'png' is not base64");
     out.push_back({item["name"].get<std::string>(), std::move(*bytes)});

@@ -12,6 +12,8 @@ struct Limits {
   size_t max_body_bytes = 16u << 20;    // 16 MiB
   size_t max_mesh_bytes = 16u << 20;
   size_t max_stored_meshes = 64;
+  // Sheets decode their images in the HTTP process (server/http/sheet_routes.cpp): two at once.
+  size_t max_concurrent_sheets = 2;
   scene::SceneLimits scene;             // objects <= 64, lights <= 8, width, height <= 4096
 };
 

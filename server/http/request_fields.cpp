@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/client_json.h"
+
 namespace shadelab::http {
 
 using nlohmann::json;
@@ -16,7 +18,7 @@ Error bad_request(std::string message) { return make_error(ErrorCode::invalid_ar
 
 Status read_value(const json& v, std::string_view key, int& to) {
   if (!v.is_number() || (v.is_number_float() && std::trunc(v.get<double>()) != v.get<double>()))
-    return bad_request(quoted(key) + " must be a whole number; got " + v.dump());
+    return bad_request(quoted(key) + " must be a whole number; got " + describe_client_value(v));
   const double d = v.get<double>();
   if (d < -1e9 || d > 1e9) return bad_request(quoted(key) + " is out of range");
   to = static_cast<int>(d);
@@ -24,7 +26,7 @@ Status read_value(const json& v, std::string_view key, int& to) {
 }
 
 Status read_value(const json& v, std::string_view key, double& to) {
-  if (!v.is_number()) return bad_request(quoted(key) + " must be a number; got " + v.dump());
+  if (!v.is_number()) return bad_request(quoted(key) + " must be a number; got " + describe_client_value(v));
   to = v.get<double>();
   return Ok{};
 }
@@ -36,7 +38,7 @@ Status read_value(const json& v, std::string_view key, bool& to) {
 }
 
 Status read_value(const json& v, std::string_view key, std::string& to) {
-  if (!v.is_string()) return bad_request(quoted(key) + " must be a string; got " + v.dump().substr(0, 80));
+  if (!v.is_string()) return bad_request(quoted(key) + " must be a string; got " + describe_client_value(v));
   to = v.get<std::string>();
   return Ok{};
 }
@@ -49,7 +51,7 @@ Status read_value(const json& u, std::string_view key, std::vector<render::Unifo
     const auto append_value = [&](const json& v) -> Status {
       if (v.is_boolean()) s.values.push_back(v.get<bool>() ? 1.0 : 0.0);
       else if (v.is_number()) s.values.push_back(v.get<double>());
-      else return bad_request("uniform '" + s.name + "' must be numbers or booleans; got " + v.dump());
+      else return bad_request("uniform '" + s.name + "' must be numbers or booleans; got " + describe_client_value(v));
       return Ok{};
     };
     if (value.is_array()) {

@@ -1,5 +1,7 @@
 #include "http/request_reader.h"
 
+#include "core/client_json.h"
+
 namespace shadelab::http {
 
 using nlohmann::json;
@@ -32,7 +34,9 @@ Expected<SceneUpload> read_scene(const httplib::Request& req) {
   if (!req.is_multipart_form_data()) return SceneUpload{std::move(raw->fields), {}};
   SceneUpload upload{nullptr, std::move(raw->files)};
   if (auto part = upload.files.find("scene"); part != upload.files.end()) {
-    upload.scene = json::parse(part->second.content, nullptr, false);
+    auto scene = parse_client_json(part->second.content, "the scene");
+    if (!scene) return scene.take_error();
+    upload.scene = std::move(*scene);
     upload.files.erase(part);
   } else if (raw->fields.contains("scene")) {
     upload.scene = raw->fields["scene"];  // a text part, already parsed as JSON where it is JSON

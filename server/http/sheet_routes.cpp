@@ -12,8 +12,10 @@
 // scenes on built-in meshes, each rendered with its framing report. Each checkpoint found is
 // graded and rendered by the workers.
 #include <algorithm>
+#include <atomic>
 
 #include "core/base64.h"
+#include "image/png_info.h"
 #include "http/request_fields.h"
 #include "http/route_context.h"
 #include "sheet/assemble.h"
@@ -29,6 +31,10 @@ using nlohmann::json;
 constexpr size_t kMaxFiles = 16, kMaxPath = 200, kMaxTitle = 200, kMaxAnswers = 64 * 1024, kMaxScenes = 4;
 // Three deliverables' saved frames and the Blender half's four renders, with room to spare.
 constexpr size_t kMaxImages = 40, kMaxImageBytes = 16u << 20;
+// What a sheet's images may decode to, summed from their headers before any decode: the course's
+// 27 frames at 512 x 512 (7.1 M) and four hand-in renders at 3840 x 2160 (33.2 M) fit; 27 frames
+// that each claim 4096 x 4096 (453 M, 1.8 GB as RGBA) do not.
+constexpr std::uint64_t kMaxSheetPixels = 48u << 20;
 
 // A path inside the student's folder: relative, no "..", no empty part.
 bool safe_path(const std::string& path) {
@@ -92,6 +98,18 @@ Status add_scenes(sheet::SheetInput& input, const RawRequest& raw) {
   return Ok{};
 }
 
+// The pixels every image of the sheet decodes to, from each PNG's header (a file that is no PNG is
+// said so later, in its own section), refused as a whole before anything decodes one.
+Status within_pixel_budget(const sheet::SheetInput& input) {
+  std::uint64_t pixels = 0;
+  for (const auto& image : input.images)
+    if (const auto info = image::png_info(image.text)) pixels += std::uint64_t{info->width} * info->height;
+  if (pixels <= kMaxSheetPixels) return Ok{};
+  return make_error(ErrorCode::payload_too_large, "images: the PNGs' headers say they decode to " + std::to_string(pixels) +
+                                                      " pixels in all; a sheet's limit is " + std::to_string(kMaxSheetPixels) +
+                                                      " (27 frames at the course's canvas and four 4K renders fit)");
+}
+
 Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& limits) {
   sheet::SheetInput input;
   auto title = text_field(raw.fields, "title", input.title, kMaxTitle);
@@ -120,12 +138,37 @@ Expected<sheet::SheetInput> parse_sheet(const RawRequest& raw, const Limits& lim
   for (const auto& [name, file] : raw.files)
     if (auto s = add_file(input, name, file.content, limits); !s) return s.error();
   if (auto s = add_scenes(input, raw); !s) return s.error();
+  if (auto s = within_pixel_budget(input); !s) return s.error();
   if (input.files.empty())
     return make_error(ErrorCode::invalid_argument, "files: send the student's shader files (e.g. shaders/starter_vert.js), each under its path");
   return input;
 }
 
+// A sheet decodes and lays out its images in this process (cairo), not in a worker: at most
+// `limits.max_concurrent_sheets` at once, the rest told to come back.
+class SheetSlot {
+ public:
+  explicit SheetSlot(size_t limit) : held_(in_flight_.fetch_add(1) < limit) {
+    if (!held_) in_flight_.fetch_sub(1);
+  }
+  ~SheetSlot() {
+    if (held_) in_flight_.fetch_sub(1);
+  }
+  SheetSlot(const SheetSlot&) = delete;
+  SheetSlot& operator=(const SheetSlot&) = delete;
+  bool held() const { return held_; }
+
+ private:
+  static inline std::atomic<size_t> in_flight_{0};
+  bool held_;
+};
+
 void sheet(RouteContext& c, const course::Viewer& viewer, const httplib::Request& req, httplib::Response& res) {
+  const SheetSlot slot(c.config.limits.max_concurrent_sheets);
+  if (!slot.held())
+    return send_problem(res, make_error(ErrorCode::queue_full, "the server is laying out " + std::to_string(c.config.limits.max_concurrent_sheets) +
+                                                                   " sheets already; try again in a moment"),
+                        req.path);
   auto raw = read_request(req);
   if (!raw) return send_problem(res, raw.error(), req.path);
   auto format = text_field(raw->fields, "format", "pdf", 8);

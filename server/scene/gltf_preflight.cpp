@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/client_json.h"
+
 namespace shadelab::scene {
 
 namespace {
@@ -70,7 +72,7 @@ Expected<std::uint64_t> size_field(const json& object, const char* key, const st
     return fail(where + "." + key, "required");
   }
   if (!it->is_number_unsigned() || it->get<std::uint64_t>() > kLargestSize)
-    return fail(where + "." + key, "expected a whole number of at most 2^40, got " + it->dump().substr(0, 40));
+    return fail(where + "." + key, "expected a whole number of at most 2^40, got " + describe_client_value(*it));
   return it->get<std::uint64_t>();
 }
 
@@ -228,6 +230,7 @@ Status check_gltf(std::string_view bytes, bool binary, const std::string& name, 
     if (!split) return split.error();
     glb = *split;
   }
+  if (auto within = check_json_budget(glb.json_text, "the glTF's JSON"); !within) return fail("", within.error().message);
   const json root = json::parse(glb.json_text, nullptr, false);
   if (root.is_discarded() || !root.is_object()) return fail("", "the JSON is not a valid glTF document");
   const auto asset = root.find("asset");

@@ -120,6 +120,11 @@ def request_seeds():
     }
     for name, (selector, body) in bodies.items():
         write("api_json", name, bytes([selector]) + json.dumps(body).encode())
+    # Nesting just past the client JSON budget (core/client_json.h: 32 levels), where a body once
+    # nested 200,000 arrays deep and crashed the server when an error dumped it.
+    deep = "[" * 33 + "]" * 33
+    write("api_json", "deep_frames.json", b"\x03" + ('{"reference": "specular", "savedFrames": %s}' % deep).encode())
+    write("api_json", "deep_width.json", b"\x00" + ('{"preset": "starter", "width": %s}' % deep).encode())
 
     def http(method, target, headers, body=b""):
         head = "%s %s HTTP/1.1\r\nHost: localhost\r\n" % (method, target)
@@ -192,6 +197,9 @@ def png_seeds():
     write("saved_png", "palette.png", png(4, 1, 3, 8, [bytes([0, 1, 2, 1])], palette=bytes([0, 0, 0, 255, 0, 0, 0, 0, 255])))
     write("saved_png", "truncated.png", rgba[: len(rgba) // 2])
     write("saved_png", "too_wide.png", png(100000, 1, 0, 8, [b"\x00"]))
+    # A header that claims 4096 x 4096 (a sheet's pixel budget is summed from such headers) with
+    # one row of data: refused by its size before any decoder allocates.
+    write("saved_png", "claims_4096.png", png(4096, 4096, 0, 8, [b"\x00" * 4096]))
 
 
 if __name__ == "__main__":
