@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include "support/files.h"
+
 #include "shader/invariant_outputs.h"
 #include "shader/uniform_variants.h"
 #include "shader/shader_source.h"
@@ -50,13 +54,35 @@ TEST(ShaderSourceTest, QuotedStringsWithEscapesUnwrap) {
   EXPECT_TRUE(s->warnings.empty());
 }
 
-TEST(ShaderSourceTest, QuotedStringAcrossLinesIsAcceptedWithAWarning) {
-  // The handout's own listing does this; browsers reject it, so the student hears about it.
+TEST(ShaderSourceTest, QuotedStringAcrossLinesIsRefusedAtItsLine) {
+  // The handout's own listing does this; a browser refuses the module, and so does ShadeLab,
+  // saying how to write it.
   auto s = unwrap(std::string("export default '") + kBody + "'\n");
-  ASSERT_TRUE(s) << s.error().format();
-  EXPECT_EQ(s->glsl, kBody);
-  ASSERT_EQ(s->warnings.size(), 1u);
-  EXPECT_NE(s->warnings[0].find("back-ticks"), std::string::npos);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.error().code, ErrorCode::shader_source_invalid);
+  ASSERT_EQ(s.error().diagnostics.size(), 1u);
+  EXPECT_EQ(s.error().diagnostics[0].line, 1);
+  EXPECT_NE(s.error().message.find("back-ticks"), std::string::npos);
+}
+
+// The cases both readers of a module are held to (the page's, checked in Chromium beside the
+// browser's own import(), in tests/browser/hostile.test.mjs): what the server reads of each file.
+TEST(ShaderSourceTest, ModulesReadAsTheSharedCasesSay) {
+  const auto doc = nlohmann::json::parse(testkit::read_text(testkit::source_dir() / "tests/shader_source/module_cases.json"));
+  ASSERT_GE(doc["cases"].size(), 40u);
+  for (const auto& c : doc["cases"]) {
+    const std::string name = c["name"];
+    auto s = unwrap(c["file"].get<std::string>());
+    if (c.contains("glsl")) {
+      ASSERT_TRUE(s) << name << ": " << s.error().format();
+      EXPECT_EQ(s->glsl, c["glsl"].get<std::string>()) << name;
+      continue;
+    }
+    ASSERT_FALSE(s) << name << ": read as " << s->glsl;
+    if (c["refused"].is_string()) {
+      EXPECT_NE(s.error().message.find(c["refused"].get<std::string>()), std::string::npos) << name << ": " << s.error().message;
+    }
+  }
 }
 
 TEST(ShaderSourceTest, TemplateEscapesAndLineContinuationsFollowJavaScript) {

@@ -19,11 +19,17 @@ using Clock = std::chrono::steady_clock;
 
 thread_local Clock::time_point request_start;
 
-// The route a request is counted under in the metrics: the API's own paths, or "static".
-std::string metrics_route(const httplib::Request& req) {
-  const bool api = req.path.rfind("/api/", 0) == 0 || req.path == "/metrics" || req.path == "/livez" || req.path == "/readyz";
-  return api ? req.method + " " + req.path : "static";
-}
+// Every response, the page's first: script only from this server's own files (no inline script,
+// no blob: or data: script, no eval), so a student's text that reached the page as a module could
+// not run even if a regression imported it; images may be data: and blob: (the page draws PNGs the
+// API returns); no framing, no plugins, no form posted elsewhere; no type sniffing.
+const httplib::Headers kSecurityHeaders = {
+    {"Content-Security-Policy",
+     "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data: blob:; connect-src 'self'; "
+     "object-src 'none'; base-uri 'none'; form-action 'self'; frame-ancestors 'none'"},
+    {"X-Content-Type-Options", "nosniff"},
+    {"Referrer-Policy", "no-referrer"},
+};
 
 // Errors httplib raises itself (unknown route, body over the limit, unreadable request).
 void answer_httplib_error(const httplib::Request& req, httplib::Response& res) {
@@ -125,6 +131,7 @@ struct Service::Impl {
     add_scene_routes(server, *context);
     add_mesh_routes(server, *context);
     add_service_routes(server, *context);
+    server.set_default_headers(kSecurityHeaders);
     if (!config.web_root.empty() && !server.set_mount_point("/", config.web_root))
       std::fprintf(stderr, "shadelab: web root '%s' not found; serving the API only\n", config.web_root.c_str());
 
@@ -133,7 +140,7 @@ struct Service::Impl {
       return admit(*tenants, config.tenants, req, res) ? httplib::Server::HandlerResponse::Unhandled : httplib::Server::HandlerResponse::Handled;
     });
     server.set_logger([this](const httplib::Request& req, const httplib::Response& res) {
-      metrics.request(metrics_route(req), res.status, std::chrono::duration<double>(Clock::now() - request_start).count());
+      metrics.request(metrics.route_label(req.method, req.path), res.status, std::chrono::duration<double>(Clock::now() - request_start).count());
     });
     server.set_error_handler(answer_httplib_error);
     server.set_exception_handler(answer_exception);

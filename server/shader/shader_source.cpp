@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <optional>
 
 namespace shadelab::shader {
 
@@ -57,13 +58,38 @@ std::pair<int, int> line_column_at(const std::string& s, size_t offset) {
   return {c.line, c.column};
 }
 
-// Skips whitespace and JS comments.
+// The bytes of the ECMAScript WhiteSpace or LineTerminator that starts at the cursor (0 for none):
+// ASCII's, U+00A0, U+FEFF, U+1680, U+2000-U+200A, U+2028, U+2029, U+202F, U+205F and U+3000.
+// A `//` comment ends at U+2028 and U+2029 as at LF: read otherwise, `// note` U+2028 `code` hides
+// code from this reader that a browser runs.
+size_t js_space_at(const Cursor& c) {
+  const auto b = [&](size_t k) { return static_cast<unsigned char>(c.peek(k)); };
+  if (b(0) < 0x80) return std::isspace(b(0)) ? 1 : 0;
+  if (b(0) == 0xC2 && b(1) == 0xA0) return 2;
+  if (b(0) == 0xEF && b(1) == 0xBB && b(2) == 0xBF) return 3;
+  if (b(0) == 0xE1 && b(1) == 0x9A && b(2) == 0x80) return 3;
+  if (b(0) == 0xE2 && b(1) == 0x80 && ((b(2) >= 0x80 && b(2) <= 0x8A) || b(2) == 0xA8 || b(2) == 0xA9 || b(2) == 0xAF)) return 3;
+  if (b(0) == 0xE2 && b(1) == 0x81 && b(2) == 0x9F) return 3;
+  if (b(0) == 0xE3 && b(1) == 0x80 && b(2) == 0x80) return 3;
+  return 0;
+}
+
+// LF (CR is LF by now), U+2028 or U+2029.
+bool js_line_terminator_at(const Cursor& c) {
+  return c.peek() == '\n' || c.starts_with("\xE2\x80\xA8") || c.starts_with("\xE2\x80\xA9");
+}
+
+void skip(Cursor& c, size_t bytes) {
+  for (size_t i = 0; i < bytes; ++i) c.next();
+}
+
+// Skips ECMAScript white space, line terminators and comments.
 void skip_js_space(Cursor& c) {
   while (!c.done()) {
-    if (std::isspace(static_cast<unsigned char>(c.peek()))) {
-      c.next();
+    if (const size_t space = js_space_at(c)) {
+      skip(c, space);
     } else if (c.starts_with("//")) {
-      while (!c.done() && c.peek() != '\n') c.next();
+      while (!c.done() && !js_line_terminator_at(c)) c.next();
     } else if (c.starts_with("/*")) {
       c.next(), c.next();
       while (!c.done() && !c.starts_with("*/")) c.next();
@@ -74,10 +100,23 @@ void skip_js_space(Cursor& c) {
   }
 }
 
+// Whether the byte after a keyword continues an identifier (`exports`, `export_`, `export$`, or a
+// letter beyond ASCII), so the keyword is not one.
+bool continues_identifier(const Cursor& c, size_t ahead) {
+  const auto b = static_cast<unsigned char>(c.peek(ahead));
+  if (b == 0) return false;
+  if (b >= 0x80) {
+    Cursor after = c;
+    skip(after, ahead);
+    return js_space_at(after) == 0;
+  }
+  return std::isalnum(b) || b == '_' || b == '$' || b == '\\';
+}
+
 bool looks_like_module(const std::string& text) {
   Cursor c{text};
   skip_js_space(c);
-  return c.starts_with("export") && !std::isalnum(static_cast<unsigned char>(c.peek(6))) && c.peek(6) != '_';
+  return c.starts_with("export") && !continues_identifier(c, 6);
 }
 
 // Appends one unwrapped character, opening a new GLSL line in the map after each newline.
@@ -137,7 +176,13 @@ int hex_value(char c) {
 }
 
 void append_utf8(std::string& s, unsigned cp) {
-  if (cp < 0x80) {
+  if (cp >= 0xD800 && cp <= 0xDFFF) cp = 0xFFFD;  // a lone surrogate, as a browser encodes it
+  if (cp >= 0x10000) {
+    s.push_back(static_cast<char>(0xF0 | (cp >> 18)));
+    s.push_back(static_cast<char>(0x80 | ((cp >> 12) & 0x3F)));
+    s.push_back(static_cast<char>(0x80 | ((cp >> 6) & 0x3F)));
+    s.push_back(static_cast<char>(0x80 | (cp & 0x3F)));
+  } else if (cp < 0x80) {
     s.push_back(static_cast<char>(cp));
   } else if (cp < 0x800) {
     s.push_back(static_cast<char>(0xC0 | (cp >> 6)));
@@ -149,15 +194,91 @@ void append_utf8(std::string& s, unsigned cp) {
   }
 }
 
+// What one escape sequence stands for, read as ECMAScript reads it in a module (strict code) and
+// a template: its UTF-8 bytes (none for a line continuation), or why a browser refuses it.
+struct Escaped {
+  std::string bytes;
+  std::string refusal;
+};
+
+// `count` hex digits exactly; nullopt when fewer are there.
+std::optional<unsigned> hex_digits(Cursor& c, int count) {
+  unsigned value = 0;
+  for (int k = 0; k < count; ++k) {
+    if (hex_value(c.peek(static_cast<size_t>(k))) < 0) return std::nullopt;
+    value = value * 16 + static_cast<unsigned>(hex_value(c.peek(static_cast<size_t>(k))));
+  }
+  skip(c, static_cast<size_t>(count));
+  return value;
+}
+
+// \uXXXX or \u{X...}, the `u` read; a high surrogate followed by \u and a low one is one code point.
+std::optional<unsigned> unicode_escape(Cursor& c) {
+  if (c.peek() == '{') {
+    size_t digits = 0;
+    while (hex_value(c.peek(1 + digits)) >= 0) ++digits;
+    if (digits == 0 || c.peek(1 + digits) != '}') return std::nullopt;
+    unsigned value = 0;
+    for (size_t k = 0; k < digits && value <= 0x10FFFF; ++k) value = value * 16 + static_cast<unsigned>(hex_value(c.peek(1 + k)));
+    if (value > 0x10FFFF) return std::nullopt;
+    skip(c, digits + 2);
+    return value;
+  }
+  const auto unit = hex_digits(c, 4);
+  if (!unit || *unit < 0xD800 || *unit > 0xDBFF || !c.starts_with("\\u")) return unit;
+  Cursor low = c;
+  skip(low, 2);
+  const auto second = hex_digits(low, 4);
+  if (!second || *second < 0xDC00 || *second > 0xDFFF) return unit;
+  skip(c, 6);
+  return 0x10000 + ((*unit - 0xD800) << 10) + (*second - 0xDC00);
+}
+
+// The escape whose backslash was just read.
+Escaped read_escape(Cursor& c) {
+  if (c.done()) return {};  // reported as unclosed on the next turn
+  if (js_line_terminator_at(c)) {
+    skip(c, c.peek() == '\n' ? 1 : 3);  // a line continuation: JS drops both
+    return {};
+  }
+  const char esc = c.next();
+  const auto code_point = [](unsigned cp) {
+    std::string bytes;
+    append_utf8(bytes, cp);
+    return Escaped{bytes, {}};
+  };
+  switch (esc) {
+    case 'n': return {"\n", {}};
+    case 't': return {"\t", {}};
+    case 'r': return {"\r", {}};
+    case 'b': return {"\b", {}};
+    case 'f': return {"\f", {}};
+    case 'v': return {"\v", {}};
+    case 'x': {
+      const auto value = hex_digits(c, 2);
+      return value ? code_point(*value) : Escaped{{}, "`\\x` must be followed by two hex digits"};
+    }
+    case 'u': {
+      const auto value = unicode_escape(c);
+      return value ? code_point(*value) : Escaped{{}, "`\\u` must be followed by four hex digits or {a code point of at most 10FFFF}"};
+    }
+    default: break;
+  }
+  if (esc == '0' && !std::isdigit(static_cast<unsigned char>(c.peek()))) return {std::string(1, '\0'), {}};  // rejected later, like any NUL
+  if (std::isdigit(static_cast<unsigned char>(esc)))
+    return {{}, std::string("`\\") + esc + "` is an octal escape, which a module's strings and templates refuse"};
+  return {std::string(1, esc), {}};  // \\ \` \' \" \$ and JS's identity escapes (a UTF-8 character's first byte)
+}
+
 Expected<UnwrappedSource> unwrap_module(const ShaderFile& file, const std::string& text, Stage stage) {
   Cursor c{text};
   skip_js_space(c);
-  c.pos += 6, c.column += 6;  // "export"
+  skip(c, 6);  // "export"
   skip_js_space(c);
-  if (!c.starts_with("default"))
+  if (!c.starts_with("default") || continues_identifier(c, 7))
     return source_error(ErrorCode::shader_source_invalid, file, stage, c.line, c.column,
                         "expected `export default` followed by the shader string");
-  for (int i = 0; i < 7; ++i) c.next();
+  skip(c, 7);
   skip_js_space(c);
   const char quote = c.peek();
   if (quote != '`' && quote != '\'' && quote != '"')
@@ -169,51 +290,48 @@ Expected<UnwrappedSource> unwrap_module(const ShaderFile& file, const std::strin
   UnwrappedSource out;
   out.from_js_module = true;
   Emitter emit{out};
-  bool warned_newline = false;
+  // A CR the string holds (an escape: raw ones are LF by now) is a line end, as the page reads it
+  // (CR LF and a lone CR become LF): written when the next character is known.
+  bool pending_cr = false;
+  const auto put = [&](const std::string& bytes, int line, int column) {
+    for (char b : bytes) {
+      if (b == '\r') {
+        if (pending_cr) emit.put('\n', line, column);
+        pending_cr = true;
+        continue;
+      }
+      if (pending_cr && b != '\n') emit.put('\n', line, column);
+      pending_cr = false;
+      emit.put(b, line, column);
+    }
+  };
   while (true) {
     if (c.done())
       return source_error(ErrorCode::shader_source_invalid, file, stage, open_line, open_column,
                           std::string("the shader string opened here is never closed (missing ") + quote + ")");
     const int line = c.line, column = c.column;
-    const char ch = c.next();
-    if (ch == quote) break;
-    if (ch == '\n' && quote != '`' && !warned_newline) {
-      out.warnings.push_back(file.name + ":" + std::to_string(line) +
-                             ": a quoted JS string cannot span lines; browsers reject this module (use back-ticks)");
-      warned_newline = true;
+    if (c.peek() == quote) {
+      c.next();
+      break;
     }
-    if (quote == '`' && ch == '$' && c.peek() == '{')
+    if (quote != '`' && c.peek() == '\n')
+      return source_error(ErrorCode::shader_source_invalid, file, stage, line, column,
+                          "a quoted JS string cannot span lines; browsers reject this module (use back-ticks)");
+    if (quote == '`' && c.starts_with("${"))
       return source_error(ErrorCode::shader_source_invalid, file, stage, line, column,
                           "template interpolation ${...} cannot be evaluated here; write the value into the shader");
-    if (ch != '\\') {
-      emit.put(ch, line, column);
+    if (c.peek() != '\\') {
+      put(std::string(1, c.next()), line, column);
       continue;
     }
-    if (c.done()) continue;  // reported as unclosed on the next turn
-    const char esc = c.next();
-    switch (esc) {
-      case '\n': break;  // a line continuation: JS drops both characters
-      case 'n': emit.put('\n', line, column); break;
-      case 't': emit.put('\t', line, column); break;
-      case 'r': break;   // GLSL sees line ends as \n only
-      case '0': emit.put('\0', line, column); break;  // rejected below, like any NUL
-      case 'x':
-      case 'u': {
-        unsigned cp = 0;
-        const int digits = esc == 'x' ? 2 : 4;
-        for (int k = 0; k < digits && hex_value(c.peek()) >= 0; ++k) cp = cp * 16 + static_cast<unsigned>(hex_value(c.next()));
-        std::string bytes;
-        append_utf8(bytes, cp);
-        for (char b : bytes) emit.put(b, line, column);
-        break;
-      }
-      default: emit.put(esc, line, column); break;  // \\ \` \' \" \$ and JS's identity escapes
-    }
+    c.next();
+    const Escaped escaped = read_escape(c);
+    if (!escaped.refusal.empty()) return source_error(ErrorCode::shader_source_invalid, file, stage, line, column, escaped.refusal);
+    put(escaped.bytes, line, column);
   }
+  if (pending_cr) emit.put('\n', c.line, c.column);
   emit.finish(c.line, c.column);
-  skip_js_space(c);
-  if (c.peek() == ';') c.next();
-  skip_js_space(c);
+  for (skip_js_space(c); c.peek() == ';'; skip_js_space(c)) c.next();  // empty statements
   if (!c.done())
     return source_error(ErrorCode::shader_source_invalid, file, stage, c.line, c.column,
                         "unexpected text after the shader string; the module should hold only `export default`");

@@ -13,6 +13,8 @@ const $ = (id) => document.getElementById(id);
 const editors = { vertex: new Editor($("vertex-editor"), "phong_vert.js"), fragment: new Editor($("fragment-editor"), "phong_frag.js") };
 const state = { course: null, view: null, mesh: null, uploadedId: null, last: null, changed: new Set() };
 const COLOUR_ROLES = ["ambient", "diffuse", "specular"];
+// The settings are read, never submitted (the page's Content-Security-Policy has no inline handler).
+$("settings").addEventListener("submit", (e) => e.preventDefault());
 
 function status(id, text, isError = false) {
   $(id).textContent = text;

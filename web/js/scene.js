@@ -6,6 +6,7 @@ import { api, problemText } from "./api.js";
 
 const $ = (id) => document.getElementById(id);
 const form = $("scene-form");
+form.addEventListener("submit", (e) => e.preventDefault());  // read, never submitted (no inline handler under the CSP)
 const BUILTINS = ["suzanne", "uv_sphere", "cube", "plane", "teapot", "bunny"];
 const state = { base: null, uploads: [], last: null };
 

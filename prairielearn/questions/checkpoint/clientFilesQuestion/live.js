@@ -1,8 +1,9 @@
 // The checkpoint question's live canvas: the student's two shaders, as they type them in the
 // question's editors (PrairieLearn's pl-file-editor, vertex first), drawn on the course's mesh by
 // the homework page's own view (ShadeLab's web/js, copied beside this file by
-// prairielearn/install_questions.sh with the mesh and what a student sees of the course).
-// It only shows; the grade is the grader's, on submit.
+// prairielearn/install_questions.py with the mesh and what a student sees of the course).
+// It only shows; the grade is the grader's, on submit. A student's module is read by shader_module.js
+// (ECMAScript's grammar), never imported: staff open this page on submitted files.
 import { GlView } from "./gl_view.js";
 import { parseObj } from "./obj.js";
 import { glslFromFile } from "./shader_module.js";
