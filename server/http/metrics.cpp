@@ -11,6 +11,36 @@ void Metrics::Histogram::observe(double v) {
   sum += v;
 }
 
+namespace {
+
+// "/api/meshes/([a-z0-9_-]+)\\.obj" -> "/api/meshes/{id}.obj": a pattern as a person reads it.
+std::string readable(const std::string& pattern) {
+  std::string out;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] == '(') {
+      out += "{id}";
+      i = pattern.find(')', i);
+      if (i == std::string::npos) break;
+      if (i + 1 < pattern.size() && (pattern[i + 1] == '+' || pattern[i + 1] == '*')) ++i;
+    } else if (pattern[i] != '\\') {
+      out += pattern[i];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void Metrics::known_route(const std::string& method, const std::string& pattern) {
+  routes_.push_back({method, std::regex(pattern), method + " " + readable(pattern)});
+}
+
+std::string Metrics::route_label(const std::string& method, const std::string& path) const {
+  for (const auto& r : routes_)
+    if (r.method == method && std::regex_match(path, r.pattern)) return r.label;
+  return path.rfind("/api/", 0) == 0 ? "unknown" : "static";
+}
+
 void Metrics::request(const std::string& route, int status, double seconds) {
   std::lock_guard lock(mutex_);
   ++requests_[{route, status}];

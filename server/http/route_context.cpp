@@ -15,6 +15,7 @@ void add_route(httplib::Server& server, RouteContext& c, Method method, const st
     const course::Viewer viewer{c.tenants.role_of(req.get_header_value("Authorization")), c.config.open_references};
     handler(c, viewer, req, res);
   };
+  c.metrics.known_route(method == Method::get ? "GET" : "POST", pattern);
   if (method == Method::get) server.Get(pattern, std::move(with_viewer));
   else server.Post(pattern, std::move(with_viewer));
 }
