@@ -175,6 +175,32 @@ class CpuBurners {
   std::vector<pid_t> pids_;
 };
 
+// A hostile student's folder name cannot forge a row of the TA's table, hide the batch's last
+// lines, run as a spreadsheet formula, take the place of the batch's own files, or grade another
+// student's folder through a link (docs/reliability.md, "The attacker").
+TEST_F(CliTest, HostileFolderNamesCannotForgeTheTasTable) {
+  for (const char* name : {"alice", "zoe\ralice", "=HYPERLINK(\"x\")", "summary.csv", "graded.jsonl", "esc\x1b[8mhidden"})
+    fs::create_directories(dir_ / "class" / name);  // each handed in nothing: graded 0 without a render
+  fs::create_directory_symlink(dir_ / "class" / "alice", dir_ / "class" / "mallory");
+  const auto run = run_cli("grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("refused: mallory is a symbolic link"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find('\x1b'), std::string::npos) << "an escape code reached the terminal";
+  const std::string summary = read_text(path("grades/summary.csv"));
+  std::vector<std::string> rows;
+  for (std::istringstream lines(summary); std::getline(lines, rows.emplace_back());) {}
+  rows.pop_back();
+  EXPECT_EQ(rows.size(), 7u) << summary;  // the header and six students: no row forged, mallory not graded
+  EXPECT_EQ(std::count_if(rows.begin(), rows.end(), [](const std::string& r) { return r.starts_with("alice,"); }), 1) << summary;
+  EXPECT_EQ(summary.find('\r'), std::string::npos) << summary;
+  EXPECT_NE(summary.find("zoe\\x0Dalice,"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"'=HYPERLINK(\"\"x\"\")\","), std::string::npos) << summary;
+  EXPECT_NE(summary.find("esc\\x1B[8mhidden,"), std::string::npos) << summary;
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "grades" / "students" / "summary.csv" / "results.json"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "grades" / "students" / "graded.jsonl" / "results.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "grades" / "students" / "mallory"));
+}
+
 // The deadline counts the worker's CPU time: with every core taken by other processes the correct
 // submissions are still graded, and the hanging one is 0 only after a second attempt.
 TEST_F(CliTest, BatchGradingScoresAHangingSubmissionZeroAndGoesOn) {
@@ -202,10 +228,10 @@ TEST_F(CliTest, BatchGradingScoresAHangingSubmissionZeroAndGoesOn) {
   EXPECT_NE(summary.find("dave,0.000000,1.000000,false,invalid_argument,\"no shader pair found for specular: expected phong_vert.js"),
             std::string::npos) << summary;
   for (const char* who : {"alice", "bob", "carol", "dave"}) {
-    const auto results = nlohmann::json::parse(read_text(path(std::string("grades/") + who + "/results.json")));
+    const auto results = nlohmann::json::parse(read_text(path(std::string("grades/students/") + who + "/results.json")));
     EXPECT_TRUE(results.contains("score") && results.contains("execution_time") && results.contains("tests")) << who;
   }
-  const std::string carol = read_text(path("grades/carol/results.json"));
+  const std::string carol = read_text(path("grades/students/carol/results.json"));
   // Stopped by its CPU budget, or, where this machine is so oversubscribed that the worker gets
   // under a quarter of a core, by the wall-clock backstop: either way only after a second attempt.
   EXPECT_NE(carol.find("graded again"), std::string::npos) << carol;
@@ -243,7 +269,7 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   const std::string explanations = read_text(path("grades/explanations.csv"));
   EXPECT_NE(explanations.find("L not normalised,2,ivan judy\n"), std::string::npos) << explanations;
   // Each student still reads the words of their own program, at their own line.
-  EXPECT_NE(read_text(path("grades/judy/results.json")).find("`toLight` is not normalised: the direction to the light must be a unit vector"),
+  EXPECT_NE(read_text(path("grades/students/judy/results.json")).find("`toLight` is not normalised: the direction to the light must be a unit vector"),
             std::string::npos);
   // What each grade cost, counted: kim's program drawn once; ivan's, and its repair confirmed by
   // a render of its own; and the class's sum said on the batch's last lines.
@@ -298,11 +324,11 @@ TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
   EXPECT_NE(run.output.find("the class's programs repaired 2 of 3"), std::string::npos) << run.output;
   const auto before = half_vector.substr(0, half_vector.find("vec3 reflectDir"));
   const std::string line = std::to_string(std::count(before.begin(), before.end(), '\n') + 1);
-  const std::string ben = read_text(path("grades/ben/results.json"));
+  const std::string ben = read_text(path("grades/students/ben/results.json"));
   EXPECT_NE(ben.find("phong_frag.js line " + line + ": `reflectDir`, the direction to the light reflected about the normal, is not computed as "
                      "the homework computes it"), std::string::npos) << ben;
   EXPECT_EQ(ben.find("reflect(-lightDir, norm)"), std::string::npos) << "ana's line, shown to ben: " << ben;
-  const std::string cyd = read_text(path("grades/cyd/results.json"));
+  const std::string cyd = read_text(path("grades/students/cyd/results.json"));
   EXPECT_NE(cyd.find("line " + line + ": `reflectDir`"), std::string::npos) << cyd;
   EXPECT_NE(cyd.find("line " + std::to_string(std::stoi(line) - 3) + ": `color` is not computed as the homework computes it"), std::string::npos)
       << cyd;

@@ -14,6 +14,7 @@
 #include <set>
 #include <thread>
 
+#include "core/csv.h"
 #include "core/hash.h"
 #include "grade/provenance.h"
 #include "road/submission.h"
@@ -101,6 +102,10 @@ std::map<std::string, Entry> read_journals(const fs::path& out) {
   return entries;
 }
 
+// Each student's results.json in a folder of its own under students/, so no student's folder name
+// (summary.csv, graded.jsonl) can be one of the batch's own files.
+fs::path student_results(const fs::path& out, const std::string& name) { return out / "students" / name / "results.json"; }
+
 // Appends whole lines with one write each (O_APPEND), so a kill leaves at most one cut line,
 // which the reader skips; a cut line is ended first so the next one starts clean.
 class Journal {
@@ -128,13 +133,12 @@ class Journal {
 };
 
 
+// A cell of the TA's CSV: a student's name made printable first (a CR in a folder name must not
+// start a row of its own), then quoted and guarded against formulas (core/csv.h).
+// ShadeLab's own messages keep one line a row, their line ends read as spaces.
 std::string csv(std::string s) {
-  for (auto& c : s)
-    if (c == '\n') c = ' ';
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  return csv_cell(printable(s));
 }
 
 std::string joined_flags(const std::vector<std::string>& flags) {
@@ -182,10 +186,19 @@ void say_cost(const std::vector<Student>& students, const std::map<std::string, 
             << " repair candidates on a small canvas\n";
 }
 
+// A student's folder is a folder of the submissions, not a link to somewhere else (another
+// student's hand-in, the references): a link is refused by its name.
 std::vector<Student> students_of(const BatchOptions& o) {
   std::vector<Student> students;
-  for (const auto& e : fs::directory_iterator(o.submissions))
-    if (e.is_directory() && in_shard(e.path().filename().string(), o.shard)) students.push_back({e.path().filename().string(), e.path()});
+  for (const auto& e : fs::directory_iterator(o.submissions)) {
+    const std::string name = e.path().filename().string();
+    if (!in_shard(name, o.shard)) continue;
+    if (e.is_symlink()) {
+      std::cerr << "refused: " << printable(name) << " is a symbolic link, not a student's folder\n";
+      continue;
+    }
+    if (e.is_directory()) students.push_back({name, e.path()});
+  }
   std::sort(students.begin(), students.end(), [](const Student& a, const Student& b) { return a.name < b.name; });
   return students;
 }
@@ -196,7 +209,7 @@ class ProgressBar {
   void finished(const std::string& who) {
     std::lock_guard lock(mutex_);
     const size_t n = ++done_, width = 30, filled = n * width / total_;
-    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << n << "/" << total_ << " " << who
+    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << n << "/" << total_ << " " << printable(who)
               << std::string(20, ' ') << std::flush;
   }
 
@@ -263,7 +276,7 @@ std::optional<Error> grade_all(const BatchOptions& o, const std::vector<Student>
       const auto& r = graded->report;
       // A student whose results cannot be written (a full disk) is not journaled: the batch
       // stops, and the next run grades them again.
-      if (auto written = write_file(o.out / s.name / "results.json", grade::to_gradescope(r, graded->seconds).dump(2) + "\n"); !written) {
+      if (auto written = write_file(student_results(o.out, s.name), grade::to_gradescope(r, graded->seconds).dump(2) + "\n"); !written) {
         std::lock_guard lock(first_error_mutex);
         if (!first_error) first_error = written.take_error();
         stop = true;
@@ -345,7 +358,7 @@ int run_class_batch(const BatchOptions& o, const GradeStudent& grade_student, co
   for (const auto& s : students)
     if (const auto e = entries.find(s.name); e != entries.end()) flagged += !e->second.flags.empty();
   for (const auto& [label, who] : by_explanation(entries))
-    std::cerr << who.size() << (who.size() == 1 ? " student: " : " students: ") << label << "\n";
+    std::cerr << who.size() << (who.size() == 1 ? " student: " : " students: ") << printable(label) << "\n";
   if (flagged > 0) std::cerr << flagged << " students flagged for the TA: see the flags column of " << (o.out / "summary.csv").string() << "\n";
   say_cost(students, entries);
   std::cerr << "graded " << students.size() << " submissions" << (o.shard.count > 1 ? " in this shard" : "") << ", mean score "
