@@ -35,7 +35,13 @@ export async function startServer(extraArgs = []) {
     if (r?.ok) break;
     await new Promise((r2) => setTimeout(r2, 50));
   }
-  return { base, stop: () => new Promise((resolve) => { child.once("exit", resolve); child.kill("SIGTERM"); }) };
+  const exited = () => child.exitCode !== null || child.signalCode !== null;
+  // pid and exited(): a test that attacks the server reads its resident peak and whether it lived.
+  return { base, pid: child.pid, exited, stop: () => new Promise((resolve) => {
+    if (exited()) return resolve();
+    child.once("exit", resolve);
+    child.kill("SIGTERM");
+  }) };
 }
 
 export async function startBrowser() {
