@@ -31,6 +31,17 @@ void name_probes_that_fail(Report& report, const std::vector<Probe>& probes) {
   report.messages.insert(report.messages.begin(), said.begin(), said.end());
 }
 
+// The reference drawn with a request's uniform values failed. A student may not learn the
+// reference's uniforms from it ("'uSpecularColor' is a vec3 in the shader"): a wrong value says only
+// that the reference could not be drawn with it; the reference's other failures are the grader's.
+Error reference_not_drawn(const Error& e) {
+  if (e.code == ErrorCode::uniform_type_mismatch)
+    return make_error(ErrorCode::invalid_argument,
+                      "the reference cannot be drawn with the uniform values sent: send only uniforms your shaders declare, each "
+                      "with as many numbers as its type holds");
+  return make_error(ErrorCode::invalid_argument, "the reference does not render: " + e.message);
+}
+
 // A failing submission's frames read by the checkpoint's formula (grade/formula_explanation.h),
 // on the geometry of `reference` (rendered once per course, kept as references are); none when
 // the spec has no formula or the geometry does not render.
@@ -97,7 +108,7 @@ Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, c
   ref.vertex = spec.reference_vertex;
   ref.fragment = spec.reference_fragment;
   auto reference = renders.cached_under_lights(spec, ref, **mesh, mesh_key);
-  if (!reference) return make_error(ErrorCode::invalid_argument, "the reference does not render: " + reference.error().message);
+  if (!reference) return reference_not_drawn(reference.error());
   if (spec.warm) warm_the_store(renders, spec, ref, **mesh, mesh_key);
   // The formula and the catalogue only for a submission that fails: a passing one needs no
   // diagnosis. The formula first: a known mistake it reads needs no render (catalogue_work).

@@ -126,6 +126,18 @@ describe("a student's shader file is read, never run", () => {
   });
 });
 
+describe("what a student sees is not the reference", () => {
+  test("a uniform typed otherwise than the reference's says only that the reference could not be drawn with it", async () => {
+    const fragment = shaderText("starter_frag.js")
+      .replace("out vec4 fragColor;", "out vec4 fragColor;\nuniform float uSpecularColor;")
+      .replace("fragColor = vec4(normalize(abs(vNormal.xyz)), 1.0);", "fragColor = vec4(normalize(abs(vNormal.xyz)) * uSpecularColor, 1.0);");
+    const r = await post("/api/grade", JSON.stringify({ reference: "specular", vertex: shaderText("starter_vert.js"), fragment, uniforms: { uSpecularColor: 1 } }));
+    const text = await r.text();
+    assert.match(text, /the reference cannot be drawn with the uniform values sent/, text.slice(0, 400));
+    assert.doesNotMatch(text, /vec4|vec3/, "the reference's uniform types reached a student");
+  });
+});
+
 describe("every input has a budget before it is read", () => {
   const nested = (depth) => "[".repeat(depth) + "]".repeat(depth);
 
