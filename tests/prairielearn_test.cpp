@@ -154,6 +154,20 @@ TEST_F(PrairieLearnTest, AShaderThatDoesNotCompileIsAZeroWithItsReason) {
   EXPECT_EQ(results["images"].size(), 0u) << "a pair that does not compile draws nothing";
 }
 
+// A file name with an escape code is shown, not obeyed: PrairieLearn's ansi2html would style the
+// results' output with it (docs/reliability.md, "The attacker").
+TEST_F(PrairieLearnTest, AFileNamesEscapeCodesAreShownNotObeyed) {
+  params({{"checkpoint", "specular"}});
+  std::string broken = shadelab::testkit::preset_module("specular", "frag");
+  broken.replace(broken.find("void main"), 4, "vod");
+  shadelab::testkit::write_file_at(job_ / "student/phong_vert.js", shadelab::testkit::preset_module("specular", "vert"));
+  shadelab::testkit::write_file_at(job_ / "student/phong\x1b[8m_frag.js", broken);
+  const json results = grade();
+  const std::string text = results.dump();
+  EXPECT_EQ(text.find("\\u001b"), std::string::npos) << "an escape code reached PrairieLearn's results";
+  EXPECT_NE(text.find("phong\\\\x1B[8m_frag.js"), std::string::npos) << results.dump(2);
+}
+
 // Only a malformed job is not gradable, and each says why in words for PrairieLearn's format errors.
 TEST_F(PrairieLearnTest, AMalformedJobIsNotGradableAndSaysWhy) {
   shadelab::testkit::write_file_at(job_ / "student/phong_vert.js", shadelab::testkit::preset_module("specular", "vert"));

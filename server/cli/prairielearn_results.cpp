@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/base64.h"
+#include "core/csv.h"
 #include "sheet/narrowed_png.h"
 
 namespace shadelab::cli {
@@ -15,8 +16,11 @@ using nlohmann::json;
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 
+// Every text of the results may hold a student's file name: its control characters are shown, not
+// obeyed (core/csv.h).
 json test_json(const HandInTest& t) {
-  return {{"name", t.name}, {"points", t.score}, {"max_points", t.max_score}, {"message", first_line(t.output)}, {"output", t.output}};
+  const std::string output = printable_lines(t.output);
+  return {{"name", printable(t.name)}, {"points", t.score}, {"max_points", t.max_score}, {"message", first_line(output)}, {"output", output}};
 }
 
 json image(const std::string& label, const std::string& png, int width) {
@@ -69,8 +73,8 @@ json prairielearn_results(const HandInResults& r, const PrairieLearnLimits& limi
                                          ". This is not a problem with your submission, and the attempt is not counted; please tell the course staff.");
   json results = {{"gradable", true},
                   {"score", r.max_score > 0 ? std::clamp(std::round(r.score / r.max_score * 1e6) / 1e6, 0.0, 1.0) : 0.0},
-                  {"message", first_line(r.summary)},
-                  {"output", r.summary},
+                  {"message", first_line(printable_lines(r.summary))},
+                  {"output", printable_lines(r.summary)},
                   {"tests", json::array()},
                   {"images", json::array()}};
   for (const auto& t : r.tests) results["tests"].push_back(test_json(t));

@@ -13,7 +13,9 @@ std::string csv_cell(std::string_view text) {
   return quoted + "\"";
 }
 
-std::string printable(std::string_view text) {
+namespace {
+
+std::string printable_except(std::string_view text, std::string_view kept) {
   std::string out;
   out.reserve(text.size());
   const auto escaped = [&](unsigned value) {
@@ -23,7 +25,7 @@ std::string printable(std::string_view text) {
   };
   for (size_t i = 0; i < text.size(); ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
-    if (c < 0x20 || c == 0x7F) {
+    if ((c < 0x20 || c == 0x7F) && kept.find(static_cast<char>(c)) == std::string_view::npos) {
       escaped(c);
     } else if (c == 0xC2 && i + 1 < text.size() && static_cast<unsigned char>(text[i + 1]) >= 0x80 &&
                static_cast<unsigned char>(text[i + 1]) <= 0x9F) {
@@ -34,5 +36,10 @@ std::string printable(std::string_view text) {
   }
   return out;
 }
+
+}  // namespace
+
+std::string printable(std::string_view text) { return printable_except(text, ""); }
+std::string printable_lines(std::string_view text) { return printable_except(text, "\n\t"); }
 
 }  // namespace shadelab

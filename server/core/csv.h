@@ -15,5 +15,8 @@ std::string csv_cell(std::string_view text);
 // `text` with every control character (C0, DEL, C1 in UTF-8) written as \xNN, so a name shown in a
 // terminal, a results file or a CSV cannot move the cursor, hide lines or start a new row.
 std::string printable(std::string_view text);
+// The same, keeping LF and tab: text of several lines (a grader's output shown in PrairieLearn,
+// whose ansi2html would style an escape code a file name carried).
+std::string printable_lines(std::string_view text);
 
 }  // namespace shadelab
