@@ -269,8 +269,12 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
   const std::string explanations = read_text(path("grades/explanations.csv"));
   EXPECT_NE(explanations.find("L not normalised,2,ivan judy\n"), std::string::npos) << explanations;
   // Each student still reads the words of their own program, at their own line.
-  EXPECT_NE(read_text(path("grades/students/judy/results.json")).find("`toLight` is not normalised: the direction to the light must be a unit vector"),
-            std::string::npos);
+  const std::string judy_results = read_text(path("grades/students/judy/results.json"));
+  EXPECT_NE(judy_results.find("`toLight` is not normalised: the direction to the light must be a unit vector"), std::string::npos);
+  // Her results.json is hers (Gradescope shows it to her): where the line is, as the course's
+  // repairShown says, never the repaired line itself.
+  EXPECT_EQ(judy_results.find("normalize(uLightPosition - vPosition)"), std::string::npos) << judy_results;
+  EXPECT_EQ(judy_results.find("the frames match the reference's"), std::string::npos) << judy_results;
   // What each grade cost, counted: kim's program drawn once; ivan's, and its repair confirmed by
   // a render of its own; and the class's sum said on the batch's last lines.
   std::map<std::string, nlohmann::json> journal;

@@ -151,8 +151,12 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
   worker::WorkerPool pool(config);
   if (options.concurrency <= 0) options.concurrency = config.workers + 1;
   const ClassFrames frames(c, checkpoint, [&] { return reference_frames(pool, c, checkpoint); });
+  // Each student's results.json is theirs (Gradescope shows it to them): a repair is said as far as
+  // the course shows its students (`repairShown`), never the repaired line a TA's single grade shows.
+  GradeFlags as_students_see = f;
+  as_students_see.show_repaired_line = false;
   const auto grade = [&](const Student& s, std::vector<grade::PassingProgram> classmates) -> Expected<StudentGrade> {
-    auto graded = grade_student(pool, c, checkpoint, f, s, std::move(classmates));
+    auto graded = grade_student(pool, c, checkpoint, as_students_see, s, std::move(classmates));
     if (graded && !graded->first_grade_stands) frames.check(s, *graded);
     return graded;  // an error stops the batch, resumable: nobody is graded for the grader's failure
   };
