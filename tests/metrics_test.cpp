@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -61,4 +62,29 @@ TEST(MetricsTest, NonFinitePixelsAreCounted) {
   const auto n = count_non_finite(f);
   EXPECT_EQ(n.nan, 2u);
   EXPECT_EQ(n.inf, 1u);
+}
+
+// What a student's course shows them of where their frames differ (grade::DifferencePicture::
+// blocks): a shade a block, by the grader's own per-pixel test, so the picture of a black
+// submission is the same against two references that differ only inside a block's shade.
+TEST(MetricsTest, DifferenceBlocksShowWhereNotWhat) {
+  const Image black = solid(64, 64, 0);
+  EXPECT_EQ(difference_blocks(black, black, 16).bytes, solid(64, 64, 0).bytes) << "no pixel off: every block black";
+  Image a = solid(64, 64, 0), b = solid(64, 64, 0);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      a.bytes[(y * 64 + x) * 4] = static_cast<std::uint8_t>(40 + 10 * x + y);  // a reference's shading in the first block
+      b.bytes[(y * 64 + x) * 4] = static_cast<std::uint8_t>(250 - 7 * y);     // another's, as far off everywhere
+    }
+  a.bytes[(20 * 64 + 20) * 4] = b.bytes[(20 * 64 + 20) * 4] = 200;  // one pixel off in the block beside
+  const Image from_a = difference_blocks(black, a, 16), from_b = difference_blocks(black, b, 16);
+  EXPECT_EQ(from_a.bytes, from_b.bytes) << "the picture told the two references apart";
+  const auto pixel = [&](int x, int y) {
+    const std::uint8_t* p = from_a.bytes.data() + (y * 64 + x) * 4;
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  EXPECT_EQ(pixel(3, 7), (std::array<int, 3>{255, 255, 0})) << "most of the block off: yellow";
+  EXPECT_EQ(pixel(31, 31), (std::array<int, 3>{255, 0, 0})) << "some of it off: red, over the whole block";
+  EXPECT_EQ(pixel(16, 16), (std::array<int, 3>{255, 0, 0}));
+  EXPECT_EQ(pixel(40, 40), (std::array<int, 3>{0, 0, 0}));
 }

@@ -57,7 +57,10 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
   submission->repair.candidates = f.warm_store ? 0 : f.repair_candidates;
   submission->repair.class_candidates = f.class_candidates;
   submission->spec.warm = f.warm_store;
-  if (f.show_repaired_line) submission->repair_shown = grade::RepairShown::repaired_line;
+  if (f.show_repaired_line) {  // a TA's own grade: the repaired line and every pixel of the difference
+    submission->repair_shown = grade::RepairShown::repaired_line;
+    submission->spec.picture = grade::DifferencePicture::full;
+  }
   return submission;
 }
 
@@ -88,7 +91,11 @@ Expected<std::optional<Graded>> grade_beside_class(worker::WorkerPool& pool, con
 
 namespace {
 
-road::FramesSettings frames_settings(const GradeFlags& f) { return {f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps}; }
+road::FramesSettings frames_settings(const GradeFlags& f) {
+  road::FramesSettings s{f.mesh, f.max_score, {.folder = f.cache_dir}, f.heatmaps};
+  if (f.show_repaired_line) s.picture = grade::DifferencePicture::full;  // a TA's own grade
+  return s;
+}
 
 }  // namespace
 

@@ -199,6 +199,10 @@ struct Course {
   // How much of a confirmed repair of a failing code grade its students are shown (the profile's
   // `repairShown`): what is wrong, where (the line: the default), or the repaired line too.
   grade::RepairShown repair_shown = grade::RepairShown::where;
+  // What a failing grade's picture of where it differs shows its students (the profile's
+  // `differencePicture`): blocks by default, which no number of grades a class could make inverts
+  // to the reference's pixels; staff see every pixel.
+  grade::DifferencePicture difference_picture = grade::DifferencePicture::blocks;
   render::PageCamera camera;
   std::vector<PageUniform> uniforms;
   std::vector<grade::StarterConstant> starter_constants;  // specularAlpha = 6.0

@@ -51,6 +51,7 @@ grade::GradeOptions Course::grade_options(const Checkpoint& c) const {
 grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {
   grade::GradeSpec spec;
   spec.reference_name = c.name;
+  spec.picture = difference_picture;  // a student's; the road shows staff every pixel
   const Preset* reference = preset(c.reference);  // checked when the profile loaded
   spec.reference_vertex = reference->vertex;
   spec.reference_fragment = reference->fragment;

@@ -51,7 +51,7 @@ class Parser {
     JsonReader root(j, "", &error_, "a course profile");
     root.only({"format", "id", "title", "source", "canvas", "frames", "msaa", "camera", "uniforms", "specularExponent", "meshes",
                "defaultMesh", "presets", "defaultPreset", "checkpoints", "defaultCheckpoint", "aliases", "notebook", "tolerance", "handIn",
-               "repairShown"});
+               "repairShown", "differencePicture"});
     if (root.require("format") && root.text("format", "") != kCourseFormat)
       root.fail_at("format", std::string("expected \"") + kCourseFormat + "\" (this ShadeLab reads that version of the format)");
     header(root);
@@ -75,6 +75,16 @@ class Parser {
     course_.source = r.text("source", "");
     course_.hand_in_title = r.text("handIn", "");
     repair_shown(r);
+    difference_picture(r);
+  }
+
+  void difference_picture(const JsonReader& r) {
+    std::set<std::string> names;
+    for (const auto& row : grade::kDifferencePictureNames) names.emplace(row.name);
+    const auto blocks = grade::DifferencePicture::blocks;
+    course_.difference_picture =
+        value_in(grade::kDifferencePictureNames, r.text("differencePicture", std::string(name_in(grade::kDifferencePictureNames, blocks)), names))
+            .value_or(blocks);
   }
 
   void repair_shown(const JsonReader& r) {

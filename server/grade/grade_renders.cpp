@@ -9,9 +9,13 @@
 
 namespace shadelab::grade {
 
-std::string heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job) {
+std::string heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job, const GradeSpec& spec) {
+  if (spec.picture == DifferencePicture::none) return {};
   std::vector<image::Image> heat;
-  for (size_t k = 0; k < static_cast<size_t>(job.frames); ++k) heat.push_back(image::heatmap(*frames[k], *reference[k]));
+  for (size_t k = 0; k < static_cast<size_t>(job.frames); ++k)
+    heat.push_back(spec.picture == DifferencePicture::full ? image::heatmap(*frames[k], *reference[k])
+                                                           : image::difference_blocks(*frames[k], *reference[k], kDifferenceBlockSide,
+                                                                                      spec.options.compare));
   auto png = image::encode_png(image::compose_grid(image::GridLayout::for_frames(job.frames, job.width, job.height), heat));
   return png ? std::string(png->begin(), png->end()) : std::string();
 }

@@ -38,9 +38,10 @@ using EnterPhase = std::function<Status(JobPhase phase)>;
 // frames' angles, which are theirs alone (108 MB of float frames a set at 512 x 512 on disk).
 enum class GeometryKept { with_references, in_memory };
 
-// The grid of where the first `job.frames` of `frames` differ from `reference`'s, as a PNG (empty
-// if it does not encode).
-std::string heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job);
+// The grid of where the first `job.frames` of `frames` differ from `reference`'s, as a PNG, drawn
+// as `spec.picture` says (per pixel for staff, by blocks or not at all for a course's students);
+// empty where it shows none or does not encode.
+std::string heatmap_png(const SharedFrames& frames, const SharedFrames& reference, const render::RenderRequest& job, const GradeSpec& spec);
 
 class GradeRenders {
  public:

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "grade/grader.h"
 #include "model/lighting.h"
 #include "shader/shader_source.h"
@@ -77,6 +78,25 @@ struct ReferenceStorePlaces {
 // Gradescope only beside a failed test; a class batch nowhere.
 enum class HeatMap { always, when_failing, never };
 
+// What the picture of where a failing grade differs shows its reader. Per pixel (`full`), the
+// difference's ramp inverts to the reference's own pixels: a black submission read back the
+// reference's brightest channel below 0.5, at any angle or light a request asked for. A course
+// chooses what its students see (the profile's `differencePicture`); staff see `full`.
+// - none: no picture; the words and numbers only.
+// - blocks: the frame in blocks of kDifferenceBlockSide pixels (16 a side at the course's 512
+//   canvas), each one of three shades: no pixel off, some, or most. At most log2(3) bits a block
+//   of 1,024 pixels that hold 24 bits each: 9 frames of 512 x 512 (56.6 Mbit) take at least
+//   15,500 grades to read back whatever the student draws, and a frame of any other size a request
+//   asks for as many (the block is a size in pixels, not a share of the frame).
+// - full: each pixel's difference, as the page has always drawn it.
+enum class DifferencePicture { none, blocks, full };
+inline constexpr EnumName<DifferencePicture> kDifferencePictureNames[] = {
+    {DifferencePicture::none, "none"},
+    {DifferencePicture::blocks, "blocks"},
+    {DifferencePicture::full, "full"},
+};
+inline constexpr int kDifferenceBlockSide = 32;
+
 // A homework quantity the formula reads (a colour, the light's position), under every name the
 // page feeds it by, with the course's value: a submission's own value under one of the names
 // replaces it, as it does for the reference.
@@ -124,6 +144,7 @@ struct GradeSpec {
   GradeOptions options;
   ReferenceStorePlaces reference_store;
   HeatMap heatmap = HeatMap::always;
+  DifferencePicture picture = DifferencePicture::full;  // the course's for a student, full for staff
   // Saved frames must come from the course's page: ShadeLab's own frames lose the saved-frames
   // test (false: they are flagged only). Course::frames_from_page.
   bool frames_from_page = true;
@@ -133,7 +154,9 @@ struct GradeSpec {
   // every student, whichever reading their frames take.
   bool warm = false;
 
-  bool wants_heatmap(bool passed) const { return heatmap == HeatMap::always || (heatmap == HeatMap::when_failing && !passed); }
+  bool wants_heatmap(bool passed) const {
+    return picture != DifferencePicture::none && (heatmap == HeatMap::always || (heatmap == HeatMap::when_failing && !passed));
+  }
 };
 
 // A frame a student saved from their browser, as it arrived: its file name and its PNG bytes.

@@ -136,7 +136,7 @@ Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, c
     }
   out.report.explanation = std::move(explanation);
   say_explanation(out.report);
-  if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r);  // the homework light's
+  if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r, spec);  // the homework light's
   return out;
 }
 

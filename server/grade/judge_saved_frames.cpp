@@ -237,7 +237,7 @@ Expected<FramesGradeOutput> judge_saved_frames(GradeRenders& renders, const Grad
                         : failed_submission(rendered.error(), spec.reference_name, spec.options.max_score);
   }
   out.frames.grader_work = renders.work();
-  if (spec.wants_heatmap(out.frames.pass)) out.heatmap_png = heatmap_png(*frames, *reference, code);
+  if (spec.wants_heatmap(out.frames.pass)) out.heatmap_png = heatmap_png(*frames, *reference, code, spec);
   return out;
 }
 

@@ -22,10 +22,10 @@ thread_local Clock::time_point request_start;
 // Every response, the page's first: script only from this server's own files (no inline script,
 // no blob: or data: script, no eval), so a student's text that reached the page as a module could
 // not run even if a regression imported it; images may be data: and blob: (the page draws PNGs the
-// API returns); no framing, no plugins, no form posted elsewhere; no type sniffing.
+// API returns, and fetches a frame's data: URL to compare it; neither reaches another host); no framing, no plugins, no form posted elsewhere; no type sniffing.
 const httplib::Headers kSecurityHeaders = {
     {"Content-Security-Policy",
-     "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data: blob:; connect-src 'self'; "
+     "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data: blob:; connect-src 'self' data: blob:; "
      "object-src 'none'; base-uri 'none'; form-action 'self'; frame-ancestors 'none'"},
     {"X-Content-Type-Options", "nosniff"},
     {"Referrer-Policy", "no-referrer"},

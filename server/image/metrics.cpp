@@ -1,6 +1,7 @@
 #include "image/metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -173,6 +174,34 @@ NonFinite count_census(const std::uint8_t* rgba, std::size_t pixels, bool second
     out.nan += nan;
     out.inf += !nan && flags[1] != 0;
   }
+  return out;
+}
+
+Image difference_blocks(const Image& actual, const Image& expected, int side, const CompareOptions& options) {
+  check_comparable(actual, expected);
+  SHADELAB_CHECK(side > 0, "a block has a side");
+  const int w = actual.width, h = actual.height, limit = threshold_limit(options);
+  Image out = Image::blank(w, h, PixelType::u8);
+  for (int by = 0; by < h; by += side)
+    for (int bx = 0; bx < w; bx += side) {
+      const int x1 = std::min(w, bx + side), y1 = std::min(h, by + side);
+      std::size_t failing = 0;
+      for (int y = by; y < y1; ++y)
+        for (int x = bx; x < x1; ++x) {
+          const std::uint8_t* a = actual.bytes.data() + (static_cast<std::size_t>(y) * w + x) * 4;
+          failing += channel_diff(a, expected.bytes.data() + (static_cast<std::size_t>(y) * w + x) * 4) > limit &&
+                     fails_after_allowances(a, expected, x, y, limit, options);
+        }
+      const std::size_t pixels = static_cast<std::size_t>(x1 - bx) * static_cast<std::size_t>(y1 - by);
+      const std::array<std::uint8_t, 3> shade = failing == 0 ? std::array<std::uint8_t, 3>{0, 0, 0}
+                                                : 2 * failing > pixels ? std::array<std::uint8_t, 3>{255, 255, 0}
+                                                                       : std::array<std::uint8_t, 3>{255, 0, 0};
+      for (int y = by; y < y1; ++y)
+        for (int x = bx; x < x1; ++x) {
+          std::uint8_t* o = out.bytes.data() + (static_cast<std::size_t>(y) * w + x) * 4;
+          o[0] = shade[0], o[1] = shade[1], o[2] = shade[2], o[3] = 255;
+        }
+    }
   return out;
 }
 

@@ -51,4 +51,11 @@ NonFinite count_census(const std::uint8_t* rgba, std::size_t pixels, bool second
 // Per-pixel maximum channel difference as a heat map: black, red, yellow, white at 1/8, 1/4, 1/2.
 Image heatmap(const Image& actual, const Image& expected);
 
+// Where two frames differ, by square blocks of `side` pixels (the last row and column cut by the
+// frame's edge), each in one of three shades of the same ramp: black where no pixel fails
+// (the grader's own test: `options`' threshold and allowances), red where some do, yellow where
+// more than half do. A picture a student cannot invert to the reference's pixels
+// (grade::DifferencePicture::blocks).
+Image difference_blocks(const Image& actual, const Image& expected, int side, const CompareOptions& options = {});
+
 }  // namespace shadelab::image

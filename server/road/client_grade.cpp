@@ -28,9 +28,11 @@ Expected<ClientGraded> code_for_client(const ClientRoad& road, const course::Cou
   return ClientGraded{std::move(*graded), {}};
 }
 
-Expected<ClientGraded> frames_for_client(const ClientRoad& road, const course::Course& c, FramesRequest request, const ClientGrade& grade) {
+Expected<ClientGraded> frames_for_client(const ClientRoad& road, const course::Course& c, FramesRequest request, const ClientGrade& grade,
+                                         const course::Viewer& viewer) {
   auto built = frames_submission(c, std::move(request));
   if (!built) return built.take_error();
+  if (viewer.sees_references()) built->settings.picture = grade::DifferencePicture::full;
   built->settings.reference_store = road.reference_store;
   built->settings.limits = road.limits;
   auto graded = grade_saved_frames(road.pool, c, *built->checkpoint, std::move(built->submission), built->settings);
@@ -43,7 +45,7 @@ Expected<ClientGraded> frames_for_client(const ClientRoad& road, const course::C
 
 Expected<ClientGraded> grade_for_client(const ClientRoad& road, const course::Course& course, ClientGrade grade,
                                         const course::Viewer& viewer) {
-  if (auto* frames = std::get_if<FramesRequest>(&grade.request)) return frames_for_client(road, course, std::move(*frames), grade);
+  if (auto* frames = std::get_if<FramesRequest>(&grade.request)) return frames_for_client(road, course, std::move(*frames), grade, viewer);
   return code_for_client(road, course, std::move(std::get<CodeRequest>(grade.request)), grade, viewer);
 }
 

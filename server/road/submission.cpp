@@ -44,6 +44,7 @@ Expected<worker::Job> frames_job(const course::Course& c, const course::Checkpoi
   job.grade = c.frames_grade_spec(checkpoint, options);
   job.grade.reference_store = s.reference_store;
   job.grade.heatmap = s.heatmap;
+  if (s.picture) job.grade.picture = *s.picture;
   return job;
 }
 

@@ -110,6 +110,8 @@ struct FramesSettings {
   double max_score = 1;
   grade::ReferenceStorePlaces reference_store;  // grade/reference_store.h; empty: the worker's memory only
   grade::HeatMap heatmap = grade::HeatMap::always;
+  // None: the course's picture (a student's); staff's roads set full.
+  std::optional<grade::DifferencePicture> picture;
   render::RenderLimits limits;  // the code's, the caller's (the server's over HTTP)
 };
 

@@ -34,6 +34,7 @@ constexpr json_fields::Named<model::Parameter> kParameterNames{model::to_string,
 constexpr json_fields::Named<model::Terms> kTermsNames{model::to_string, model::terms_named};
 constexpr EnumName<HeatMap> kHeatMapNames[] = {{HeatMap::always, "always"}, {HeatMap::when_failing, "whenFailing"}, {HeatMap::never, "never"}};
 constexpr json_fields::Names kHeatMaps{kHeatMapNames};
+constexpr json_fields::Names kDifferencePictures{kDifferencePictureNames};
 }  // namespace
 
 SHADELAB_JSON_FIELDS(FormulaReading::Value, field("parameter", &FormulaReading::Value::parameter, kParameterNames),
@@ -68,7 +69,8 @@ SHADELAB_JSON_FIELDS(GradeSpec, field("referenceName", &GradeSpec::reference_nam
                      at("maxScore", [](auto& g) -> auto& { return g.options.max_score; }),
                      at("sameOutline", [](auto& g) -> auto& { return g.options.same_outline; }),
                      at("savedFramesCloserThanReference", [](auto& g) -> auto& { return g.options.saved_frames_closer_than_reference; }),
-                     field("heatmap", &GradeSpec::heatmap, kHeatMaps), field("framesFromPage", &GradeSpec::frames_from_page),
+                     field("heatmap", &GradeSpec::heatmap, kHeatMaps),
+                     field("picture", &GradeSpec::picture, kDifferencePictures), field("framesFromPage", &GradeSpec::frames_from_page),
                      field("formula", &GradeSpec::formula, When::omitted_when_empty), field("warm", &GradeSpec::warm, When::omitted_when_default))
 
 // A handed-in image's bytes travel in the payload, beside the JSON (worker/job.cpp's to_message).

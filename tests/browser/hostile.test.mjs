@@ -6,7 +6,7 @@ import assert from "node:assert/strict";
 import { mkdtempSync, readFileSync, writeFileSync } from "node:fs";
 import os from "node:os";
 import path from "node:path";
-import { deflateSync } from "node:zlib";
+import { deflateSync, inflateSync } from "node:zlib";
 import { after, before, describe, test } from "node:test";
 
 import { openPage, repo, startBrowser, startServer } from "./harness.mjs";
@@ -36,8 +36,17 @@ async function stillAnswers() {
   assert.equal((await fetch(`${server.base}/livez`)).status, 200);
 }
 
-const post = (route, body, headers = {}) =>
-  fetch(`${server.base}${route}`, { method: "POST", headers: { "Content-Type": "application/json", ...headers }, body });
+// Once more where the server closed a kept-alive socket as the request went out (a test that
+// held the event loop saw its close late): every request here may be sent twice.
+async function post(route, body, headers = {}) {
+  const send = () => fetch(`${server.base}${route}`, { method: "POST", headers: { "Content-Type": "application/json", ...headers }, body });
+  try {
+    return await send();
+  } catch (e) {
+    if (e.cause?.code !== "UND_ERR_SOCKET") throw e;
+    return send();
+  }
+}
 
 describe("a student's shader file is read, never run", () => {
   test("Chromium's own import() does with each module case what the case says, and the page's reader reads what it says", async () => {
@@ -126,7 +135,58 @@ describe("a student's shader file is read, never run", () => {
   });
 });
 
+// An 8-bit RGB or RGBA PNG (what ShadeLab writes) as {width, height, rgba(x, y)}.
+function decodePng(png) {
+  let width = 0, height = 0, channels = 0;
+  const idat = [];
+  for (let at = 8; at < png.length; ) {
+    const length = png.readUInt32BE(at), type = png.toString("latin1", at + 4, at + 8), data = png.subarray(at + 8, at + 8 + length);
+    if (type === "IHDR") [width, height, channels] = [data.readUInt32BE(0), data.readUInt32BE(4), { 2: 3, 6: 4 }[data[9]]];
+    if (type === "IDAT") idat.push(data);
+    at += 12 + length;
+  }
+  assert.equal(png.subarray(0, 8).toString("latin1"), "\x89PNG\r\n\x1a\n");
+  const raw = inflateSync(Buffer.concat(idat)), stride = width * channels, rows = Buffer.alloc(stride * height);
+  for (let y = 0; y < height; ++y) {
+    const filter = raw[y * (stride + 1)], line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    for (let i = 0; i < stride; ++i) {
+      const a = i >= channels ? rows[y * stride + i - channels] : 0, b = y > 0 ? rows[(y - 1) * stride + i] : 0;
+      const c = i >= channels && y > 0 ? rows[(y - 1) * stride + i - channels] : 0;
+      const p = a + b - c, pa = Math.abs(p - a), pb = Math.abs(p - b), pc = Math.abs(p - c);
+      const predicted = [0, a, b, (a + b) >> 1, pa <= pb && pa <= pc ? a : pb <= pc ? b : c][filter];
+      rows[y * stride + i] = (line[i] + predicted) & 0xff;
+    }
+  }
+  return { width, height, rgb: (x, y) => [...rows.subarray((y * width + x) * channels, (y * width + x) * channels + 3)].join(",") };
+}
+
 describe("what a student sees is not the reference", () => {
+  // A black submission: per pixel, the heat map's ramp inverted to the reference's brightest
+  // channel below 0.5. The course shows its students blocks (differencePicture); staff every pixel.
+  test("a black submission's difference picture is blocks of three shades for a student, every pixel for staff", async () => {
+    const fragment = shaderText("starter_frag.js").replace("fragColor = vec4(normalize(abs(vNormal.xyz)), 1.0);", "fragColor = vec4(0.0, 0.0, 0.0, 1.0);");
+    const body = JSON.stringify({ reference: "diffuse", vertex: shaderText("starter_vert.js"), fragment });
+    const picture = async (headers) => {
+      const graded = await (await post("/api/grade", body, headers)).json();
+      assert.ok(graded.heatmap, JSON.stringify(graded).slice(0, 300));
+      return decodePng(Buffer.from(graded.heatmap, "base64"));
+    };
+    const student = await picture({}), staff = await picture({ Authorization: `Bearer ${STAFF}` });
+    const colours = (p) => { const seen = new Set(); for (let y = 0; y < p.height; ++y) for (let x = 0; x < p.width; ++x) seen.add(p.rgb(x, y)); return seen; };
+    const shown = colours(student), staffShown = colours(staff);
+    assert.deepEqual([...shown].filter((c) => !["0,0,0", "255,0,0", "255,255,0"].includes(c)), [], "a shade other than the three");
+    assert.ok(shown.size >= 2, "the student's picture shows where the frames differ");
+    assert.ok(staffShown.size > 16, `staff see every pixel's difference (${staffShown.size} colours)`);
+    // Each block one shade: 32 pixels a side, 16 a side of each 512 x 512 frame (the grid lays the
+    // course's frames 3 x 3).
+    const side = 32;
+    assert.equal(student.width, 3 * 512);
+    for (let y = 0; y < student.height; y += side)
+      for (let x = 0; x < student.width; x += side)
+        for (const [dx, dy] of [[side - 1, 0], [0, side - 1], [side - 1, side - 1], [side >> 1, side >> 1]])
+          assert.equal(student.rgb(x + dx, y + dy), student.rgb(x, y), `the block at ${x}, ${y} is not one shade`);
+  });
+
   test("a uniform typed otherwise than the reference's says only that the reference could not be drawn with it", async () => {
     const fragment = shaderText("starter_frag.js")
       .replace("out vec4 fragColor;", "out vec4 fragColor;\nuniform float uSpecularColor;")
