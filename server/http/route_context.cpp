@@ -2,6 +2,7 @@
 
 #include "core/hash.h"
 #include "http/problem.h"
+#include "http/session_key.h"
 #include "scene/mesh.h"
 
 namespace shadelab::http {
@@ -12,7 +13,7 @@ std::string json_text(const json& body, int indent) { return body.dump(indent, '
 
 void add_route(httplib::Server& server, RouteContext& c, Method method, const std::string& pattern, RouteHandler handler) {
   auto with_viewer = [&c, handler = std::move(handler)](const httplib::Request& req, httplib::Response& res) {
-    const course::Viewer viewer{c.tenants.role_of(req.get_header_value("Authorization")), c.config.open_references};
+    const course::Viewer viewer{c.tenants.role_of(credential_of(req)), c.config.open_references};
     handler(c, viewer, req, res);
   };
   c.metrics.known_route(method == Method::get ? "GET" : "POST", pattern);

@@ -91,6 +91,7 @@ void add_grade_routes(httplib::Server& server, RouteContext& context);    // /ap
 void add_sheet_routes(httplib::Server& server, RouteContext& context);    // /api/sheet
 void add_scene_routes(httplib::Server& server, RouteContext& context);    // /api/scene, /api/scenes, /api/dolly
 void add_mesh_routes(httplib::Server& server, RouteContext& context);     // /api/meshes
+void add_session_routes(httplib::Server& server, RouteContext& context);  // /api/session: the page's key as a cookie
 void add_service_routes(httplib::Server& server, RouteContext& context);  // presets, OpenAPI, health, metrics
 
 }  // namespace shadelab::http

@@ -10,6 +10,7 @@
 
 #include "http/memory_stream.h"
 #include "http/route_context.h"
+#include "http/session_key.h"
 
 namespace shadelab::http {
 
@@ -47,7 +48,7 @@ void answer_httplib_error(const httplib::Request& req, httplib::Response& res) {
 bool admit(Tenants& tenants, const TenantLimits& limits, const httplib::Request& req, httplib::Response& res) {
   if (req.path.rfind("/api/", 0) != 0) return true;
   const std::string client = client_address(req.remote_addr, req.get_header_value("X-Forwarded-For"), limits.trusted_proxies);
-  const auto verdict = tenants.admit(req.get_header_value("Authorization"), client);
+  const auto verdict = tenants.admit(credential_of(req), client);
   if (!verdict.refused) return true;
   send_problem(res, *verdict.refused, req.path);
   if (verdict.refused->code == ErrorCode::rate_limited) {
@@ -130,6 +131,7 @@ struct Service::Impl {
     add_sheet_routes(server, *context);
     add_scene_routes(server, *context);
     add_mesh_routes(server, *context);
+    add_session_routes(server, *context);
     add_service_routes(server, *context);
     server.set_default_headers(kSecurityHeaders);
     if (!config.web_root.empty() && !server.set_mount_point("/", config.web_root))

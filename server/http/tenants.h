@@ -61,6 +61,7 @@ class Tenants {
   // `authorization` is the request's Authorization header ("" when absent).
   Verdict admit(const std::string& authorization, const std::string& address);
   bool keys_required() const { return !keys_.empty() && !limits_.students_without_keys; }
+  bool has_keys() const { return !keys_.empty(); }
   // The role of the key `authorization` carries: a known key's, else a student's.
   course::Role role_of(const std::string& authorization) const;
   std::string render_metrics() const;

@@ -89,9 +89,13 @@ describe("a student's shader file is read, never run", () => {
   test("a phong_frag.js with code after its string runs nothing in a TA's page: Apply locally, Render on server", async () => {
     const { page, context } = await openPage(browser, server.base);
     try {
-      // A TA: their staff key in the page's storage, which the file's code would carry off.
-      await page.evaluate((key) => localStorage.setItem("shadelab.apiKey", key), STAFF);
+      // A TA: their staff key entered, which the file's code would carry off were it anywhere a
+      // script can read (it was in localStorage; it is an HttpOnly cookie now).
+      assert.ok(await page.evaluate(async (key) => (await fetch("/api/session", { method: "POST", headers: { Authorization: `Bearer ${key}` } })).ok, STAFF));
       await page.reload();
+      assert.equal((await page.evaluate(async () => (await fetch("/api/session")).json())).role, "staff");
+      const readable = await page.evaluate(() => JSON.stringify(localStorage) + document.cookie);
+      assert.equal(readable.includes(STAFF), false, "a script can read the staff key");
       await page.waitForFunction(() => window.shadelab !== undefined, null, { timeout: 30000 });
       await page.waitForFunction(() => document.querySelectorAll("#preset option").length > 0, null, { timeout: 30000 });
       const starter = shaderText("starter_frag.js");
@@ -159,6 +163,25 @@ function decodePng(png) {
   }
   return { width, height, rgb: (x, y) => [...rows.subarray((y * width + x) * channels, (y * width + x) * channels + 3)].join(",") };
 }
+
+describe("the staff key", () => {
+  test("rides only on the server's own pages: a cookie sent from another origin, or as a script's request from elsewhere, is no key", async () => {
+    const start = await fetch(`${server.base}/api/session`, { method: "POST", headers: { Authorization: `Bearer ${STAFF}` } });
+    const setCookie = start.headers.get("set-cookie") ?? "";
+    assert.match(setCookie, /HttpOnly/);
+    assert.match(setCookie, /SameSite=Strict/);
+    assert.doesNotMatch(setCookie, new RegExp(STAFF), "the key in the cookie as written");
+    const cookie = setCookie.split(";")[0];
+    const role = async (headers) => (await (await fetch(`${server.base}/api/session`, { headers: { Cookie: cookie, ...headers } })).json()).role;
+    assert.equal(await role({}), "staff");
+    assert.equal(await role({ Origin: server.base }), "staff");
+    assert.equal(await role({ Origin: "http://evil.example" }), "student");
+    assert.equal(await role({ "Sec-Fetch-Site": "cross-site" }), "student");
+    assert.equal(await role({ "Sec-Fetch-Site": "same-site" }), "student");
+    const ended = await fetch(`${server.base}/api/session/end`, { method: "POST", headers: { Cookie: cookie } });
+    assert.match(ended.headers.get("set-cookie") ?? "", /Max-Age=0/);
+  });
+});
 
 describe("what a student sees is not the reference", () => {
   // A black submission: per pixel, the heat map's ramp inverted to the reference's brightest

@@ -56,7 +56,11 @@ describe("the page", () => {
       });
       await page.waitForFunction(() => document.querySelectorAll("#preset option").length > 0, null, { timeout: 30000 });
       assert.equal(asked.length, 1, `asked ${asked.length} times`);
-      assert.equal(await page.evaluate(() => localStorage.getItem("shadelab.apiKey")), "student-key-0123456789");
+      // Kept where no script of the page can read it: an HttpOnly, SameSite=Strict cookie.
+      assert.equal(await page.evaluate(() => localStorage.getItem("shadelab.apiKey")), null);
+      assert.doesNotMatch(await page.evaluate(() => document.cookie), /shadelab_key/);
+      const cookie = (await context.cookies()).find((c) => c.name === "shadelab_key");
+      assert.ok(cookie?.httpOnly && cookie.sameSite === "Strict", JSON.stringify(cookie));
       const rendered = await page.evaluate(async () => (await window.shadelab.renderOnServer(), true));
       assert.ok(rendered);
       assert.deepEqual(consoleErrors.filter((e) => !e.includes("401")), []);
@@ -84,7 +88,7 @@ describe("the page", () => {
       await page.waitForFunction((n) => document.querySelectorAll("#preset option").length > n, publicPresets, { timeout: 30000 });
       assert.equal(asked.length, 1);
       assert.equal(await page.locator("#preset option").count(), course.presets.length, "a staff key lists every preset");
-      assert.match(await page.locator("#api-key").textContent(), /forget/);
+      await page.waitForFunction(() => /forget/.test(document.querySelector("#api-key").textContent), null, { timeout: 30000 });
       assert.deepEqual(consoleErrors, []);
       await context.close();
     } finally {

@@ -1,36 +1,48 @@
 // Every API call the pages make: where the server requires keys (serve --api-keys) it answers
-// 401, and the page asks for the student's key once and keeps it in this browser. Where students
-// need none (serve --students-without-keys), a TA enters their staff key with the header's button.
-const kKey = "shadelab.apiKey";
+// 401, and the page asks for the student's key once. Where students need none
+// (serve --students-without-keys), a TA enters their staff key with the header's button.
+//
+// The key is handed to the server once (POST /api/session), which keeps it in an HttpOnly,
+// SameSite=Strict cookie: no script on this page can read it back, so none can carry it off.
+// Earlier pages kept it in localStorage: a key found there is moved into the cookie and removed.
+const kLegacyKey = "shadelab.apiKey";
+
+// Enters `key` for this browser; true when the server took it.
+async function enterKey(key) {
+  const response = await fetch("/api/session", { method: "POST", headers: { Authorization: `Bearer ${key}` } });
+  return response.ok;
+}
+
+const legacyMoved = (async () => {
+  const legacy = localStorage.getItem(kLegacyKey);
+  if (!legacy) return;
+  localStorage.removeItem(kLegacyKey);
+  await enterKey(legacy);
+})();
 
 export async function api(path, init = {}) {
+  await legacyMoved;
   for (let attempt = 0; ; attempt++) {
-    const key = localStorage.getItem(kKey);
-    const headers = { ...(init.headers ?? {}), ...(key ? { Authorization: `Bearer ${key}` } : {}) };
-    const response = await fetch(path, { ...init, headers });
+    const response = await fetch(path, init);
     if (response.status !== 401 || attempt > 0) return response;
     const entered = window.prompt("This ShadeLab server needs your course API key:");
-    if (!entered) return response;
-    localStorage.setItem(kKey, entered.trim());
+    if (!entered?.trim() || !(await enterKey(entered.trim()))) return response;
   }
 }
 
-// The header's button: enter a key (a TA's staff key), or forget the one this browser keeps. The
+// The header's button: enter a key (a TA's staff key), or forget the one this browser holds. The
 // page opens again so that what it lists is what the key may see.
-export function offerKey(button) {
-  const show = () => {
-    button.textContent = localStorage.getItem(kKey) ? "Key entered (forget it)" : "Staff key";
-  };
-  show();
-  button.addEventListener("click", () => {
-    if (localStorage.getItem(kKey)) {
-      localStorage.removeItem(kKey);
+export async function offerKey(button) {
+  await legacyMoved;
+  const session = await (await fetch("/api/session")).json().catch(() => ({ keyEntered: false }));
+  button.textContent = session.keyEntered ? "Key entered (forget it)" : "Staff key";
+  button.addEventListener("click", async () => {
+    if (session.keyEntered) {
+      await fetch("/api/session/end", { method: "POST" });
     } else {
       const entered = window.prompt("Your staff key (TAs; students need none here):");
-      if (!entered?.trim()) return;
-      localStorage.setItem(kKey, entered.trim());
+      if (!entered?.trim() || !(await enterKey(entered.trim()))) return;
     }
-    show();
     window.location.reload();
   });
 }
