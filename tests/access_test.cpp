@@ -293,6 +293,14 @@ TEST_F(AccessTest, AStudentReadsWhereARepairIsAndNeverTheRepairedLine) {
       EXPECT_FALSE(found.contains("repairedLine")) << report.dump();
     }
   }
+  // A class batch through --server grades with a staff key for its students: asked to answer as a
+  // student is, the server keeps the repaired line to itself.
+  httplib::Headers as_student = bearer(kStaff);
+  as_student.emplace("X-ShadeLab-View", "student");
+  const auto r = server_->client().Post("/api/grade", as_student, unnormalised_light().dump(), "application/json");
+  ASSERT_TRUE(r && r->status == 200);
+  EXPECT_EQ(r->body.find("normalize(uLightPosition - vPosition)"), std::string::npos) << r->body.substr(0, 400);
+  EXPECT_NE(r->body.find("phong_frag.js line 20: `L` is not normalised"), std::string::npos);
 }
 
 // A course says how much of a repair its students read (the profile's `repairShown`): what is

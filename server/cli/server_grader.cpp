@@ -55,7 +55,8 @@ Expected<ServerGrade> grade_on_server(const ServerOptions& o, const json& body) 
   client.set_connection_timeout(std::chrono::seconds(5));
   client.set_read_timeout(o.request_timeout);
   client.set_write_timeout(std::chrono::seconds(30));
-  httplib::Headers headers;
+  // Each student's results.json is theirs: graded as the course shows a student, whatever the key.
+  httplib::Headers headers{{"X-ShadeLab-View", "student"}};
   if (!o.api_key.empty()) headers.emplace("Authorization", "Bearer " + o.api_key);
   const std::string text = body.dump(-1, ' ', false, json::error_handler_t::replace);
   const auto start = Clock::now();

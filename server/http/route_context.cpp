@@ -13,7 +13,10 @@ std::string json_text(const json& body, int indent) { return body.dump(indent, '
 
 void add_route(httplib::Server& server, RouteContext& c, Method method, const std::string& pattern, RouteHandler handler) {
   auto with_viewer = [&c, handler = std::move(handler)](const httplib::Request& req, httplib::Response& res) {
-    const course::Viewer viewer{c.tenants.role_of(credential_of(req)), c.config.open_references};
+    // A staff client grading for its students (a class batch through --server) asks to be answered
+    // as a student is: `X-ShadeLab-View: student` lowers a request's view, never raises it.
+    const bool as_student = req.get_header_value("X-ShadeLab-View") == "student";
+    const course::Viewer viewer = as_student ? course::Viewer{} : course::Viewer{c.tenants.role_of(credential_of(req)), c.config.open_references};
     handler(c, viewer, req, res);
   };
   c.metrics.known_route(method == Method::get ? "GET" : "POST", pattern);
