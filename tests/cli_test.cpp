@@ -182,6 +182,9 @@ TEST_F(CliTest, HostileFolderNamesCannotForgeTheTasTable) {
   for (const char* name : {"alice", "zoe\ralice", "=HYPERLINK(\"x\")", "summary.csv", "graded.jsonl", "esc\x1b[8mhidden"})
     fs::create_directories(dir_ / "class" / name);  // each handed in nothing: graded 0 without a render
   fs::create_directory_symlink(dir_ / "class" / "alice", dir_ / "class" / "mallory");
+  // fred's fragment shader is named with an escape code, and does not compile: his results name it.
+  write("class/fred/phong_vert.js", read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/specular_vert.js"));
+  write("class/fred/phong\x1b[8m_frag.js", "export default `#version 300 es\nvod main() {}\n`;\n");
   const auto run = run_cli("grade --submissions " + path("class") + " --reference specular --size 64x48 --out " + path("grades"));
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("refused: mallory is a symbolic link"), std::string::npos) << run.output;
@@ -190,7 +193,7 @@ TEST_F(CliTest, HostileFolderNamesCannotForgeTheTasTable) {
   std::vector<std::string> rows;
   for (std::istringstream lines(summary); std::getline(lines, rows.emplace_back());) {}
   rows.pop_back();
-  EXPECT_EQ(rows.size(), 7u) << summary;  // the header and six students: no row forged, mallory not graded
+  EXPECT_EQ(rows.size(), 8u) << summary;  // the header and seven students: no row forged, mallory not graded
   EXPECT_EQ(std::count_if(rows.begin(), rows.end(), [](const std::string& r) { return r.starts_with("alice,"); }), 1) << summary;
   EXPECT_EQ(summary.find('\r'), std::string::npos) << summary;
   EXPECT_NE(summary.find("zoe\\x0Dalice,"), std::string::npos) << summary;
@@ -199,6 +202,9 @@ TEST_F(CliTest, HostileFolderNamesCannotForgeTheTasTable) {
   EXPECT_TRUE(fs::is_regular_file(dir_ / "grades" / "students" / "summary.csv" / "results.json"));
   EXPECT_TRUE(fs::is_regular_file(dir_ / "grades" / "students" / "graded.jsonl" / "results.json"));
   EXPECT_FALSE(fs::exists(dir_ / "grades" / "students" / "mallory"));
+  const std::string fred = read_text(path("grades/students/fred/results.json"));
+  EXPECT_EQ(fred.find("\\u001b"), std::string::npos) << fred;
+  EXPECT_NE(fred.find("phong\\\\x1B[8m_frag.js"), std::string::npos) << fred;
 }
 
 // The deadline counts the worker's CPU time: with every core taken by other processes the correct

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/csv.h"
 #include "core/json_fields.h"
 
 namespace shadelab::grade {
@@ -135,8 +136,9 @@ std::string output_text(const Report& r) {
   return output;
 }
 
+// A student's file names are in the text: their control characters shown, not obeyed (core/csv.h).
 json to_gradescope(const Report& r, double seconds) {
-  const std::string output = output_text(r);
+  const std::string output = printable_lines(output_text(r));
   json test = {{"name", "checkpoint: " + r.checkpoint},
                {"score", r.score},
                {"max_score", r.max_score},
