@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 
+#include "shader/condition_value.h"
 #include "shader/glsl_lines.h"
 #include "shader/webgl_rules.h"
 #include "support/files.h"
@@ -93,7 +94,7 @@ TEST(WebglRulesTest, EveryCaseGetsTheBrowsersVerdictMessageAndLine) {
     ASSERT_NE(d, nullptr) << r.error().format();
     EXPECT_NE(d->message.find(c["message"].get<std::string>()), std::string::npos) << d->format();
     EXPECT_EQ(d->line, c["line"].get<int>()) << d->format();
-    EXPECT_EQ(d->file, "rule_frag.glsl");  // every refused case breaks its rule in the fragment shader
+    EXPECT_EQ(d->file, c.value("in", "fragment") == "vertex" ? "rule_vert.glsl" : "rule_frag.glsl");
   }
 }
 
@@ -129,6 +130,64 @@ TEST(WebglRulesTest, AnEmptyDeclarationAfterALabelReachesTheDriverAsAnEmptyState
   EXPECT_EQ(lines[9], "    case 1:     ;");
   EXPECT_EQ(lines[10], "    default: float x; x = 1.0; /* c */ float;");  // not after a label
   EXPECT_TRUE(compile_fragment("f.glsl", fragment_text)) << "the browser runs it";
+}
+
+// What the browser runs and Mesa refuses reaches the driver as the same program, every line in
+// its place: `#extension all` and a hint `#pragma` before a kept extension left out, a literal
+// `#if` condition that glslang cannot evaluate given as its value, and (GLSL ES 1.00) an
+// `invariant gl_FragCoord;` the browser does not bind without its declaration.
+TEST(WebglRulesTest, WhatMesaRefusesAndTheBrowserRunsReachesTheDriverRewrittenInPlace) {
+  const auto rewritten = [](const std::string& vertex_text, const std::string& fragment_text) {
+    const shader::ShaderFile vertex_file{"v.glsl", vertex_text}, fragment_file{"f.glsl", fragment_text};
+    auto vertex = shader::unwrap(vertex_file, shader::Stage::vertex);
+    auto fragment = shader::unwrap(fragment_file, shader::Stage::fragment);
+    EXPECT_TRUE(vertex && fragment);
+    const auto checked = shader::apply_webgl_rules(*vertex, *fragment, vertex_file, fragment_file);
+    EXPECT_TRUE(checked) << checked.error().format();
+    EXPECT_TRUE(testkit::shared_renderer().compile(vertex_file, fragment_file)) << "the browser runs it";
+    std::vector<std::string> lines;
+    for (const auto line : shader::lines_of(fragment->glsl)) lines.emplace_back(line);
+    return lines;
+  };
+  const std::string es300_vertex = "#version 300 es\nvoid main() { gl_Position = vec4(0.0); }\n";
+  const auto es300 = rewritten(es300_vertex,
+                               "#version 300 es\n#pragma optimize(off)\n#extension all : warn\n"
+                               "#extension GL_OES_EGL_image_external_essl3 : enable\n#if 0 && 1 / 0\n#endif\n"
+                               "precision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n");
+  ASSERT_GE(es300.size(), 9u);
+  EXPECT_EQ(es300[1], "");  // the hint before an extension the driver gets
+  EXPECT_EQ(es300[2], "");  // `all` changes nothing the front end has not judged
+  EXPECT_EQ(es300[3], "#extension GL_OES_EGL_image_external_essl3 : enable");
+  EXPECT_EQ(es300[4], "#if 0");
+  EXPECT_EQ(es300[8], "void main() { c = vec4(1.0); }");
+  const auto es100 = rewritten("attribute vec4 p;\nvoid main() { gl_Position = p; }\n",
+                               "precision mediump float;\ninvariant gl_FragCoord;\nvoid main() { gl_FragColor = vec4(1.0); }\n");
+  ASSERT_GE(es100.size(), 3u);
+  EXPECT_EQ(es100[1], std::string(23, ' '));  // never read: the browser does not bind it
+  EXPECT_EQ(es100[2], "void main() { gl_FragColor = vec4(1.0); }");
+}
+
+// An `#if` in literals, as C reads it: `&&` and `||` skip the side their left decides (a division
+// by zero there is never evaluated); anything it cannot read alone (a name, a division that
+// counts, a shift past 31, a broken expression) stays the compiler's.
+TEST(WebglRulesTest, ALiteralConditionIsReadAsCReadsIt) {
+  using shader::literal_condition_value;
+  EXPECT_EQ(literal_condition_value("0 && 1 / 0"), 0);
+  EXPECT_EQ(literal_condition_value("1 || 1 % 0"), 1);
+  EXPECT_EQ(literal_condition_value("(0 && 1/0) || 1"), 1);
+  EXPECT_EQ(literal_condition_value("(1 + 2) * 3 == 9 && 7 / 2 == 3"), 1);
+  EXPECT_EQ(literal_condition_value("0x10 == 16 && 010 == 8"), 1);
+  EXPECT_EQ(literal_condition_value("-1 < 0 && !0 && ~0 == -1 && (1 << 4) == 16"), 1);
+  EXPECT_EQ(literal_condition_value("1 | 2 ^ 3 & 1"), 1 | (2 ^ (3 & 1)));
+  EXPECT_EQ(literal_condition_value("1 && 1 / 0"), std::nullopt);
+  EXPECT_EQ(literal_condition_value("0 || 1 % (1 - 1)"), std::nullopt);
+  EXPECT_EQ(literal_condition_value("X && 1"), std::nullopt);
+  EXPECT_EQ(literal_condition_value("defined(X) && X / 0"), std::nullopt);
+  EXPECT_EQ(literal_condition_value("1 << 40"), std::nullopt);
+  EXPECT_EQ(literal_condition_value("1 +"), std::nullopt);
+  EXPECT_EQ(literal_condition_value("(1"), std::nullopt);
+  EXPECT_EQ(literal_condition_value("1 2"), std::nullopt);
+  EXPECT_EQ(literal_condition_value(""), std::nullopt);
 }
 
 // A stage with a uniform block gets WebGL's std140 default before the driver sees it; the

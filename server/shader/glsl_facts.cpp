@@ -27,6 +27,8 @@ TBuiltInResource webgl2_resources(GlslVersion version, Stage stage) {
   TBuiltInResource r = *GetDefaultResources();
   r.minProgramTexelOffset = -8;  // WebGL 2's MIN_PROGRAM_TEXEL_OFFSET / MAX_PROGRAM_TEXEL_OFFSET
   r.maxProgramTexelOffset = 7;
+  r.maxDrawBuffers = kWebglMaxDrawBuffers;  // gl_MaxDrawBuffers and gl_MaxVertexAttribs as the browser has them
+  r.maxVertexAttribs = kWebglMaxVertexAttribs;
   if (version == GlslVersion::es100) {  // GLSL ES 1.00 Appendix A, as WebGL enforces it
     r.limits.nonInductiveForLoops = false;
     r.limits.whileLoops = false;
@@ -146,28 +148,48 @@ std::string type_words(const glslang::TType& type) {
 
 // A block's members in order; a struct member's fields as "member.field", so a precision that
 // differs inside a struct is found too.
-void add_members(const glslang::TType& type, const std::string& prefix, std::vector<GlslVariable>& out);
+// A block's members inherit its matrix packing where they name none (as the browser reads them:
+// a vec4 member of a row_major block is row_major too), a struct's fields their member's.
+void add_members(const glslang::TType& type, const std::string& prefix, bool row_major, std::vector<GlslVariable>& out);
 
-GlslVariable variable(const std::string& name, const glslang::TType& type, const glslang::TSourceLoc& loc) {
+bool packed_row_major(const glslang::TQualifier& q, bool inherited) {
+  if (q.layoutMatrix == glslang::ElmRowMajor) return true;
+  if (q.layoutMatrix == glslang::ElmColumnMajor) return false;
+  return inherited;
+}
+
+// Locations a vertex input or fragment output takes: a matrix one per column, an array one per
+// element.
+int slots_of(const glslang::TType& type) {
+  const int columns = type.isMatrix() ? type.getMatrixCols() : 1;
+  return columns * (type.isArray() ? std::max(1, type.getCumulativeArraySize()) : 1);
+}
+
+GlslVariable variable(const std::string& name, const glslang::TType& type, const glslang::TSourceLoc& loc,
+                      bool row_major = false) {
   const auto& q = type.getQualifier();
   GlslVariable v{name, type_words(type), precision_of(type), point(loc)};
   v.flat = q.flat;
   v.invariant = q.invariant;
   v.sampler = type.getBasicType() == glslang::EbtSampler;
+  v.row_major = packed_row_major(q, row_major);
+  v.location = q.hasLocation() ? static_cast<int>(q.layoutLocation) : -1;
+  v.slots = slots_of(type);
   if (type.isStruct()) {
     v.struct_name = type.getTypeName().c_str();
-    add_members(type, "", v.fields);
+    add_members(type, "", v.row_major, v.fields);
   }
   return v;
 }
 
-void add_members(const glslang::TType& type, const std::string& prefix, std::vector<GlslVariable>& out) {
+void add_members(const glslang::TType& type, const std::string& prefix, bool row_major, std::vector<GlslVariable>& out) {
   for (const auto& field : *type.getStruct()) {
     const std::string name = prefix + field.type->getFieldName().c_str();
+    const bool packing = packed_row_major(field.type->getQualifier(), row_major);
     if (field.type->isStruct() && !field.type->isArray())
-      add_members(*field.type, name + ".", out);
+      add_members(*field.type, name + ".", packing, out);
     else
-      out.push_back(variable(name, *field.type, field.loc));
+      out.push_back(variable(name, *field.type, field.loc, packing));
   }
 }
 
@@ -206,14 +228,17 @@ class FactsTraverser : public glslang::TIntermTraverser {
   // A global named anywhere in the code is statically used (GLSL ES 3.00 section 4.3.4: the
   // link's rules bind the inputs a shader so uses, called or not).
   void visitSymbol(glslang::TIntermSymbol* node) override {
-    const auto storage = node->getType().getQualifier().storage;
-    if (storage == glslang::EvqUniform || storage == glslang::EvqVaryingIn) used_.insert(node->getName().c_str());
+    const auto& q = node->getType().getQualifier();
+    const std::string name = node->getName().c_str();
+    if (q.storage == glslang::EvqUniform || q.storage == glslang::EvqVaryingIn) used_.insert(name);
+    if (q.invariant && name.rfind("gl_", 0) == 0) invariant_builtins_.insert(name);
   }
 
   // Marks what the code used; called once the whole tree is read.
   void mark_used() {
     for (auto* list : {&facts_.inputs, &facts_.uniforms})
       for (auto& v : *list) v.used = used_.count(v.name) > 0;
+    for (const auto& name : invariant_builtins_) facts_.invariant_builtins_used.push_back({name, invariant_declaration(name)});
   }
 
   bool visitBinary(glslang::TVisit visit, glslang::TIntermBinary* node) override {
@@ -255,6 +280,17 @@ class FactsTraverser : public glslang::TIntermTraverser {
     return {};
   }
 
+  // `invariant gl_FragCoord;`: the first line of code naming both words.
+  GlslPoint invariant_declaration(std::string_view name) const {
+    for (size_t k = 0; k < code_lines_.size(); ++k) {
+      const size_t at = whole_word(code_lines_[k], name);
+      if (at == std::string_view::npos || whole_word(code_lines_[k], "invariant") == std::string_view::npos) continue;
+      const size_t column = k < lines_.size() ? whole_word(lines_[k], name) : std::string_view::npos;
+      return {static_cast<int>(k) + 1, column == std::string_view::npos ? 0 : static_cast<int>(column) + 1};
+    }
+    return {};
+  }
+
   GlslVariable global(const std::string& name, const glslang::TType& type, const glslang::TSourceLoc& loc) const {
     GlslVariable v = variable(name, type, loc);
     if (v.at.line == 0) v.at = first_word(name);
@@ -272,7 +308,10 @@ class FactsTraverser : public glslang::TIntermTraverser {
       if (storage == glslang::EvqUniform && type.getBasicType() == glslang::EbtBlock) {
         UniformBlock block{type.getTypeName().c_str(), {}, point(symbol->getLoc())};
         if (block.at.line == 0) block.at = first_word(block.name);
-        add_members(type, "", block.members);
+        block.row_major = packed_row_major(type.getQualifier(), false);
+        block.instance_name = name.rfind("anon@", 0) != 0;  // glslang's name for a block without one
+        block.array_size = type.isArray() ? std::max(1, type.getOuterArraySize()) : 0;
+        add_members(type, "", block.row_major, block.members);
         facts_.uniform_blocks.push_back(std::move(block));
       } else if (storage == glslang::EvqUniform) {
         facts_.uniforms.push_back(global(name, type, symbol->getLoc()));
@@ -286,7 +325,7 @@ class FactsTraverser : public glslang::TIntermTraverser {
 
   GlslFacts& facts_;
   std::vector<std::string_view> lines_, code_lines_;
-  std::set<std::string> used_;
+  std::set<std::string> used_, invariant_builtins_;
 };
 
 // glslang's preprocessor stops at an extension it does not know (and WebGL's list is not its
@@ -418,6 +457,56 @@ void read_preprocessed(const std::string& text, std::string_view source, GlslFac
   }
 }
 
+// The browser's preprocessor refuses `#extension` after a line of code (GLSL ES 3.00 section 3.4;
+// Chromium holds GLSL ES 1.00 shaders to it too), counting the source's own words before any
+// macro expands: `E` that expands to nothing is code. Only where #if leaves the code in, so the
+// preprocessor decides which lines stand: every directive kept (comments out, columns in place),
+// every line of code one marker word; a marker it leaves in is a line of code that stands.
+constexpr std::string_view kCodeMarker = "shadelab_code_line";
+
+std::string directives_and_code_markers(std::string_view text) {
+  std::vector<std::string> lines(lines_of(text).size());
+  std::vector<bool> directive(lines.size(), false);
+  bool continues = false;  // the last directive line ended in a backslash
+  int last_line = 0;
+  for (const GlslToken& t : tokens_of(text)) {
+    const auto k = static_cast<size_t>(t.line - 1);
+    if (t.line != last_line) {
+      continues = continues && last_line == t.line - 1;
+      directive[k] = t.text == "#" || continues;
+      last_line = t.line;
+    }
+    if (!directive[k]) {
+      lines[k] = kCodeMarker;
+      continues = false;
+      continue;
+    }
+    lines[k].resize(static_cast<size_t>(t.column - 1), ' ');
+    lines[k] += t.text;
+    continues = t.text == "\\";
+  }
+  std::string out;
+  for (const auto& line : lines) out += line + "\n";
+  return out;
+}
+
+void mark_extensions_after_code(const std::string& text, const TBuiltInResource& resources, EShLanguage stage,
+                                int version, GlslFacts& facts) {
+  if (facts.extensions.empty()) return;
+  const std::string skeleton = extensions_as_pragmas(directives_and_code_markers(text));
+  const char* strings[] = {skeleton.c_str()};
+  glslang::TShader preprocessor(stage);
+  preprocessor.setStrings(strings, 1);
+  glslang::TShader::ForbidIncluder no_includes;
+  std::string kept;
+  if (!preprocessor.preprocess(&resources, version, EEsProfile, false, false, EShMsgDefault, &kept, no_includes)) return;
+  int first_code = 0, number = 0;
+  std::istringstream in(kept);
+  for (std::string line; first_code == 0 && std::getline(in, line);)
+    if (++number && line.find(kCodeMarker) != std::string::npos) first_code = number;
+  for (auto& d : facts.extensions) d.after_code = first_code != 0 && first_code < d.line;
+}
+
 }  // namespace
 
 GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
@@ -439,6 +528,7 @@ GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
   else
     preprocessed.clear();
   facts.preprocessed = preprocessed;
+  mark_extensions_after_code(text, resources, language(stage), default_version(version), facts);
 
   glslang::TShader shader(language(stage));
   shader.setStrings(strings, 1);

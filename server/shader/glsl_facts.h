@@ -19,6 +19,12 @@ struct GlslPoint {
   int line = 0, column = 0;
 };
 
+// The limits the browser holds every shader to, whatever its GPU: ANGLE caps MAX_DRAW_BUFFERS at
+// 8 and MAX_VERTEX_ATTRIBS at 16, and Debian's Chromium reports both (WebGL 2's minimums are 4 and
+// 16). A student's browser refuses a location past them, so ShadeLab does on any driver.
+constexpr int kWebglMaxDrawBuffers = 8;
+constexpr int kWebglMaxVertexAttribs = 16;
+
 // An error glslang reported, as it printed it: "'limitations' : while loops not available".
 struct GlslError {
   GlslPoint at;
@@ -43,14 +49,26 @@ struct GlslVariable {
   bool invariant = false;  // `invariant`
   bool used = false;       // statically used: named in a function, even one never called
   bool sampler = false;    // an opaque type, whose precision the stages need not share
+  bool row_major = false;  // a block member's matrix packing, its own or its block's
+  int location = -1;       // `layout(location = N)`; -1 without one
+  int slots = 1;           // locations it takes: a matrix's columns, times an array's size
   std::string struct_name;           // a struct's type name ("Light"); "" for any other type
   std::vector<GlslVariable> fields;  // a struct's, in order, nested structs as "field.inner"
+};
+
+// A built-in the code reads or writes, and where it is declared so.
+struct BuiltinUse {
+  std::string name;  // "gl_FragCoord"
+  GlslPoint at;
 };
 
 struct UniformBlock {
   std::string name;                  // the block's name, which the stages match by
   std::vector<GlslVariable> members; // in order; a struct member's fields as "member.field"
   GlslPoint at;
+  bool row_major = false;      // the block's matrix packing: its layout, or the stage's default
+  bool instance_name = false;  // `uniform B { ... } b;`: its members are not global names
+  int array_size = 0;          // `} b[2];`; 0 for a block that is not an array
 };
 
 // `#extension NAME : BEHAVIOR`, read from the student's line as the browser's preprocessor reads
@@ -66,6 +84,7 @@ struct ExtensionDirective {
   std::string name, behavior;  // "GL_EXT_frag_depth", "require"
   int line = 0;
   Shape shape = Shape::well_formed;
+  bool after_code = false;  // a line of code (not a directive) where #if leaves it in comes before
   std::string token;  // what the browser quotes where the shape is not well formed
   int column = 0;     // where that token starts (1-based; 0 = the line)
 };
@@ -88,6 +107,7 @@ struct GlslFacts {
   std::vector<LineDirective> line_directives;            // those #if left in
   std::vector<GlslPoint> shared_or_packed;               // `shared` / `packed` inside layout(...)
   std::vector<int> invariant_all_pragmas;                // lines of `#pragma STDGL invariant(all)`, #if left in
+  std::vector<BuiltinUse> invariant_builtins_used;       // gl_FragCoord, gl_Position, ...: used, and declared invariant
   std::string preprocessed;  // the preprocessor's output, each line in its place ("" when it failed)
 };
 

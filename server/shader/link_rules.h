@@ -8,7 +8,13 @@
 //    invariance too. An input the code never names binds nothing (GLSL ES 3.00 section 4.3.4);
 //  - a uniform both stages declare has one type (a struct's fields included), used or not, and
 //    one precision where both stages use it (samplers aside);
-//  - a uniform block both declare has the same members, types and precisions.
+//  - a uniform block both declare has the same members, types and precisions, the same matrix
+//    packing (the block's, and each matrix member's), array size, and an instance name in both
+//    or in neither; a block without one puts its members among the global names, which no
+//    uniform or other such block of the other stage may share;
+//  - GLSL ES 1.00: gl_FragCoord / gl_PointCoord read as invariant only where gl_Position /
+//    gl_PointSize are;
+//  - the vertex inputs fit the browser's 16 locations.
 // docs/webgl-rules.md lists them with their sources.
 #include <string>
 #include <vector>

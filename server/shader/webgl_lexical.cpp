@@ -124,6 +124,24 @@ void line_numbers(std::string_view glsl, const GlslFacts& facts, std::vector<Lex
   }
 }
 
+// `invariant a, b;`: the browser's grammar redeclares one name per `invariant` (GLSL ES 3.00
+// section 4.6.1, `invariant IDENTIFIER`) and stops at the comma; glslang and Mesa take the list.
+// A declaration (`invariant out vec4 a, b;`) is another form and stays.
+void invariant_lists(std::string_view glsl, std::string_view preprocessed, std::vector<LexicalError>& out) {
+  if (preprocessed.find("invariant") == std::string_view::npos) return;
+  const std::vector<GlslToken> tokens = tokens_of(preprocessed);
+  for (size_t i = 0; i + 2 < tokens.size(); ++i) {
+    if (tokens[i].text != "invariant" || tokens[i + 1].kind != GlslToken::Kind::identifier || tokens[i + 2].text != ",")
+      continue;
+    const std::string_view line = line_of(glsl, tokens[i + 2].line);
+    const size_t name = whole_word(line, tokens[i + 1].text);
+    const size_t comma = name == std::string_view::npos ? name : line.find(',', name);
+    out.push_back({{tokens[i + 2].line, comma == std::string_view::npos ? 0 : static_cast<int>(comma) + 1},
+                   "',' : syntax error: `invariant` takes one name at a time, as in `invariant " +
+                       std::string(tokens[i + 1].text) + ";` (GLSL ES 3.00 section 4.6.1)"});
+  }
+}
+
 }  // namespace
 
 std::vector<LexicalError> lexical_errors(std::string_view glsl, GlslVersion version, const GlslFacts& facts) {
@@ -131,6 +149,7 @@ std::vector<LexicalError> lexical_errors(std::string_view glsl, GlslVersion vers
   long_tokens(glsl, out);
   if (!facts.preprocessed.empty()) reserved_words(glsl, version, facts.preprocessed, out);
   line_numbers(glsl, facts, out);
+  if (!facts.preprocessed.empty()) invariant_lists(glsl, facts.preprocessed, out);
   return out;
 }
 

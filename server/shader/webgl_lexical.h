@@ -5,7 +5,8 @@
 //    group and the ES 1.00 language included;
 //  - a word GLSL ES reserves for future use, as a name (after #if and the macros: a macro may
 //    carry one in; a word after `.` is a field and never reserved);
-//  - a `#line` number that does not fit a 32-bit int.
+//  - a `#line` number that does not fit a 32-bit int;
+//  - `invariant a, b;`, a list where the browser's grammar takes one name.
 // And one rewrite the driver needs: `#line` with an expression (`#line 10 + 2`, a macro), which
 // the browser evaluates and the driver does not read, given to the driver as the number.
 #include <string>

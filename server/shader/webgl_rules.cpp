@@ -5,6 +5,7 @@
 #include <regex>
 #include <span>
 
+#include "shader/condition_value.h"
 #include "shader/glsl_lines.h"
 #include "shader/link_rules.h"
 #include "shader/stand_in_names.h"
@@ -85,6 +86,11 @@ constexpr std::array kKnownErrors{
                "(GLSL ES 3.00 section 4.6.1)"},
     KnownError{"variable indexing sampler array", "not supported for this version",
                "'[' : array index for samplers must be constant integral expressions (GLSL ES 3.00 section 4.1.7.1)"},
+    KnownError{"preprocessor evaluation", "division by 0",
+               "division by zero in an #if or #elif condition: the browser evaluates every operand that && or || "
+               "does not skip (GLSL ES 3.00 section 3.4)"},
+    KnownError{"location", "too large for fragment output",
+               "'location' : output location must be < MAX_DRAW_BUFFERS (the browser has 8 draw buffers, locations 0 to 7)"},
     KnownError{"texel offset", "value is out of range",
                "Texture offset value out of valid range: each component must lie in [-8, 7] "
                "(WebGL 2.0: invalid texture offsets)"},
@@ -220,6 +226,17 @@ std::string malformed_extension(const ExtensionDirective& d) {
 // not support or of `all`; `enable` and `warn` of an unsupported one are the browser's warning.
 void extension_rules(const StageInput& s, std::vector<Diagnostic>& errors, std::vector<Diagnostic>& warnings) {
   for (const auto& d : s.facts.extensions) {
+    if (d.after_code) {
+      const bool es300 = s.source.version == GlslVersion::es300;
+      errors.push_back(stage_error(
+          s, {d.line, 0},
+          std::string("'#extension' : extension directive must occur before any non-preprocessor tokens in ") +
+              (es300 ? "ESSL3 (GLSL ES 3.00: #extension comes before the first line of code; other directives may "
+                       "stand between)"
+                     : "ESSL1 (the browser refuses it in GLSL ES 1.00 shaders too: #extension comes before the first "
+                       "line of code)")));
+      continue;
+    }
     if (d.shape != ExtensionDirective::Shape::well_formed) {
       errors.push_back(stage_error(s, {d.line, d.column}, malformed_extension(d)));
       continue;
@@ -252,6 +269,33 @@ void invariant_all_rule(const StageInput& s, std::vector<Diagnostic>& errors) {
                                                "(GLSL ES 3.00 section 4.6.1: it binds a vertex shader's outputs)"));
 }
 
+// The locations the browser has, whatever its GPU (glsl_facts.h): a vertex input's within
+// MAX_VERTEX_ATTRIBS, a fragment output's (an array's every element) within MAX_DRAW_BUFFERS.
+void location_rules(const StageInput& s, std::vector<Diagnostic>& errors) {
+  if (s.source.version != GlslVersion::es300) return;
+  const auto at_name = [&](const GlslVariable& v) { return stage_error(s, v.at, "'" + v.name + "' : "); };
+  if (s.stage == Stage::vertex)
+    for (const auto& in : s.facts.inputs)
+      if (in.location >= kWebglMaxVertexAttribs) {
+        Diagnostic d = at_name(in);
+        d.message = "'location' : Attribute location out of range: " + std::to_string(in.location) + " for '" + in.name +
+                    "', where the browser has locations 0 to " + std::to_string(kWebglMaxVertexAttribs - 1) +
+                    " (MAX_VERTEX_ATTRIBS)";
+        errors.push_back(std::move(d));
+      }
+  if (s.stage == Stage::fragment)
+    for (const auto& out : s.facts.outputs) {
+      const int first = std::max(out.location, 0);
+      if (first + out.slots <= kWebglMaxDrawBuffers) continue;
+      Diagnostic d = at_name(out);
+      d.message += out.type.find("array") == std::string::npos ? "output location must be < MAX_DRAW_BUFFERS"
+                                                                : "output array locations would exceed MAX_DRAW_BUFFERS";
+      d.message += " (the browser has " + std::to_string(kWebglMaxDrawBuffers) + " draw buffers, locations 0 to " +
+                   std::to_string(kWebglMaxDrawBuffers - 1) + ")";
+      errors.push_back(std::move(d));
+    }
+}
+
 // Every rule one stage breaks, in line order.
 std::vector<Diagnostic> stage_rules(const StageInput& s, std::vector<Diagnostic>& warnings) {
   std::vector<Diagnostic> errors = known_errors(s);
@@ -263,6 +307,7 @@ std::vector<Diagnostic> stage_rules(const StageInput& s, std::vector<Diagnostic>
                                         "(WebGL 2.0: GLSL ES 1.00 fragment shader output)"));
   extension_rules(s, errors, warnings);
   invariant_all_rule(s, errors);
+  location_rules(s, errors);
   other_front_end_errors(s, errors);
   std::stable_sort(errors.begin(), errors.end(), [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
   return errors;
@@ -333,18 +378,67 @@ void blank_empty_declarations_after_labels(std::string& glsl, const GlslFacts& f
   }
 }
 
+// Mesa counts a `#pragma` as code before `#extension`, the browser does not: a hint
+// (`optimize`, `debug`, one it does not know) before an extension the driver still gets is left
+// out; `STDGL invariant(all)` changes the program and stays.
+void blank_hints_before(std::string& glsl, const GlslFacts& facts, int last_extension) {
+  const auto lines = lines_of(facts.preprocessed);
+  for (int n = 1; n < last_extension && n <= static_cast<int>(lines.size()); ++n) {
+    const std::string_view line = lines[static_cast<size_t>(n - 1)];
+    if (line.rfind("#pragma", 0) == 0 && line.find("shadelab_extension") == std::string_view::npos &&
+        std::find(facts.invariant_all_pragmas.begin(), facts.invariant_all_pragmas.end(), n) == facts.invariant_all_pragmas.end())
+      replace_line(glsl, n, "");
+  }
+}
+
 // Whether an extension was left out: the stage is then another program, to be judged again.
 bool rewrite_for_driver(StageInput& s) {
   if (s.facts.parsed) blank_empty_declarations_after_labels(s.source.glsl, s.facts);
   evaluate_line_directives(s.source.glsl, s.facts);
   bool left_out = false;
-  for (const auto& d : s.facts.extensions)
-    if (d.name != "all" && d.behavior != "disable" && d.behavior != "require" && !extension_supported(d.name, s.source.version)) {
+  int last_kept = 0;
+  for (const auto& d : s.facts.extensions) {
+    // `all` and `disable` change nothing the front end has not judged; Mesa refuses them after a
+    // `#pragma`, where the browser takes them.
+    if (d.name == "all" || d.behavior == "disable") {
+      replace_line(s.source.glsl, d.line, "");
+    } else if (d.behavior != "require" && !extension_supported(d.name, s.source.version)) {
       replace_line(s.source.glsl, d.line, "");
       left_out = true;
+    } else {
+      last_kept = d.line;
     }
+  }
+  if (last_kept > 0) blank_hints_before(s.source.glsl, s.facts, last_kept);
   if (s.source.version == GlslVersion::es300 && !s.facts.uniform_blocks.empty()) default_to_std140(s.source.glsl, s.facts);
   return left_out;
+}
+
+// GLSL ES 1.00: Mesa refuses `invariant gl_FragCoord;` wherever the vertex shader does not declare
+// `invariant gl_Position;`, where the browser asks it only of a fragment shader that reads
+// gl_FragCoord, and takes `#pragma STDGL invariant(all)` for the declaration (link_rules.h). What
+// the browser runs reaches the driver without the fragment's declaration: on one GPU the values
+// are the same.
+void drop_builtin_invariance_the_browser_does_not_bind(const StageInput& vs, StageInput& fs) {
+  constexpr std::array<std::pair<std::string_view, std::string_view>, 2> kPairs{
+      {{"gl_FragCoord", "gl_Position"}, {"gl_PointCoord", "gl_PointSize"}}};
+  if (fs.source.version != GlslVersion::es100 || fs.source.glsl.find("invariant") == std::string::npos) return;
+  const auto declared = [](std::span<const GlslToken> tokens, std::string_view name) {
+    for (size_t i = 0; i + 1 < tokens.size(); ++i)
+      if (tokens[i].text == "invariant" && tokens[i + 1].text == name) return i;
+    return tokens.size();
+  };
+  const auto vertex_tokens = tokens_of(vs.facts.preprocessed);
+  for (const auto& [in_fragment, in_vertex] : kPairs) {
+    if (declared(vertex_tokens, in_vertex) != vertex_tokens.size()) continue;
+    const auto tokens = tokens_of(fs.source.glsl);
+    const size_t at = declared(tokens, in_fragment);
+    if (at + 2 >= tokens.size() || tokens[at + 2].text != ";" || tokens[at + 2].line != tokens[at].line) continue;
+    const std::string_view line = line_of(fs.source.glsl, tokens[at].line);
+    const size_t start = static_cast<size_t>(line.data() - fs.source.glsl.data());
+    for (size_t t = at; t <= at + 2; ++t)
+      fs.source.glsl.replace(start + static_cast<size_t>(tokens[t].column - 1), tokens[t].text.size(), tokens[t].text.size(), ' ');
+  }
 }
 
 // The browser goes on without an extension it does not support, so what that extension brings
@@ -354,6 +448,25 @@ std::vector<Diagnostic> judged_without_extensions(StageInput& s) {
   std::vector<Diagnostic> errors;
   other_front_end_errors(s, errors);
   return errors;
+}
+
+// `#if 0 && 1/0`: glslang divides where `&&` skips and refuses the line, the browser takes it.
+// A condition in literals only is settled here, the line given to glslang and the driver as its
+// value (`#if 0`), and the stage read again; a condition naming a macro stays glslang's.
+bool settle_literal_conditions(StageInput& s) {
+  bool settled = false;
+  for (const auto& e : s.facts.errors) {
+    if (e.token != "preprocessor evaluation" || e.message.rfind("division by 0", 0) != 0) continue;
+    const std::string_view line = line_of(s.source.glsl, e.at.line);
+    const auto tokens = tokens_of(line);
+    if (tokens.size() < 3 || tokens[0].text != "#" || (tokens[1].text != "if" && tokens[1].text != "elif")) continue;
+    const auto value = literal_condition_value(line.substr(static_cast<size_t>(tokens[2].column - 1)));
+    if (!value) continue;
+    replace_line(s.source.glsl, e.at.line, "#" + std::string(tokens[1].text) + (*value ? " 1" : " 0"));
+    settled = true;
+  }
+  if (settled) s.facts = read_glsl(s.source.glsl, s.stage, s.source.version);
+  return settled;
 }
 
 std::string_view stage_breaks(Stage stage) {
@@ -372,12 +485,15 @@ Expected<WebglChecked> apply_webgl_rules(UnwrappedSource& vertex, UnwrappedSourc
   };
   StageInput vs{Stage::vertex, vertex, vertex_file, read_glsl(vertex.glsl, Stage::vertex, vertex.version)};
   StageInput fs{Stage::fragment, fragment, fragment_file, read_glsl(fragment.glsl, Stage::fragment, fragment.version)};
+  settle_literal_conditions(vs);
+  settle_literal_conditions(fs);
   if (auto errors = stage_rules(vs, out.warnings); !errors.empty())
     return refused(ErrorCode::compile_failed, stage_breaks(Stage::vertex), std::move(errors));
   if (auto errors = stage_rules(fs, out.warnings); !errors.empty())
     return refused(ErrorCode::compile_failed, stage_breaks(Stage::fragment), std::move(errors));
   if (vs.facts.parsed && fs.facts.parsed)
     if (auto errors = link_rules(vs, fs); !errors.empty()) return refused(ErrorCode::link_failed, "the shaders do not link", std::move(errors));
+  drop_builtin_invariance_the_browser_does_not_bind(vs, fs);
   for (StageInput* s : {&vs, &fs})
     if (rewrite_for_driver(*s))
       if (auto errors = judged_without_extensions(*s); !errors.empty())

@@ -32,7 +32,11 @@ struct WebglChecked {
 //    and its default; the driver's default is `shared`, so a block declared std140 in one stage
 //    and without a layout in the other would not link);
 //  - an extension the browser does not support, enabled (not required), is left out, as the
-//    browser goes on without it;
+//    browser goes on without it; so are `#extension all` and `disable`, and a hint `#pragma`
+//    before an extension the driver still gets (Mesa counts it as code, the browser does not);
+//  - GLSL ES 1.00: `invariant gl_FragCoord;` where the vertex shader does not declare gl_Position
+//    invariant (the browser binds it only where gl_FragCoord is read; Mesa everywhere);
+//  - an `#if` in literals that glslang cannot evaluate (`0 && 1/0`) becomes its value;
 //  - an empty declaration right after a label (`case 0: int;`) loses its words (`case 0: ;`),
 //    which NVIDIA's driver needs to see a statement there.
 // A stage's rule -> compile_failed, a rule between the stages -> link_failed; each diagnostic in
