@@ -188,6 +188,9 @@ TEST(WebglRulesTest, ALiteralConditionIsReadAsCReadsIt) {
   EXPECT_EQ(literal_condition_value("(1"), std::nullopt);
   EXPECT_EQ(literal_condition_value("1 2"), std::nullopt);
   EXPECT_EQ(literal_condition_value(""), std::nullopt);
+  EXPECT_EQ(literal_condition_value(std::string(60, '(') + "1" + std::string(60, ')')), 1);
+  EXPECT_EQ(literal_condition_value(std::string(100000, '(') + "1" + std::string(100000, ')')), std::nullopt);
+  EXPECT_EQ(literal_condition_value(std::string(100000, '!') + "1"), std::nullopt);
 }
 
 // A stage with a uniform block gets WebGL's std140 default before the driver sees it; the

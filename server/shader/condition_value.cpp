@@ -66,8 +66,19 @@ class Reader {
     return op == "/" ? a / b : a % b;
   }
 
+  // Parentheses and unary operators nest at most this deep here; deeper stays glslang's (a
+  // hostile line must not run the worker out of stack).
+  static constexpr int kMaxNesting = 64;
+
   std::optional<long long> unary(bool live) {
-    if (at_ >= tokens_.size()) return std::nullopt;
+    if (at_ >= tokens_.size() || depth_ >= kMaxNesting) return std::nullopt;
+    ++depth_;
+    const auto value = unary_inside(live);
+    --depth_;
+    return value;
+  }
+
+  std::optional<long long> unary_inside(bool live) {
     const std::string t = tokens_[at_++];
     if (t == "(") {
       const auto value = binary(0, live);
@@ -95,6 +106,7 @@ class Reader {
 
   std::vector<std::string> tokens_;
   size_t at_ = 0;
+  int depth_ = 0;
 };
 
 // Two-character operators joined from the tokenizer's single characters.
