@@ -7,6 +7,7 @@
 
 #include "cli/course_option.h"
 #include "cli/submission_files.h"
+#include "core/cpu_budget.h"
 #include "course/submission_files.h"
 #include "grade/report.h"
 #include "render/render_request.h"
@@ -127,7 +128,7 @@ Expected<GradedFrames> grade_saved_frames(worker::WorkerPool& pool, const course
 
 worker::PoolConfig pool_config(const GradeFlags& f, int jobs) {
   worker::PoolConfig c;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int cores = static_cast<int>(core::usable_cores());  // a grader's cgroup, not the host's cores
   c.workers = f.workers > 0 ? f.workers : std::min(cores, std::max(1, jobs));
   c.llvmpipe_threads = std::max(1, cores / c.workers);
   c.compile_deadline = c.render_deadline = std::chrono::milliseconds(f.timeout_ms);

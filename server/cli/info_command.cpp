@@ -1,10 +1,12 @@
 #include <iostream>
+#include <thread>
 
 #include <GLES3/gl32.h>
 
 #include "cli/commands.h"
 #include "cli/course_option.h"
 #include "cli/environment.h"
+#include "core/cpu_budget.h"
 #include "egl/headless_context.h"
 
 namespace shadelab::cli {
@@ -32,7 +34,9 @@ Command add_info_command(CLI::App& app) {
               << "GL version:    " << i.gl_version << "\n"
               << "GLSL version:  " << i.glsl_version << "\n"
               << "robust access: " << (i.robust_access ? "yes" : "no") << "\n"
-              << "max samples:   " << i.max_samples << "\n";
+              << "max samples:   " << i.max_samples << "\n"
+              << "cores:         " << core::usable_cores() << " usable, "
+              << std::thread::hardware_concurrency() << " on the host\n";
     if (*extensions) {
       GLint count = 0;
       glGetIntegerv(GL_NUM_EXTENSIONS, &count);

@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/course_option.h"
 #include "cli/environment.h"
+#include "core/cpu_budget.h"
 #include "course/course_reader.h"
 #include "egl/device_survey.h"
 #include "grade/reference_store.h"
@@ -155,7 +156,7 @@ Command add_serve_command(CLI::App& app) {
   auto config = std::make_shared<http::ServiceConfig>();
   config->web_root = SHADELAB_DEFAULT_WEB_ROOT;
   config->pool.force_software = software_from_environment();
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned cores = core::usable_cores();  // a container's or cgroup's share, not the host's cores
   config->pool.workers = 0;  // sized to the machine unless given
   auto memory_mb = std::make_shared<size_t>(config->pool.memory_limit_bytes >> 20);
   auto cache_mb = std::make_shared<size_t>(config->cache_bytes >> 20);

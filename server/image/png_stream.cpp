@@ -8,6 +8,8 @@
 #include <string>
 #include <thread>
 
+#include "core/cpu_budget.h"
+
 namespace shadelab::image {
 
 namespace {
@@ -113,7 +115,7 @@ Status PngStream::write_rows(const Image& rows, int y_begin, int y_end) {
       if (!deflate_segment(rows, y, std::min(y + kRowsPerSegment, deflate_end), segments_[first + i])) failed = true;
     }
   };
-  const unsigned cores = settings_.threads > 0 ? static_cast<unsigned>(settings_.threads) : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned cores = settings_.threads > 0 ? static_cast<unsigned>(settings_.threads) : core::usable_cores();
   std::vector<std::jthread> helpers;
   for (unsigned t = 1; t < std::min<size_t>(cores, count); ++t) helpers.emplace_back(work);
   work();
