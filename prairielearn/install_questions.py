@@ -11,8 +11,10 @@ writes, under PL_COURSE/questions/:
 Each question gets a fresh uuid; IMAGE is the grader image the course published (docs/deploy.md,
 "On PrairieLearn"). The checkpoint question's editors open on the course's public starter, and its
 canvas runs the homework page's own view (web/js) on the course's mesh, with what a student sees of
-the course (`shadelab course show --as-student`): never a reference. With --course, the profile's
-folder goes to PL_COURSE/serverFilesCourse/shadelab/ and the questions grade by it.
+the course (`shadelab course show --as-student`): never a reference. With --course, the files the
+profile names (and only those: its folder may be a TA's working folder, submissions and all) go to
+PL_COURSE/serverFilesCourse/shadelab/, with the profile rewritten to name them where they land, and
+the questions grade by it. Files compiled into shadelab (builtin:...) stay named so.
 
 SHADELAB_BIN names the shadelab binary (default: build/shadelab beside this script's repository).
 """
@@ -40,6 +42,57 @@ def course_file(named, profile):
     if named.startswith("builtin:"):
         return REPO / named[len("builtin:"):]
     return Path(named) if Path(named).is_absolute() else Path(profile).parent / named
+
+
+def install_profile(full, server_files):
+    """The profile as `course show` prints it (every file builtin:... or absolute), each absolute file
+    copied beside it under its own name (made unique) and named so: a profile loads from wherever
+    PrairieLearn puts serverFilesCourse."""
+    if server_files.exists():
+        shutil.rmtree(server_files)
+    server_files.mkdir(parents=True)
+    placed = {}
+
+    def place(value):
+        if isinstance(value, dict):
+            return {key: place(item) for key, item in value.items()}
+        if isinstance(value, list):
+            return [place(item) for item in value]
+        if isinstance(value, str) and os.path.isabs(value) and Path(value).is_file():
+            source = Path(value).resolve()
+            if source not in placed:
+                name, k = source.name, 1
+                while name in placed.values() or name == "course.json":
+                    name, k = f"{source.stem}_{k}{source.suffix}", k + 1
+                shutil.copy(source, server_files / name)
+                placed[source] = name
+            return placed[source]
+        return value
+
+    write_json(server_files / "course.json", place(full))
+    return sorted(placed.values())
+
+
+def task_paragraph(checkpoint, full):
+    """What the checkpoint question asks, from the course's facts: the deliverable in its own words
+    (the title after its name, which the page's heading already shows), the exponent only where the
+    deliverable's formula has a specular term, a hidden light only where it is graded under one."""
+    title = checkpoint["title"]
+    what = title.split(": ", 1)[1] if ": " in title else title
+    terms = checkpoint.get("formula", {}).get("terms")
+    task = f"Edit the two shaders of the {checkpoint['name']} deliverable, {what}"
+    if terms in ("lambert", "phong"):
+        task += ", with the page's light and its values"
+    exponent = full.get("specularExponent")
+    if terms == "phong" and exponent:
+        task += f" (<code>{exponent['variable']} = {exponent['value']}</code>)"
+    graded = "graded"
+    if checkpoint.get("probes"):
+        graded += " under the page's light and under a hidden one"
+    elif terms in ("lambert", "phong"):
+        graded += " under the page's light"
+    sentences = [task + ".", f"The canvas draws your shaders as you type, as the homework page does; submit to have them {graded}."]
+    return "<p>\n    " + "\n    ".join(sentences) + "\n  </p>"
 
 
 def write_json(path, value):
@@ -79,11 +132,9 @@ def main():
 
     params = {}
     if args.course:
-        server_files = args.pl_course / "serverFilesCourse" / "shadelab"
-        if server_files.exists():
-            shutil.rmtree(server_files)
-        shutil.copytree(Path(args.course).resolve().parent, server_files)
-        params["course"] = "serverFilesCourse/shadelab/" + Path(args.course).name
+        installed = install_profile(full, args.pl_course / "serverFilesCourse" / "shadelab")
+        params["course"] = "serverFilesCourse/shadelab/course.json"
+        print(f"install_questions: the profile and {len(installed)} of its files in serverFilesCourse/shadelab/")
     questions = args.pl_course / "questions"
     questions.mkdir(parents=True, exist_ok=True)
 
@@ -94,8 +145,8 @@ def main():
     copy_question(TEMPLATES / "checkpoint", target, args.image, {**params, "checkpoint": checkpoint["name"]}, bool(args.course))
     html = (target / "question.html").read_text()
     html = html.replace("phong_vert.js", f"{code}_vert.js").replace("phong_frag.js", f"{code}_frag.js")
-    html = html.replace("Edit the two shaders of the specular deliverable: ambient + diffuse + specular (Phong)",
-                        f"Edit the two shaders of the {checkpoint['name']} deliverable: {checkpoint['title']}")
+    template_task = html[html.index("<p>"):html.index("</p>") + len("</p>")]
+    html = html.replace(template_task, task_paragraph(checkpoint, full))
     (target / "question.html").write_text(html)
     info = json.loads((target / "info.json").read_text())
     info["title"] = f"HW2: {checkpoint['title']}"

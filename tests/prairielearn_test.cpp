@@ -272,3 +272,78 @@ TEST_F(PrairieLearnTest, TheQuestionTemplatesInstallWithoutAReference) {
         }
     }
 }
+
+// `install_questions.py --course` with a profile as `course import` writes it, in a TA's working
+// folder (the profile names its files `../HW2/...`, and submissions sit beside it): only the
+// files the profile names are installed, the profile rewritten to name them where they land, and
+// a checkpoint graded by it once the TA's folder is gone: the imported exponent (10), not the
+// built-in course's (6).
+TEST_F(PrairieLearnTest, AnImportedCourseInstallsOnlyItsFilesAndGradesByThem) {
+  namespace tk = shadelab::testkit;
+  const fs::path ta = root_ / "ta", hw = ta / "HW2";
+  tk::write_file_at(hw / "index.html", "<canvas id=\"glcanvas\" width=\"512\" height=\"512\"></canvas>\n");
+  tk::write_file_at(hw / "src/hw2.js", "const IMAGE_PREFIX = \"normals\";\nconst OBJ_FILE = \"assets/bunny.obj\";\n");
+  tk::write_file_at(hw / "src/shaders/starter_vert.js", tk::read_text(kSource / "shaders/starter_vert.js"));
+  tk::write_file_at(hw / "src/shaders/starter_frag.js", tk::read_text(kSource / "shaders/starter_frag.js"));
+  tk::write_file_at(hw / "src/shaders/phong_vert.js", tk::preset_module("specular", "vert"));
+  std::string phong = tk::preset_module("specular", "frag");
+  const std::string six = "float specularAlpha = 6.0;";
+  ASSERT_NE(phong.find(six), std::string::npos);
+  phong.replace(phong.find(six), six.size(), "float specularAlpha = 10.0;");
+  tk::write_file_at(hw / "src/shaders/phong_frag.js", phong);
+  tk::write_file_at(hw / "assets/bunny.obj", tk::read_text(kSource / "assets/bunny.obj"));
+  tk::write_file_at(ta / "profiles/submissions/alice/phong_frag.js", "a student's hand-in, not the course's");
+  const auto imported = tk::run_shadelab("course import '" + hw.string() + "' -o '" + (ta / "profiles/course.json").string() + "'");
+  ASSERT_EQ(imported.status, 0) << imported.output;
+  ASSERT_NE(tk::read_text(ta / "profiles/course.json").find("../HW2/"), std::string::npos) << "named relative to the profile";
+
+  const fs::path course = root_ / "pl-course";
+  const auto r = tk::run_command("SHADELAB_BIN='" + std::string(SHADELAB_CLI) + "' python3 '" +
+                                 (kSource / "prairielearn/install_questions.py").string() + "' '" + course.string() +
+                                 "' --course '" + (ta / "profiles/course.json").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const fs::path installed = course / "serverFilesCourse/shadelab";
+  const std::string profile = tk::read_text(installed / "course.json");
+  for (const auto& f : fs::recursive_directory_iterator(installed)) {
+    EXPECT_TRUE(f.is_regular_file()) << f.path() << ": no folders, the TA's submissions least of all";
+    const std::string name = f.path().filename().string();
+    if (name != "course.json") {
+      EXPECT_NE(profile.find("\"" + name + "\""), std::string::npos) << name << " is not named by the profile";
+    }
+  }
+  EXPECT_EQ(profile.find("\"" + ta.string()), std::string::npos) << "the installed profile names no file outside its folder";
+  EXPECT_EQ(profile.find("\"../"), std::string::npos) << "the installed profile names no file outside its folder";
+  fs::remove_all(ta);
+
+  fs::copy(course / "serverFilesCourse", job_ / "serverFilesCourse", fs::copy_options::recursive);
+  params({{"checkpoint", "specular"}, {"course", "serverFilesCourse/shadelab/course.json"}});
+  tk::write_file_at(job_ / "student/phong_vert.js", tk::preset_module("specular", "vert"));
+  tk::write_file_at(job_ / "student/phong_frag.js", phong);
+  json results = grade();
+  ASSERT_TRUE(results.value("gradable", false)) << results.dump(2);
+  EXPECT_EQ(results["score"], 1.0) << results.dump(2);
+  tk::write_file_at(job_ / "student/phong_frag.js", tk::preset_module("specular", "frag"));
+  results = grade();
+  ASSERT_TRUE(results.value("gradable", false)) << results.dump(2);
+  EXPECT_LT(results["score"].get<double>(), 1.0) << "the built-in exponent fails the imported course";
+}
+
+// The checkpoint question says what its deliverable asks, in the course's words: the normals
+// question names no exponent and no light (its formula has neither), the specular one both.
+TEST_F(PrairieLearnTest, ACheckpointQuestionSaysOnlyWhatItsDeliverableAsks) {
+  const auto install = [&](const std::string& checkpoint) {
+    const fs::path course = root_ / ("pl-" + checkpoint);
+    const auto r = shadelab::testkit::run_command("SHADELAB_BIN='" + std::string(SHADELAB_CLI) + "' python3 '" +
+                                                  (kSource / "prairielearn/install_questions.py").string() + "' '" + course.string() +
+                                                  "' --checkpoint " + checkpoint);
+    EXPECT_EQ(r.status, 0) << r.output;
+    return shadelab::testkit::read_text(course / "questions" / ("shadelab-hw2-" + checkpoint) / "question.html");
+  };
+  const std::string normals = install("normals"), specular = install("specular");
+  EXPECT_NE(normals.find("the normals deliverable, the normal colour computed in the vertex shader."), std::string::npos) << normals;
+  EXPECT_EQ(normals.find("specularAlpha"), std::string::npos) << normals;
+  EXPECT_EQ(normals.find("light"), std::string::npos) << normals;
+  EXPECT_EQ(normals.find("Normals:"), std::string::npos) << "the title is the page's heading, not repeated" << normals;
+  EXPECT_NE(specular.find("<code>specularAlpha = 6.0</code>"), std::string::npos) << specular;
+  EXPECT_NE(specular.find("under a hidden one"), std::string::npos) << specular;
+}
