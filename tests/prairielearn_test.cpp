@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <regex>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -74,7 +76,76 @@ class PrairieLearnTest : public ::testing::Test {
   fs::path root_, job_;
 };
 
+// PrairieLearn's rules for a question's info.json, re-stated (not copied) from its zod schema
+// QuestionJsonSchema and ExternalGradingOptionsJsonSchema (apps/prairielearn/src/schemas/
+// infoQuestion.ts at PrairieLearn/PrairieLearn 03b311d25): both objects strict (no other keys),
+// the fields' types and enums, uuid's pattern, the image required. Each break as a sentence.
+std::vector<std::string> question_schema_breaks(const json& info) {
+  std::vector<std::string> breaks;
+  const auto bad = [&](const std::string& what) { breaks.push_back(what); };
+  if (!info.is_object()) return {"info.json is not an object"};
+  static const std::set<std::string> question_keys = {
+      "comment", "uuid", "type", "title", "topic", "tags", "authors", "clientFiles", "clientTemplates", "template", "gradingMethod",
+      "singleVariant", "showCorrectAnswer", "partialCredit", "options", "externalGradingOptions", "dependencies", "workspaceOptions",
+      "sharingSets", "sharePublicly", "shareSourcePublicly", "preferences"};
+  for (const auto& [key, value] : info.items())
+    if (!question_keys.count(key)) bad("unknown key " + key);
+  static const std::regex uuid("^[0-9a-fA-F]{8}-[0-9a-fA-F]{4}-[0-9a-fA-F]{4}-[0-9a-fA-F]{4}-[0-9a-fA-F]{12}$");
+  if (!info.contains("uuid") || !info["uuid"].is_string() || !std::regex_match(info["uuid"].get<std::string>(), uuid)) bad("uuid");
+  static const std::set<std::string> types = {"Calculation", "MultipleChoice", "Checkbox", "File", "MultipleTrueFalse", "v3"};
+  if (!info.contains("type") || !info["type"].is_string() || !types.count(info["type"])) bad("type");
+  for (const char* text : {"title", "topic"})
+    if (!info.contains(text) || !info[text].is_string()) bad(text);
+  if (info.contains("tags") && (!info["tags"].is_array() || !std::all_of(info["tags"].begin(), info["tags"].end(), [](const json& t) { return t.is_string(); })))
+    bad("tags");
+  static const std::set<std::string> methods = {"Internal", "External", "Manual"};
+  if (info.contains("gradingMethod") && (!info["gradingMethod"].is_string() || !methods.count(info["gradingMethod"]))) bad("gradingMethod");
+  for (const char* flag : {"singleVariant", "showCorrectAnswer", "partialCredit", "sharePublicly", "shareSourcePublicly"})
+    if (info.contains(flag) && !info[flag].is_boolean()) bad(flag);
+  if (!info.contains("externalGradingOptions")) return breaks;
+  const json& o = info["externalGradingOptions"];
+  if (!o.is_object()) return breaks.push_back("externalGradingOptions"), breaks;
+  static const std::set<std::string> option_keys = {"comment", "enabled", "image", "entrypoint", "serverFilesCourse", "timeout", "enableNetworking", "environment"};
+  for (const auto& [key, value] : o.items())
+    if (!option_keys.count(key)) bad("unknown key externalGradingOptions." + key);
+  if (!o.contains("image") || !o["image"].is_string()) bad("externalGradingOptions.image");
+  for (const char* flag : {"enabled", "enableNetworking"})
+    if (o.contains(flag) && !o[flag].is_boolean()) bad(std::string("externalGradingOptions.") + flag);
+  if (o.contains("timeout") && !o["timeout"].is_number_integer()) bad("externalGradingOptions.timeout");
+  if (o.contains("serverFilesCourse") &&
+      (!o["serverFilesCourse"].is_array() || !std::all_of(o["serverFilesCourse"].begin(), o["serverFilesCourse"].end(), [](const json& f) { return f.is_string(); })))
+    bad("externalGradingOptions.serverFilesCourse");
+  if (o.contains("environment")) {
+    if (!o["environment"].is_object()) bad("externalGradingOptions.environment");
+    else
+      for (const auto& [name, value] : o["environment"].items())
+        if (!value.is_string()) bad("externalGradingOptions.environment." + name + " is not a string");
+  }
+  return breaks;
+}
+
 }  // namespace
+
+// The schema check itself finds what PrairieLearn's sync would refuse.
+TEST(PrairieLearnSchemaTest, TheQuestionRulesCatchWhatPrairieLearnsSyncRefuses) {
+  const json good = json::parse(R"({"uuid": "6f1c2d0e-8a4b-4e57-9d1a-3b2c5e7f9a10", "type": "v3", "title": "t", "topic": "Shading",
+    "gradingMethod": "External", "externalGradingOptions": {"image": "a/b", "timeout": 45, "environment": {"X": "1"}}})");
+  EXPECT_TRUE(question_schema_breaks(good).empty());
+  const auto breaks_with = [&](const std::string& pointer, const json& value) {
+    json changed = good;
+    changed[json::json_pointer(pointer)] = value;
+    return question_schema_breaks(changed).size();
+  };
+  EXPECT_EQ(breaks_with("/externalGradingOptions/timeout", "45"), 1u);
+  EXPECT_EQ(breaks_with("/externalGradingOptions/environment/X", 1), 1u);
+  EXPECT_EQ(breaks_with("/externalGradingOptions/memory", 2048), 1u);
+  EXPECT_EQ(breaks_with("/uuid", "not-a-uuid"), 1u);
+  EXPECT_EQ(breaks_with("/type", "Freeform"), 1u);
+  EXPECT_EQ(breaks_with("/shadelab", json::object()), 1u);
+  json no_image = good;
+  no_image["externalGradingOptions"].erase("image");
+  EXPECT_EQ(question_schema_breaks(no_image).size(), 1u);
+}
 
 // The real student's hand-in (their HW2 folder's files), uploaded as PrairieLearn's file upload
 // keeps them, without folders; the specular code wrong: every Gradescope test is a PrairieLearn
@@ -247,6 +318,7 @@ TEST_F(PrairieLearnTest, TheQuestionTemplatesInstallWithoutAReference) {
     EXPECT_EQ(options["image"], "registry.example.edu/cs148/shadelab-grader");
     EXPECT_EQ(options["environment"]["SHADELAB_TIME_LIMIT_S"], std::to_string(options["timeout"].get<int>())) << "the grader knows the timeout";
     EXPECT_TRUE(fs::exists(q / "question.html"));
+    EXPECT_EQ(question_schema_breaks(info), std::vector<std::string>{}) << name;
   }
   const fs::path checkpoint = course / "questions/shadelab-hw2-specular";
   EXPECT_NE(shadelab::testkit::read_text(checkpoint / "server.py").find(R"(SHADELAB = {"checkpoint": "specular"})"), std::string::npos);
@@ -313,6 +385,11 @@ TEST_F(PrairieLearnTest, AnImportedCourseInstallsOnlyItsFilesAndGradesByThem) {
   }
   EXPECT_EQ(profile.find("\"" + ta.string()), std::string::npos) << "the installed profile names no file outside its folder";
   EXPECT_EQ(profile.find("\"../"), std::string::npos) << "the installed profile names no file outside its folder";
+  for (const char* question : {"shadelab-hw2-hand-in", "shadelab-hw2-specular"}) {
+    const json info = json::parse(tk::read_text(course / "questions" / question / "info.json"));
+    EXPECT_EQ(question_schema_breaks(info), std::vector<std::string>{}) << question;
+    EXPECT_EQ(info["externalGradingOptions"]["serverFilesCourse"], json::array({"shadelab/"}));
+  }
   fs::remove_all(ta);
 
   fs::copy(course / "serverFilesCourse", job_ / "serverFilesCourse", fs::copy_options::recursive);
