@@ -8,7 +8,11 @@
 # Each run is a new process on a new copy of the job; every run's code differs in an expression
 # (not a comment: Mesa caches programs by IR), so no run reuses another's compiled student program.
 #   bench/prairielearn_bench.sh [runs, default 5] [SHADELAB, default build/shadelab]
-# Prints the median, min and max seconds of each.
+# Prints the median, min and max seconds of each. SHADELAB_BENCH_LIMITS=prairielearn runs each
+# grade inside a cgroup with PrairieLearn's external-grader limits (0.9 of one CPU, 2 GiB;
+# apps/grader-host/src/lib/config.ts): cgroup v2, or v1's cpu and memory controllers; needs root.
+# There each kind also reports the cgroup's peak memory over its runs. SHADELAB_CORES=64 beside it
+# sizes the grader's pool as a 64-core host would without reading the cgroup (before it did).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 runs=${1:-5}
@@ -55,22 +59,61 @@ grade_once() {
   local t0 t1
   t0=$(date +%s.%N)
   PRAIRIELEARN_JOB=$dir SHADELAB_BIN=$bin SHADELAB_REFERENCE_STORE=$store SHADELAB_TIME_LIMIT_S=300 \
-    bash "$root/prairielearn/entrypoint" >/dev/null
+    in_limits bash "$root/prairielearn/entrypoint" >/dev/null
   t1=$(date +%s.%N)
   grep -q '"gradable": true' "$dir/results/results.json" || { echo "not gradable: $(head -c 400 "$dir/results/results.json")" >&2; exit 1; }
   rm -rf "$dir"
   echo "$t1 - $t0" | bc
 }
 
+# Runs a command in PrairieLearn's grader limits where SHADELAB_BENCH_LIMITS asks for them.
+limits=${SHADELAB_BENCH_LIMITS:-}
+group=shadelab-pl-bench-$$
+if [[ $limits == prairielearn ]]; then
+  if [[ -f /sys/fs/cgroup/cgroup.controllers ]]; then
+    groups=(/sys/fs/cgroup/$group)
+    mkdir "${groups[0]}"
+    echo '90000 100000' >"${groups[0]}/cpu.max"
+    echo $((2 << 30)) >"${groups[0]}/memory.max"
+  else
+    groups=(/sys/fs/cgroup/cpu/$group /sys/fs/cgroup/memory/$group)
+    mkdir "${groups[@]}"
+    echo 90000 >"${groups[0]}/cpu.cfs_quota_us"
+    echo $((2 << 30)) >"${groups[1]}/memory.limit_in_bytes"
+  fi
+  trap 'rm -rf "$work"; sleep 0.2; rmdir "${groups[@]}" 2>/dev/null || true' EXIT
+fi
+# The cgroup's peak memory since the last reset, in MiB ("" outside the limits).
+peak_mib() {
+  [[ $limits == prairielearn ]] || return 0
+  local f=${groups[-1]}/memory.max_usage_in_bytes
+  [[ -f $f ]] || f=${groups[0]}/memory.peak
+  [[ -f $f ]] && echo $(($(cat "$f") >> 20))
+}
+reset_peak() {
+  [[ $limits == prairielearn ]] || return 0
+  local f=${groups[-1]}/memory.max_usage_in_bytes
+  [[ -f $f ]] && echo 0 >"$f" 2>/dev/null || true
+}
+in_limits() {
+  if [[ $limits != prairielearn ]]; then "$@"; return; fi
+  # shellcheck disable=SC2016
+  sh -c 'for g in "$@"; do [ "$g" = -- ] && break; echo $$ >"$g/cgroup.procs"; done; while [ "$1" != -- ]; do shift; done; shift; exec "$@"' \
+    sh "${groups[@]}" -- "$@"
+}
+
 summary() { sort -n | awk '{a[NR]=$1} END {printf "median %.2f s (min %.2f, max %.2f, %d runs)\n", a[int((NR+1)/2)], a[1], a[NR], NR}'; }
 
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')${limits:+, in the PrairieLearn grader limits (0.9 CPU, 2 GiB)}"
 for kind in hand-in checkpoint; do
   for temperature in warm cold; do
-    for ((i = 0; i < runs; i++)); do
+    reset_peak
+    line=$(for ((i = 0; i < runs; i++)); do
       if [[ $temperature == warm ]]; then store=$work/warm-store; else store=$work/cold-store-$i; fi
       grade_once "$kind" "$store" "$((i + 1))"
       rm -rf "$work/cold-store-$i"
-    done | summary | sed "s/^/$kind, $temperature: /"
+    done | summary)
+    peak=$(peak_mib)
+    echo "$kind, $temperature: $line${peak:+, $peak MiB peak}"
   done
 done
