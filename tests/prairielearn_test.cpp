@@ -424,3 +424,64 @@ TEST_F(PrairieLearnTest, ACheckpointQuestionSaysOnlyWhatItsDeliverableAsks) {
   EXPECT_NE(specular.find("<code>specularAlpha = 6.0</code>"), std::string::npos) << specular;
   EXPECT_NE(specular.find("under a hidden one"), std::string::npos) << specular;
 }
+
+// The hand-in in two parts, as two questions take it (PrairieLearn's upload holds 5 MB; a real
+// hand-in is 8.6 MB): the deliverables' saved frames and code, and the Blender half's images. Each
+// part's tests are the whole hand-in's tests of that part, word for word and point for point;
+// neither reports the other's files missing; together they are the Gradescope total.
+TEST_F(PrairieLearnTest, AHandInInPartsGradesEachPartAsTheWholeDoesAndNothingElse) {
+  shadelab::testkit::write_hand_in(root_ / "HW2-folder", "specular", "diffuse");
+  std::vector<fs::path> all;
+  for (const auto& f : fs::recursive_directory_iterator(root_ / "HW2-folder"))
+    if (f.is_regular_file()) all.push_back(f.path());
+  fs::create_directories(root_ / "flat");  // as PrairieLearn's upload keeps them, and as the parts hold them
+  for (const auto& f : all) fs::copy_file(f, root_ / "flat" / f.filename());
+  const json expected = gradescope(root_ / "flat");
+  const auto is_image = [](const fs::path& f) {
+    const std::string name = f.filename().string();
+    return name.starts_with("camera_") || name.starts_with("eevee");
+  };
+  std::map<std::string, json> graded;
+  for (const char* part : {"deliverables", "images"}) {
+    fs::remove_all(job_ / "student");
+    fs::create_directories(job_ / "student");
+    for (const auto& f : all)
+      if (is_image(f) == (std::string(part) == "images")) fs::copy_file(f, job_ / "student" / f.filename());
+    params({{"part", part}});
+    graded[part] = grade();
+    ASSERT_TRUE(graded[part].value("gradable", false)) << part << graded[part].dump(2);
+  }
+  const auto deliverables = by_name(graded["deliverables"]["tests"]), images = by_name(graded["images"]["tests"]);
+  EXPECT_FALSE(deliverables.empty());
+  EXPECT_FALSE(images.empty());
+  double max_points = 0;
+  for (const auto& g : expected["tests"]) {
+    const std::string name = g["name"];
+    const bool image = name.find("camera_") != std::string::npos || name.find("eevee") != std::string::npos;
+    const auto& mine = image ? images : deliverables;
+    const auto& other = image ? deliverables : images;
+    ASSERT_TRUE(mine.contains(name)) << name << " is not in its part";
+    EXPECT_FALSE(other.contains(name)) << name << " is in the other part too";
+    EXPECT_EQ(mine.at(name)["output"], g["output"]) << name;
+    EXPECT_DOUBLE_EQ(mine.at(name)["points"].get<double>(), g["score"].get<double>()) << name;
+    max_points += g["max_score"].get<double>();
+  }
+  EXPECT_EQ(deliverables.size() + images.size(), expected["tests"].size()) << "no test of its own in either part";
+  double parts_max = 0;
+  for (const auto& [part, results] : graded)
+    for (const auto& t : results["tests"]) parts_max += t["max_points"].get<double>();
+  EXPECT_DOUBLE_EQ(parts_max, max_points) << "the parts add up to the Gradescope total";
+}
+
+// A part is one of the two; a question names a checkpoint or a part, not both.
+TEST_F(PrairieLearnTest, AQuestionsPartIsOneOfTheTwoAndNotBesideACheckpoint) {
+  shadelab::testkit::write_file_at(job_ / "student/phong_frag.js", shadelab::testkit::preset_module("specular", "frag"));
+  params({{"part", "notebook"}});
+  json results = grade();
+  EXPECT_FALSE(results.value("gradable", true));
+  EXPECT_NE(format_errors(results).find("deliverables (the saved frames and code) or images"), std::string::npos) << results.dump(2);
+  params({{"part", "images"}, {"checkpoint", "specular"}});
+  results = grade();
+  EXPECT_FALSE(results.value("gradable", true));
+  EXPECT_NE(format_errors(results).find("both a checkpoint and a part"), std::string::npos) << results.dump(2);
+}

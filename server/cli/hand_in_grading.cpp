@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/submission_files.h"
+#include "core/enum_names.h"
 #include "course/submission_files.h"
 #include "road/code_grid.h"
 #include "road/hand_in_checks.h"
@@ -20,11 +21,18 @@ using course::DeliverableTest;
 using Deadline = std::optional<std::chrono::steady_clock::time_point>;
 using CodePair = std::pair<fs::path, fs::path>;
 
+constexpr EnumName<HandInPart> kHandInParts[] = {
+    {HandInPart::whole, "whole"}, {HandInPart::deliverables, "deliverables"}, {HandInPart::images, "images"}};
+static_assert(std::size(kHandInParts) == static_cast<size_t>(HandInPart::images) + 1);
+
+bool grades_images(const HandInFlags& f) { return f.checkpoint.empty() && f.part != HandInPart::deliverables; }
+
 // Each deliverable's files, its shader pair and its saved frames where the hand-in has them; for
-// one checkpoint's code alone, that checkpoint with its pair and no frames.
+// one checkpoint's code alone, that checkpoint with its pair and no frames; none for the images.
 std::vector<DeliverableGrades> deliverables(const course::Course& course, const HandInFlags& f, const std::vector<fs::path>& files) {
   const std::vector<course::CheckpointFiles> plan = course::plan_checkpoints(course, files);
   std::vector<DeliverableGrades> out;
+  if (f.checkpoint.empty() && f.part == HandInPart::images) return out;
   for (const auto& k : course.checkpoints) {
     if (!f.checkpoint.empty() && k.name != f.checkpoint) continue;
     DeliverableGrades d{&k, f.max_score.value_or(k.points), std::nullopt, {}, {}, {}};
@@ -48,7 +56,7 @@ int jobs_for(const std::vector<DeliverableGrades>& out) {
 size_t queued_beside_grades(const course::Course& course, const HandInFlags& f, const std::vector<DeliverableGrades>& ds) {
   size_t jobs = 0;
   for (const auto& d : ds) jobs += d.code && !d.frames.any() && f.grid_side > 0;
-  if (f.checkpoint.empty())
+  if (grades_images(f))
     for (const auto& image : course.images) jobs += image.checked();
   return jobs;
 }
@@ -101,7 +109,7 @@ void start(InFlight& work, const course::Course& course, const HandInFlags& f, c
                                                            {code->second.filename().string(), read_text(root / code->second)}, side));
     }));
   }
-  if (f.checkpoint.empty())
+  if (grades_images(f))
     work.images = std::async(std::launch::async, [&pool, &course, root, files] { return check_images(pool, course, root, files); });
 }
 
@@ -161,6 +169,9 @@ std::string summary_of(const HandInResults& r, const std::vector<DeliverableGrad
 }
 
 }  // namespace
+
+std::string_view to_string(HandInPart part) { return name_in(kHandInParts, part); }
+std::optional<HandInPart> hand_in_part_named(std::string_view name) { return value_in(kHandInParts, name); }
 
 HandInResults grade_hand_in(const course::Course& course, const HandInFlags& f, const fs::path& root) {
   const std::vector<fs::path> files = submitted_files(root);

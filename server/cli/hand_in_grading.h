@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/grade_runner.h"
@@ -20,12 +21,21 @@
 
 namespace shadelab::cli {
 
+// Which of the hand-in a grade takes, where a platform takes it in parts (PrairieLearn's upload
+// holds 5 MB; a real hand-in is 8.6 MB): the whole; every deliverable's saved frames and code; the
+// checked images (the Blender half). A part reports only its own tests: nothing of another part
+// is missing from it.
+enum class HandInPart { whole, deliverables, images };
+std::string_view to_string(HandInPart part);
+std::optional<HandInPart> hand_in_part_named(std::string_view name);
+
 struct HandInFlags {
   GradeFlags grade;
   std::optional<double> max_score;  // the course's points per checkpoint when unset
   // Empty: the whole hand-in (every deliverable's tests and the checked images). A checkpoint's
   // name: its code alone, as a question that takes only code grades it (no saved frames).
   std::string checkpoint;
+  HandInPart part = HandInPart::whole;  // with no checkpoint
   std::optional<std::chrono::steady_clock::time_point> deadline;
   // > 0: grids for the student to see, each frame this many pixels wide: the frames they saved, or
   // (where they saved none) what their code draws.

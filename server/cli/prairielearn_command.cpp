@@ -80,6 +80,7 @@ int run_prairielearn(PrairieLearnFlags f) {
   auto course = course_for(f, *job);
   if (!course) return write_results(root, prairielearn_not_gradable(course.error().message + ". This is not a problem with your submission; please tell the course staff."));
   f.hand_in.checkpoint = job->checkpoint;
+  f.hand_in.part = job->part;
   f.hand_in.deadline = deadline_for(started, f.time_limit_s);
   const HandInResults graded = grade_hand_in(**course, f.hand_in, root / "student");
   const int status = write_results(root, prairielearn_results(graded));

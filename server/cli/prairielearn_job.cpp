@@ -43,10 +43,17 @@ Expected<PrairieLearnJob> read_prairielearn_job(const fs::path& root) {
   if (params.is_object() && params.contains("shadelab")) {
     std::string error;
     const JsonReader r(params["shadelab"], "params.shadelab", &error, "params.shadelab");
-    r.only({"checkpoint", "course"});
+    r.only({"checkpoint", "course", "part"});
     job.checkpoint = r.text("checkpoint", "");
     job.course = r.text("course", "");
+    const std::string part = r.text("part", "whole");
     if (!error.empty()) return malformed("the question's " + error);
+    const auto named = hand_in_part_named(part);
+    if (!named)
+      return malformed("the question's params.shadelab.part is '" + part + "': a part is deliverables (the saved frames and code) or images (the Blender half)");
+    if (*named != HandInPart::whole && !job.checkpoint.empty())
+      return malformed("the question's params.shadelab names both a checkpoint and a part: a checkpoint question grades that checkpoint's code, a part question one part of the hand-in");
+    job.part = *named;
     if (!job.course.empty() && !inside_job(job.course))
       return malformed("the question's params.shadelab.course must be a path inside the grading job (such as serverFilesCourse/shadelab/course.json), not " +
                        job.course.string());

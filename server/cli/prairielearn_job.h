@@ -10,17 +10,22 @@
 //
 // params.shadelab, all optional: {"checkpoint": NAME} grades that checkpoint's code alone (a
 // question where the student edits the two shaders); without it, the whole hand-in, test for test
-// as Gradescope grades it. {"course": PATH} is a course profile inside the job (relative to the
-// root, e.g. "serverFilesCourse/shadelab/course.json"); without it, the image's course.
+// as Gradescope grades it. {"part": "deliverables" | "images"} grades one part of the hand-in (a
+// question per part: PrairieLearn's upload holds 5 MB, a real hand-in is 8.6 MB): every
+// deliverable's saved frames and code, or the Blender half's images; not with "checkpoint".
+// {"course": PATH} is a course profile inside the job (relative to the root, e.g.
+// "serverFilesCourse/shadelab/course.json"); without it, the image's course.
 #include <filesystem>
 #include <string>
 
+#include "cli/hand_in_grading.h"
 #include "core/expected.h"
 
 namespace shadelab::cli {
 
 struct PrairieLearnJob {
-  std::string checkpoint;  // empty: the whole hand-in
+  std::string checkpoint;  // empty: the whole hand-in, or its part
+  HandInPart part = HandInPart::whole;
   std::filesystem::path course;  // empty: the grader's own course
 };
 
