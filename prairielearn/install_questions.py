@@ -3,10 +3,18 @@
 
     prairielearn/install_questions.py PL_COURSE [--image IMAGE] [--checkpoint NAME] [--course PROFILE]
 
-writes, under PL_COURSE/questions/:
+writes, under PL_COURSE/questions/, the hand-in as a question per part (PrairieLearn's upload holds
+5 MB a question; a real HW2 hand-in is 8.6 MB: 3.1 MB of saved frames, 4.5 MB of Blender renders,
+1 MB of notebook):
 
-  shadelab-hw2-hand-in/      upload the HW2 folder's files; graded test for test as on Gradescope
-  shadelab-hw2-NAME/         edit the checkpoint's two shaders beside a live canvas; graded as code
+  shadelab-hw2-frames-and-code/  the shaders and the frames saved from the page; graded as on Gradescope
+  shadelab-hw2-blender/          the Blender renders; graded as on Gradescope
+  shadelab-hw2-notebook/         the notebook, graded by hand (PrairieLearn's manual grading)
+  shadelab-hw2-NAME/             edit the checkpoint's two shaders beside a live canvas; graded as code
+
+(--whole: one question for the whole hand-in, shadelab-hw2-hand-in/, where it fits in 5 MB.) With
+--course-instance CI, PL_COURSE/courseInstances/CI/assessments/shadelab-hw2/infoAssessment.json
+puts the three part questions in one homework worth what Gradescope's autograder gives.
 
 Each question gets a fresh uuid; IMAGE is the grader image the course published (docs/deploy.md,
 "On PrairieLearn"). The checkpoint question's editors open on the course's public starter, and its
@@ -114,12 +122,93 @@ def copy_question(template, target, image, shadelab_params, server_files):
              for line in server.read_text().splitlines()]
     server.write_text("\n".join(lines) + "\n")
 
+def frame_glob(full):
+    """The saved frames' names as a pattern: hw2_{prefix}_{k} -> hw2_*_*.png."""
+    return full["frames"]["fileName"].replace("{prefix}", "*").replace("{k}", "*") + ".png"
+
+
+def part_html(paragraphs, upload):
+    panel = "".join(f"  <p>\n    {p}\n  </p>\n" for p in paragraphs)
+    return (f"<pl-question-panel>\n{panel}</pl-question-panel>\n\n<pl-file-upload {upload}></pl-file-upload>\n\n"
+            "<pl-submission-panel>\n  <pl-external-grader-results></pl-external-grader-results>\n"
+            "  <pl-file-preview></pl-file-preview>\n</pl-submission-panel>\n")
+
+
+def code_stems(full):
+    return [c["code"] for c in full["checkpoints"] if c.get("code")]
+
+
+def hand_in_parts(full):
+    """The hand-in's parts as questions: (id, part or None for manual, title, html, points)."""
+    first, last = full["checkpoints"][0], full["checkpoints"][-1]
+    count = full["frames"]["count"]
+    name = full["frames"]["fileName"]
+    first_frame = name.replace("{prefix}", first["prefix"]).replace("{k}", "0") + ".png"
+    last_frame = name.replace("{prefix}", last["prefix"]).replace("{k}", str(count - 1)) + ".png"
+    shaders = ", ".join(f"<code>{stem}_vert.js</code>, <code>{stem}_frag.js</code>" for stem in code_stems(full))
+    images = [Path(i["file"]).name for i in full["notebook"]["images"]]
+    notebook = full["notebook"].get("file", "HW2.ipynb")
+    graded = ("Each deliverable is graded as on Gradescope: your saved frames against the reference at the angles your "
+              "page drew them, your code under the page's light and under a hidden one, and whether your frames are what "
+              "your code draws. A test that fails says what differs, in the homework's terms, and shows where.")
+    return [
+        ("shadelab-hw2-frames-and-code", "deliverables", "HW2: your shaders and the frames you saved",
+         part_html([f"Upload your shaders from <code>src/shaders/</code> ({shaders}) and the frames you saved from the page "
+                    f"for each deliverable, from <code>images/</code> (<code>{first_frame}</code> to <code>{last_frame}</code>), "
+                    "by the names they have there (the upload keeps no folders).", graded],
+                   f'optional-file-patterns="*_vert.js, *_frag.js, {frame_glob(full)}"'),
+         sum(c["points"] for c in full["checkpoints"])),
+        ("shadelab-hw2-blender", "images", "HW2: your Blender renders",
+         part_html([f"Upload your Blender renders: {', '.join(f'<code>{i}</code>' for i in images)}. Each is checked as on "
+                    "Gradescope and shown to the TA.",
+                    "The upload holds 5 MB for this question. If your renders pass it, save them again from Blender as PNG "
+                    "with 8 bits a channel, RGB (no alpha) and 100% compression (Output Properties, Output); a real "
+                    "hand-in's four 1920 x 1080 renders measured 4.46 MB in all."],
+                   f'optional-file-names="{", ".join(images)}"'),
+         sum(i.get("points") or 0 for i in full["notebook"]["images"])),
+        ("shadelab-hw2-notebook", None, "HW2: your notebook",
+         part_html([f"Upload your notebook, <code>{notebook}</code>, with your grids and answers. The course staff grade it "
+                    "by hand."], f'file-names="{notebook}"'),
+         0),
+    ]
+
+
+def install_part(questions, part_id, part, title, html, image, params, server_files):
+    target = questions / part_id
+    copy_question(TEMPLATES / "hand-in", target, image, {**params, "part": part} if part else params, server_files)
+    (target / "question.html").write_text(html)
+    info = json.loads((target / "info.json").read_text())
+    info["title"] = title
+    if part is None:  # graded by hand: no external grader
+        info["gradingMethod"] = "Manual"
+        del info["externalGradingOptions"]
+        (target / "server.py").unlink()
+    write_json(target / "info.json", info)
+
+
+def write_assessment(pl_course, instance, parts):
+    """The homework of the three part questions, worth the autograder's points (the notebook's
+    points are the staff's to set: 0 here)."""
+    folder = pl_course / "courseInstances" / instance / "assessments" / "shadelab-hw2"
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / "infoAssessment.json"
+    kept = json.loads(path.read_text()).get("uuid") if path.exists() else None  # a reinstall keeps its identity
+    questions = []
+    for part_id, part, _, _, points in parts:
+        questions.append({"id": part_id, "autoPoints": points} if part else {"id": part_id, "manualPoints": points})
+    write_json(path, {"uuid": kept or str(uuid.uuid4()), "type": "Homework", "title": "HW2: shading and Blender",
+                      "set": "Homework", "number": "2", "zones": [{"title": "HW2", "questions": questions}]})
+    return path
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("pl_course", type=Path)
     parser.add_argument("--image", default="shadelab/prairielearn-grader")
     parser.add_argument("--checkpoint", default="specular")
     parser.add_argument("--course", help="a course profile (course.json) to grade by instead of the built-in course")
+    parser.add_argument("--whole", action="store_true", help="one question for the whole hand-in instead of a question per part")
+    parser.add_argument("--course-instance", help="write the part questions' homework into this course instance")
     args = parser.parse_args()
 
     course_args = ["--course", args.course] if args.course else []
@@ -138,7 +227,14 @@ def main():
     questions = args.pl_course / "questions"
     questions.mkdir(parents=True, exist_ok=True)
 
-    copy_question(TEMPLATES / "hand-in", questions / "shadelab-hw2-hand-in", args.image, params, bool(args.course))
+    if args.whole:
+        copy_question(TEMPLATES / "hand-in", questions / "shadelab-hw2-hand-in", args.image, params, bool(args.course))
+    else:
+        parts = hand_in_parts(full)
+        for part_id, part, title, html, _ in parts:
+            install_part(questions, part_id, part, title, html, args.image, params, bool(args.course))
+        if args.course_instance:
+            print(f"install_questions: {write_assessment(args.pl_course, args.course_instance, parts)}")
 
     code = checkpoint["code"]
     target = questions / f"shadelab-hw2-{checkpoint['name']}"
@@ -161,7 +257,7 @@ def main():
     mesh = next(m for m in full["meshes"] if m["name"] == full["defaultMesh"])
     shutil.copy(course_file(mesh["file"], args.course), client / f"{mesh['name']}.obj")
     write_json(client / "course.json", public)
-    print(f"install_questions: {questions / 'shadelab-hw2-hand-in'} and {target}, grading with {args.image}")
+    print(f"install_questions: the hand-in's questions and {target} in {questions}, grading with {args.image}")
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -122,6 +123,74 @@ std::vector<std::string> question_schema_breaks(const json& info) {
         if (!value.is_string()) bad("externalGradingOptions.environment." + name + " is not a string");
   }
   return breaks;
+}
+
+// PrairieLearn's rules for an assessment's infoAssessment.json that the installer's homework
+// touches, re-stated from AssessmentJsonSchema (apps/prairielearn/src/schemas/infoAssessment.ts at
+// PrairieLearn/PrairieLearn 035d75a6c): the object strict, uuid, type Homework or Exam, title, set
+// and number strings; each zone's questions at least one, each with an id and points at or above 0.
+std::vector<std::string> assessment_schema_breaks(const json& a) {
+  std::vector<std::string> breaks;
+  static const std::set<std::string> keys = {
+      "comment", "uuid", "type", "title", "set", "number", "allowIssueReporting", "multipleInstance", "shuffleQuestions", "allowAccess",
+      "accessControl", "text", "maxPoints", "maxBonusPoints", "allowPersonalNotes", "autoClose", "zones", "constantQuestionValue",
+      "allowRealTimeGrading", "requireHonorCode", "honorCode", "showQuestionTitles", "groupWork", "groupMaxSize", "groupMinSize",
+      "groupRoles", "canSubmit", "canView", "studentGroupCreate", "studentGroupChooseName", "studentGroupJoin", "studentGroupLeave",
+      "groups", "advanceScorePerc", "gradeRateMinutes", "module", "shareSourcePublicly", "tools"};
+  if (!a.is_object()) return {"not an object"};
+  for (const auto& [key, value] : a.items())
+    if (!keys.count(key)) breaks.push_back("unknown key " + key);
+  static const std::regex guid("^[0-9a-fA-F]{8}-[0-9a-fA-F]{4}-[0-9a-fA-F]{4}-[0-9a-fA-F]{4}-[0-9a-fA-F]{12}$");
+  if (!a.contains("uuid") || !a["uuid"].is_string() || !std::regex_match(a["uuid"].get<std::string>(), guid)) breaks.push_back("uuid");
+  if (!a.contains("type") || (a["type"] != "Homework" && a["type"] != "Exam")) breaks.push_back("type");
+  for (const char* text : {"title", "set", "number"})
+    if (!a.contains(text) || !a[text].is_string()) breaks.push_back(text);
+  for (const auto& zone : a.value("zones", json::array())) {
+    if (!zone.contains("questions") || !zone["questions"].is_array() || zone["questions"].empty()) breaks.push_back("a zone without questions");
+    for (const auto& q : zone.value("questions", json::array())) {
+      if (!q.contains("id") || !q["id"].is_string()) breaks.push_back("a question without an id");
+      for (const char* points : {"points", "autoPoints", "manualPoints", "maxPoints", "maxAutoPoints"})
+        if (q.contains(points) && (!q[points].is_number() || q[points].get<double>() < 0)) breaks.push_back(std::string("a question's ") + points);
+      if (!q.contains("points") && !q.contains("autoPoints") && !q.contains("manualPoints")) breaks.push_back("a question without points");
+    }
+  }
+  return breaks;
+}
+
+// pl-file-upload's size rule, re-stated from its pl-file-upload.js (PrairieLearn/PrairieLearn
+// 00e1b301c): one element takes files while their combined size is at most 5 MB (5 x 1024 x 1024
+// bytes), a file replacing one of its own name not counted twice.
+constexpr double kPlFileUploadMaxBytes = 5.0 * 1024 * 1024;
+
+// Whether a question's upload element takes a file by its name: its file names (either case) or its
+// patterns (`*` for any run), as the element's attributes in question.html list them.
+bool upload_takes(const std::string& html, const std::string& file) {
+  const auto list = [&](const std::string& attribute) {
+    std::vector<std::string> items;
+    const size_t at = html.find(" " + attribute + "=\"");
+    if (at == std::string::npos) return items;
+    const size_t start = at + attribute.size() + 3, end = html.find('"', start);
+    std::string rest = html.substr(start, end - start);
+    for (size_t from = 0; from <= rest.size();) {
+      const size_t comma = std::min(rest.find(',', from), rest.size());
+      std::string item = rest.substr(from, comma - from);
+      item.erase(0, item.find_first_not_of(' '));
+      if (!item.empty()) items.push_back(item);
+      from = comma + 1;
+    }
+    return items;
+  };
+  const auto lower = [](std::string t) { std::transform(t.begin(), t.end(), t.begin(), ::tolower); return t; };
+  for (const char* names : {"file-names", "optional-file-names"})
+    for (const auto& n : list(names))
+      if (lower(n) == lower(file)) return true;
+  for (const char* patterns : {"file-patterns", "optional-file-patterns"})
+    for (const auto& p : list(patterns)) {
+      std::string re;
+      for (const char c : p) re += c == '*' ? std::string(".*") : std::isalnum(static_cast<unsigned char>(c)) ? std::string(1, c) : "\\" + std::string(1, c);
+      if (std::regex_match(lower(file), std::regex(lower(re)))) return true;
+    }
+  return false;
 }
 
 }  // namespace
@@ -305,12 +374,12 @@ TEST_F(PrairieLearnTest, TheQuestionTemplatesInstallWithoutAReference) {
                                                 (kSource / "prairielearn/install_questions.py").string() + "' '" + course.string() +
                                                 "' --image registry.example.edu/cs148/shadelab-grader");
   ASSERT_EQ(r.status, 0) << r.output;
-  for (const char* name : {"shadelab-hw2-hand-in", "shadelab-hw2-specular"}) {
+  for (const char* name : {"shadelab-hw2-frames-and-code", "shadelab-hw2-blender", "shadelab-hw2-specular"}) {
     const fs::path q = course / "questions" / name;
     const json info = json::parse(shadelab::testkit::read_text(q / "info.json"), nullptr, false);
     ASSERT_FALSE(info.is_discarded()) << name;
     const json template_info = json::parse(shadelab::testkit::read_text(kSource / "prairielearn/questions" /
-                                                                        (std::string(name) == "shadelab-hw2-hand-in" ? "hand-in" : "checkpoint") / "info.json"));
+                                                                        (std::string(name) == "shadelab-hw2-specular" ? "checkpoint" : "hand-in") / "info.json"));
     EXPECT_EQ(info["uuid"].get<std::string>().size(), 36u);
     EXPECT_NE(info["uuid"], template_info["uuid"]) << "each installed question has its own uuid";
     EXPECT_EQ(info["gradingMethod"], "External");
@@ -385,7 +454,7 @@ TEST_F(PrairieLearnTest, AnImportedCourseInstallsOnlyItsFilesAndGradesByThem) {
   }
   EXPECT_EQ(profile.find("\"" + ta.string()), std::string::npos) << "the installed profile names no file outside its folder";
   EXPECT_EQ(profile.find("\"../"), std::string::npos) << "the installed profile names no file outside its folder";
-  for (const char* question : {"shadelab-hw2-hand-in", "shadelab-hw2-specular"}) {
+  for (const char* question : {"shadelab-hw2-frames-and-code", "shadelab-hw2-blender", "shadelab-hw2-specular"}) {
     const json info = json::parse(tk::read_text(course / "questions" / question / "info.json"));
     EXPECT_EQ(question_schema_breaks(info), std::vector<std::string>{}) << question;
     EXPECT_EQ(info["externalGradingOptions"]["serverFilesCourse"], json::array({"shadelab/"}));
@@ -484,4 +553,63 @@ TEST_F(PrairieLearnTest, AQuestionsPartIsOneOfTheTwoAndNotBesideACheckpoint) {
   results = grade();
   EXPECT_FALSE(results.value("gradable", true));
   EXPECT_NE(format_errors(results).find("both a checkpoint and a part"), std::string::npos) << results.dump(2);
+}
+
+// A real summer-2022 hand-in, by its files' sizes (27 frames saved from the page, 3.09 MB; three
+// camera renders and the Eevee render, 4.46 MB; the notebook, 1.04 MB; four shaders, 3 KB),
+// through the installed questions' upload elements and pl-file-upload's size rule: the single
+// question cannot take it; the parts take every file once, each within 5 MB; the homework's points
+// are the Gradescope total and pass PrairieLearn's assessment rules.
+TEST_F(PrairieLearnTest, ARealHandInGoesInWholeThroughTheQuestionsPerPart) {
+  namespace tk = shadelab::testkit;
+  std::map<std::string, double> hand_in;
+  for (const char* stem : {"starter", "phong"})
+    for (const char* stage : {"vert", "frag"}) hand_in[std::string(stem) + "_" + stage + ".js"] = 750;
+  for (const char* prefix : {"normals", "diffuse", "specular"})
+    for (int k = 0; k < 9; ++k) hand_in["hw2_" + std::string(prefix) + "_" + std::to_string(k) + ".png"] = 3.09e6 / 27;
+  for (const char* render : {"camera_25.png", "camera_50.png", "camera_100.png", "eevee0001.png"}) hand_in[render] = 4.46e6 / 4;
+  hand_in["HW2.ipynb"] = 1.04e6;
+  double total = 0;
+  for (const auto& [name, bytes] : hand_in) total += bytes;
+  EXPECT_GT(total, kPlFileUploadMaxBytes) << "the whole hand-in does not fit one upload";
+
+  const fs::path course = root_ / "pl-course";
+  const auto r = tk::run_command("SHADELAB_BIN='" + std::string(SHADELAB_CLI) + "' python3 '" +
+                                 (kSource / "prairielearn/install_questions.py").string() + "' '" + course.string() + "' --course-instance Fa26");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const json assessment = json::parse(tk::read_text(course / "courseInstances/Fa26/assessments/shadelab-hw2/infoAssessment.json"));
+  EXPECT_EQ(assessment_schema_breaks(assessment), std::vector<std::string>{}) << assessment.dump(2);
+  std::map<std::string, double> in_part;
+  double points = 0;
+  for (const auto& q : assessment["zones"][0]["questions"]) {
+    const std::string id = q["id"];
+    const json info = json::parse(tk::read_text(course / "questions" / id / "info.json"));
+    EXPECT_EQ(question_schema_breaks(info), std::vector<std::string>{}) << id;
+    points += q.value("autoPoints", 0.0) + q.value("manualPoints", 0.0);
+    const std::string html = tk::read_text(course / "questions" / id / "question.html");
+    for (const auto& [name, bytes] : hand_in)
+      if (upload_takes(html, name)) {
+        EXPECT_FALSE(in_part.count(name)) << name << " is taken by two questions";
+        in_part[name] = bytes;
+        double& sum = in_part["total of " + id];
+        sum += bytes;
+      }
+  }
+  for (const auto& [name, bytes] : hand_in) EXPECT_TRUE(in_part.count(name)) << name << " has no question to go in";
+  for (const auto& [name, bytes] : in_part)
+    if (name.starts_with("total of ")) {
+      EXPECT_LE(bytes, kPlFileUploadMaxBytes) << name << ": " << bytes << " bytes";
+    }
+  // The homework is worth what Gradescope's autograder gives for the whole hand-in.
+  const auto show = tk::run_shadelab("course show");
+  const json facts = json::parse(show.output.substr(show.output.find('{')));
+  double gradescope = 0;
+  for (const auto& k : facts["checkpoints"]) gradescope += k["points"].get<double>();
+  for (const auto& image : facts["notebook"]["images"]) gradescope += image.value("points", 0.0);
+  EXPECT_DOUBLE_EQ(points, gradescope);
+  // The assessment rules catch what a sync refuses.
+  json broken = assessment;
+  broken["zones"][0]["questions"][0]["autoPoints"] = -1;
+  broken["type"] = "Quiz";
+  EXPECT_EQ(assessment_schema_breaks(broken).size(), 2u);
 }
