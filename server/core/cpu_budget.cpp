@@ -99,7 +99,9 @@ unsigned cores_within_cgroups(std::string_view proc_self_cgroup, const fs::path&
   return cores;
 }
 
-unsigned usable_cores() {
+namespace {
+
+unsigned read_usable_cores() {
   // An operator's word first: where the cgroup is not this process's to read (or to size a pool
   // as another machine would, as bench/prairielearn_bench.sh does), SHADELAB_CORES says.
   if (const char* given = std::getenv("SHADELAB_CORES"))
@@ -111,6 +113,14 @@ unsigned usable_cores() {
   std::stringstream text;
   text << in.rdbuf();
   return cores_within_cgroups(text.str(), "/sys/fs/cgroup", cpus);
+}
+
+}  // namespace
+
+// Read once: a PNG encode asks for every frame, and the files under /proc and /sys are I/O.
+unsigned usable_cores() {
+  static const unsigned cores = read_usable_cores();
+  return cores;
 }
 
 }  // namespace shadelab::core

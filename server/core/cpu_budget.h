@@ -12,7 +12,7 @@ namespace shadelab::core {
 // The fewest of: the CPUs this process may run on (sched_getaffinity), and each cgroup quota on
 // its way to the root (cgroup v2 `cpu.max`, v1 `cpu.cfs_quota_us` / `cpu.cfs_period_us`),
 // rounded up (0.9 of a CPU is one core to size a pool by). At least 1. SHADELAB_CORES, where
-// set (1-4096), is the answer instead.
+// set (1-4096), is the answer instead. Read once per process.
 unsigned usable_cores();
 
 // The same read from `proc_self_cgroup` (the text of /proc/self/cgroup) and a cgroup file tree
