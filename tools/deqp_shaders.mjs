@@ -110,7 +110,7 @@ function parseCases(text, file) {
         }
       } else if (w === "pipeline_program") {
         c.skipped = "separable programs (ES 3.1)";
-        while (t[at].text !== "end") { if (t[at].kind === "source") ++at; else ++at; }
+        while (t[at].kind === "source" || t[at].text !== "end") ++at;
         ++at;
       } else if (w === "output_color") ++at;
       else if (["tessellation_control", "tessellation_evaluation", "geometry"].includes(w)) { c.skipped = `a ${w} stage`; ++at; }

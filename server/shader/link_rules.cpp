@@ -206,8 +206,6 @@ void match_global_names(const GlslFacts& vertex, const GlslFacts& fragment, std:
 // gl_PointCoord only where gl_PointSize is (the browser checks it where the fragment shader reads
 // them; `#pragma STDGL invariant(all)` makes a vertex shader's built-ins invariant).
 void match_invariant_builtins(const GlslFacts& vertex, const GlslFacts& fragment, std::vector<LinkRuleBreak>& breaks) {
-  constexpr std::array<std::pair<std::string_view, std::string_view>, 2> kPairs{
-      {{"gl_FragCoord", "gl_Position"}, {"gl_PointCoord", "gl_PointSize"}}};
   const auto invariant_in_vertex = [&](std::string_view name) {
     if (!vertex.invariant_all_pragmas.empty()) return true;
     for (const auto& b : vertex.invariant_builtins_used)
@@ -215,7 +213,7 @@ void match_invariant_builtins(const GlslFacts& vertex, const GlslFacts& fragment
     return false;
   };
   for (const auto& b : fragment.invariant_builtins_used)
-    for (const auto& [in_fragment, in_vertex] : kPairs)
+    for (const auto& [in_fragment, in_vertex] : kInvariantBuiltinPairs)
       if (b.name == in_fragment && !invariant_in_vertex(in_vertex))
         breaks.push_back({Stage::fragment, b.at,
                           std::string(in_fragment) + " can only be declared invariant if and only if " + std::string(in_vertex) +

@@ -16,13 +16,21 @@
 //    gl_PointSize are;
 //  - the vertex inputs fit the browser's 16 locations.
 // docs/webgl-rules.md lists them with their sources.
+#include <array>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "shader/glsl_facts.h"
 #include "shader/shader_source.h"
 
 namespace shadelab::shader {
+
+// GLSL ES 1.00 section 4.6.4: a fragment shader's built-in, and the vertex shader's whose
+// invariance it needs to be invariant.
+inline constexpr std::array<std::pair<std::string_view, std::string_view>, 2> kInvariantBuiltinPairs{
+    {{"gl_FragCoord", "gl_Position"}, {"gl_PointCoord", "gl_PointSize"}}};
 
 struct LinkRuleBreak {
   Stage stage;  // where the student reads it: the stage whose declaration is named
