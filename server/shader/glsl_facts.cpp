@@ -1,5 +1,6 @@
 #include "shader/glsl_facts.h"
 
+#include "shader/extension_directives.h"
 #include "shader/glsl_lines.h"
 
 #include <glslang/Include/intermediate.h>
@@ -328,61 +329,7 @@ class FactsTraverser : public glslang::TIntermTraverser {
   std::set<std::string> used_, invariant_builtins_;
 };
 
-// glslang's preprocessor stops at an extension it does not know (and WebGL's list is not its
-// list), so for the preprocessing pass each `#extension` becomes a pragma it passes through
-// untouched, still subject to #if. Lines keep their numbers.
-constexpr std::string_view kExtensionPragma = "#pragma shadelab_extension ";
-
-std::string extensions_as_pragmas(std::string_view glsl) {
-  std::string out;
-  size_t start = 0;
-  while (start < glsl.size()) {
-    size_t end = glsl.find('\n', start);
-    end = end == std::string_view::npos ? glsl.size() : end + 1;
-    std::string_view line = glsl.substr(start, end - start);
-    const size_t hash = line.find_first_not_of(" \t");
-    const size_t word = hash == std::string_view::npos || line[hash] != '#' ? std::string_view::npos
-                                                                           : line.find_first_not_of(" \t", hash + 1);
-    if (word != std::string_view::npos && line.compare(word, 9, "extension") == 0) {
-      out += kExtensionPragma;
-      out += line.substr(word + 9);
-    } else {
-      out += line;
-    }
-    start = end;
-  }
-  return out;
-}
-
 }  // namespace
-
-// `#extension NAME : BEHAVIOR`, token by token, as a WebGL preprocessor reads it: the first token
-// out of place decides the shape.
-ExtensionDirective read_extension_directive(std::string_view line, int number) {
-  const std::vector<GlslToken> tokens = tokens_of(line);
-  ExtensionDirective d;
-  d.line = number;
-  // tokens[0] is '#', tokens[1] is `extension`.
-  const auto at = [&](size_t k) -> const GlslToken* { return k < tokens.size() ? &tokens[k] : nullptr; };
-  const auto shape = [&](ExtensionDirective::Shape s, const GlslToken* t) {
-    d.shape = s;
-    d.token = t ? std::string(t->text) : "#extension";
-    d.column = t ? t->column : 0;
-    return d;
-  };
-  const GlslToken *name = at(2), *colon = at(3), *behavior = at(4), *extra = at(5);
-  if (!name) return shape(ExtensionDirective::Shape::unfinished, nullptr);
-  if (name->kind != GlslToken::Kind::identifier) return shape(ExtensionDirective::Shape::name_not_identifier, name);
-  d.name = std::string(name->text);
-  if (!colon) return shape(ExtensionDirective::Shape::unfinished, nullptr);
-  if (colon->text != ":") return shape(ExtensionDirective::Shape::unexpected_token, colon);
-  if (!behavior) return shape(ExtensionDirective::Shape::unfinished, nullptr);
-  d.behavior = std::string(behavior->text);
-  if (d.behavior != "require" && d.behavior != "enable" && d.behavior != "warn" && d.behavior != "disable")
-    return shape(ExtensionDirective::Shape::unknown_behavior, name);
-  if (extra) return shape(ExtensionDirective::Shape::unexpected_token, extra);
-  return d;
-}
 
 namespace {
 
@@ -424,7 +371,7 @@ void read_preprocessed(const std::string& text, std::string_view source, GlslFac
   bool in_layout = false;
   for (std::string line; std::getline(in, line);) {
     ++number;
-    if (line.rfind(kExtensionPragma.substr(0, kExtensionPragma.size() - 1), 0) == 0) {
+    if (is_extension_pragma(line)) {
       if (static_cast<size_t>(number) <= source_lines.size())
         facts.extensions.push_back(read_extension_directive(source_lines[static_cast<size_t>(number - 1)], number));
       continue;
@@ -457,53 +404,26 @@ void read_preprocessed(const std::string& text, std::string_view source, GlslFac
   }
 }
 
-// The browser's preprocessor refuses `#extension` after a line of code (GLSL ES 3.00 section 3.4;
-// Chromium holds GLSL ES 1.00 shaders to it too), counting the source's own words before any
-// macro expands: `E` that expands to nothing is code. Only where #if leaves the code in, so the
-// preprocessor decides which lines stand: every directive kept (comments out, columns in place),
-// every line of code one marker word; a marker it leaves in is a line of code that stands.
-constexpr std::string_view kCodeMarker = "shadelab_code_line";
-
-std::string directives_and_code_markers(std::string_view text) {
-  std::vector<std::string> lines(lines_of(text).size());
-  std::vector<bool> directive(lines.size(), false);
-  bool continues = false;  // the last directive line ended in a backslash
-  int last_line = 0;
-  for (const GlslToken& t : tokens_of(text)) {
-    const auto k = static_cast<size_t>(t.line - 1);
-    if (t.line != last_line) {
-      continues = continues && last_line == t.line - 1;
-      directive[k] = t.text == "#" || continues;
-      last_line = t.line;
-    }
-    if (!directive[k]) {
-      lines[k] = kCodeMarker;
-      continues = false;
-      continue;
-    }
-    lines[k].resize(static_cast<size_t>(t.column - 1), ' ');
-    lines[k] += t.text;
-    continues = t.text == "\\";
-  }
-  std::string out;
-  for (const auto& line : lines) out += line + "\n";
-  return out;
-}
-
-void mark_extensions_after_code(const std::string& text, const TBuiltInResource& resources, EShLanguage stage,
-                                int version, GlslFacts& facts) {
-  if (facts.extensions.empty()) return;
-  const std::string skeleton = extensions_as_pragmas(directives_and_code_markers(text));
-  const char* strings[] = {skeleton.c_str()};
+// glslang's preprocessor over `text`, each line in its place; nothing when it fails.
+std::optional<std::string> preprocessed_by_glslang(const std::string& text, const TBuiltInResource& resources, EShLanguage stage,
+                                                   int version) {
+  const char* strings[] = {text.c_str()};
   glslang::TShader preprocessor(stage);
   preprocessor.setStrings(strings, 1);
   glslang::TShader::ForbidIncluder no_includes;
-  std::string kept;
-  if (!preprocessor.preprocess(&resources, version, EEsProfile, false, false, EShMsgDefault, &kept, no_includes)) return;
-  int first_code = 0, number = 0;
-  std::istringstream in(kept);
-  for (std::string line; first_code == 0 && std::getline(in, line);)
-    if (++number && line.find(kCodeMarker) != std::string::npos) first_code = number;
+  std::string out;
+  if (!preprocessor.preprocess(&resources, version, EEsProfile, false, false, EShMsgDefault, &out, no_includes)) return std::nullopt;
+  return out;
+}
+
+// Marks each active `#extension` that a line of code stands before (extension_directives.h), with
+// one more preprocess, only where the stage has an `#extension`.
+void mark_extensions_after_code(const std::string& text, const TBuiltInResource& resources, EShLanguage stage, int version,
+                                GlslFacts& facts) {
+  if (facts.extensions.empty()) return;
+  const auto kept = preprocessed_by_glslang(extensions_as_pragmas(directives_and_code_markers(text)), resources, stage, version);
+  if (!kept) return;
+  const int first_code = first_code_line(*kept);
   for (auto& d : facts.extensions) d.after_code = first_code != 0 && first_code < d.line;
 }
 
@@ -516,17 +436,9 @@ GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version) {
   const char* strings[] = {text.c_str()};
   GlslFacts facts;
 
-  const std::string pragmas = extensions_as_pragmas(text);
-  const char* pragma_strings[] = {pragmas.c_str()};
-  glslang::TShader preprocessor(language(stage));
-  preprocessor.setStrings(pragma_strings, 1);
-  glslang::TShader::ForbidIncluder no_includes;
-  std::string preprocessed;
-  if (preprocessor.preprocess(&resources, default_version(version), EEsProfile, false, false, EShMsgDefault,
-                              &preprocessed, no_includes))
-    read_preprocessed(preprocessed, text, facts);
-  else
-    preprocessed.clear();
+  const std::string preprocessed =
+      preprocessed_by_glslang(extensions_as_pragmas(text), resources, language(stage), default_version(version)).value_or("");
+  if (!preprocessed.empty()) read_preprocessed(preprocessed, text, facts);
   facts.preprocessed = preprocessed;
   mark_extensions_after_code(text, resources, language(stage), default_version(version), facts);
 

@@ -111,9 +111,6 @@ struct GlslFacts {
   std::string preprocessed;  // the preprocessor's output, each line in its place ("" when it failed)
 };
 
-// One `#extension` line of the student's source (comments allowed), as the browser reads it.
-ExtensionDirective read_extension_directive(std::string_view line, int number);
-
 // The values glslang checks against, set as WebGL 2 sets them: texel offsets in [-8, 7] and, for
 // GLSL ES 1.00, Appendix A's loop and indexing limits.
 GlslFacts read_glsl(std::string_view glsl, Stage stage, GlslVersion version);

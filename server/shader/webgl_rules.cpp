@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <regex>
 #include <span>
 
 #include "shader/condition_value.h"
+#include "shader/driver_rewrites.h"
 #include "shader/glsl_lines.h"
 #include "shader/link_rules.h"
 #include "shader/stand_in_names.h"
@@ -283,15 +283,14 @@ void location_rules(const StageInput& s, std::vector<Diagnostic>& errors) {
                     " (MAX_VERTEX_ATTRIBS)";
         errors.push_back(std::move(d));
       }
+  // A single output at 8 or past it glslang refuses itself, told the browser's MAX_DRAW_BUFFERS
+  // (kKnownErrors words it); an array that starts inside and runs past it is this rule's.
   if (s.stage == Stage::fragment)
     for (const auto& out : s.facts.outputs) {
-      const int first = std::max(out.location, 0);
-      if (first + out.slots <= kWebglMaxDrawBuffers) continue;
+      if (std::max(out.location, 0) + out.slots <= kWebglMaxDrawBuffers) continue;
       Diagnostic d = at_name(out);
-      d.message += out.type.find("array") == std::string::npos ? "output location must be < MAX_DRAW_BUFFERS"
-                                                                : "output array locations would exceed MAX_DRAW_BUFFERS";
-      d.message += " (the browser has " + std::to_string(kWebglMaxDrawBuffers) + " draw buffers, locations 0 to " +
-                   std::to_string(kWebglMaxDrawBuffers - 1) + ")";
+      d.message += "output array locations would exceed MAX_DRAW_BUFFERS (the browser has " + std::to_string(kWebglMaxDrawBuffers) +
+                   " draw buffers, locations 0 to " + std::to_string(kWebglMaxDrawBuffers - 1) + ")";
       errors.push_back(std::move(d));
     }
 }
@@ -326,71 +325,6 @@ Error rule_error(ErrorCode code, std::string what, std::vector<Diagnostic> diagn
   return e;
 }
 
-// `layout(std140) uniform;` after the directives (#version, #extension), then `#line` gives the
-// next line the number it had: GLSL ES 3.00 section 3.4 numbers the line after `#line N` as N.
-void default_to_std140(std::string& glsl, const GlslFacts& facts) {
-  int after = 1;
-  for (const auto& d : facts.extensions) after = std::max(after, d.line);
-  const std::string_view line = line_of(glsl, after);
-  const size_t end = static_cast<size_t>(line.data() - glsl.data()) + line.size();
-  const std::string insert = "layout(std140) uniform;\n#line " + std::to_string(after + 1) + "\n";
-  if (end >= glsl.size()) glsl += "\n" + insert;
-  else glsl.insert(end + 1, insert);
-}
-
-bool basic_type_word(std::string_view w) {
-  static const std::regex type(R"((float|int|uint|bool|[ibu]?vec[234]|mat[234](x[234])?|[iu]?sampler\w+))");
-  return std::regex_match(w.begin(), w.end(), type);
-}
-
-bool same_words(std::span<const GlslToken> a, std::span<const GlslToken> b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const GlslToken& x, const GlslToken& y) { return x.text == y.text; });
-}
-
-// `case 0: int;` as a label's last statement: the browser takes the empty declaration as the
-// statement a label needs, NVIDIA's driver refuses it ("no statement at the end of a switch
-// block"; measured on an H100, docs/webgl-rules.md). After a label, inside a function, the
-// declaration declares nothing, so its words are blanked and `case 0: ;` is the same program,
-// every column kept. Read from the preprocessor's output (no comments, #if resolved); a form
-// a macro made is not on the source line and is left as it is.
-void blank_empty_declarations_after_labels(std::string& glsl, const GlslFacts& facts) {
-  if (facts.preprocessed.find("switch") == std::string::npos) return;  // no label, and no tokens to read on every compile
-  const auto tokens = tokens_of(facts.preprocessed);
-  for (size_t i = 1; i + 1 < tokens.size(); ++i) {
-    if (tokens[i - 1].text != ":") continue;
-    size_t type = i;
-    if (tokens[i].text == "lowp" || tokens[i].text == "mediump" || tokens[i].text == "highp") ++type;
-    if (type + 1 >= tokens.size() || !basic_type_word(tokens[type].text) || tokens[type + 1].text != ";") continue;
-    const int line = tokens[i].line;
-    if (tokens[type + 1].line != line) continue;
-    // The same words on the student's line (glslang's output spaces them its own way), or a macro
-    // or a comment is in the way and the line is left alone.
-    const auto first = std::find_if(tokens.begin(), tokens.end(), [&](const GlslToken& t) { return t.line == line; });
-    const auto last = std::find_if(first, tokens.end(), [&](const GlslToken& t) { return t.line != line; });
-    const std::string_view source_line = line_of(glsl, line);
-    const auto source_tokens = tokens_of(source_line);
-    if (!same_words({first, last}, source_tokens)) continue;
-    const size_t line_start = static_cast<size_t>(source_line.data() - glsl.data());
-    for (size_t t = i; t <= type; ++t) {
-      const GlslToken& word = source_tokens[t - static_cast<size_t>(first - tokens.begin())];
-      glsl.replace(line_start + static_cast<size_t>(word.column - 1), word.text.size(), word.text.size(), ' ');
-    }
-  }
-}
-
-// Mesa counts a `#pragma` as code before `#extension`, the browser does not: a hint
-// (`optimize`, `debug`, one it does not know) before an extension the driver still gets is left
-// out; `STDGL invariant(all)` changes the program and stays.
-void blank_hints_before(std::string& glsl, const GlslFacts& facts, int last_extension) {
-  const auto lines = lines_of(facts.preprocessed);
-  for (int n = 1; n < last_extension && n <= static_cast<int>(lines.size()); ++n) {
-    const std::string_view line = lines[static_cast<size_t>(n - 1)];
-    if (line.rfind("#pragma", 0) == 0 && line.find("shadelab_extension") == std::string_view::npos &&
-        std::find(facts.invariant_all_pragmas.begin(), facts.invariant_all_pragmas.end(), n) == facts.invariant_all_pragmas.end())
-      replace_line(glsl, n, "");
-  }
-}
-
 // Whether an extension was left out: the stage is then another program, to be judged again.
 bool rewrite_for_driver(StageInput& s) {
   if (s.facts.parsed) blank_empty_declarations_after_labels(s.source.glsl, s.facts);
@@ -420,8 +354,6 @@ bool rewrite_for_driver(StageInput& s) {
 // the browser runs reaches the driver without the fragment's declaration: on one GPU the values
 // are the same.
 void drop_builtin_invariance_the_browser_does_not_bind(const StageInput& vs, StageInput& fs) {
-  constexpr std::array<std::pair<std::string_view, std::string_view>, 2> kPairs{
-      {{"gl_FragCoord", "gl_Position"}, {"gl_PointCoord", "gl_PointSize"}}};
   if (fs.source.version != GlslVersion::es100 || fs.source.glsl.find("invariant") == std::string::npos) return;
   const auto declared = [](std::span<const GlslToken> tokens, std::string_view name) {
     for (size_t i = 0; i + 1 < tokens.size(); ++i)
@@ -429,7 +361,7 @@ void drop_builtin_invariance_the_browser_does_not_bind(const StageInput& vs, Sta
     return tokens.size();
   };
   const auto vertex_tokens = tokens_of(vs.facts.preprocessed);
-  for (const auto& [in_fragment, in_vertex] : kPairs) {
+  for (const auto& [in_fragment, in_vertex] : kInvariantBuiltinPairs) {
     if (declared(vertex_tokens, in_vertex) != vertex_tokens.size()) continue;
     const auto tokens = tokens_of(fs.source.glsl);
     const size_t at = declared(tokens, in_fragment);
