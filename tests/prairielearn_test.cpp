@@ -14,8 +14,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base64.h"
 #include "support/files.h"
 #include "support/hand_in.h"
+#include "support/prairielearn_results.h"
 #include "support/run_command.h"
 #include "support/test_support.h"
 
@@ -55,7 +57,25 @@ class PrairieLearnTest : public ::testing::Test {
     json results = json::parse(text, nullptr, false);
     EXPECT_FALSE(results.is_discarded()) << text << r.output;
     EXPECT_LT(text.size(), 1000u * 1000u) << "PrairieLearn keeps a results file to 1 MB";
+    expect_prairielearn_takes(text, r.status);
     return results;
+  }
+
+  // What PrairieLearn stores and shows is what the results file means: the job succeeded, the
+  // attempt counts exactly when ShadeLab says gradable, at ShadeLab's score, every test with its
+  // points and every image a data URI; an attempt not counted says why in its format errors.
+  static void expect_prairielearn_takes(const std::string& text, int exit_status) {
+    const json results = json::parse(text, nullptr, false);
+    const auto pl = shadelab::testkit::read_as_prairielearn(text, exit_status);
+    ASSERT_TRUE(pl.job_succeeded) << pl.job_message;
+    EXPECT_EQ(pl.gradable, results.value("gradable", true)) << pl.invalid;
+    if (pl.gradable) {
+      EXPECT_DOUBLE_EQ(pl.score, results["score"].get<double>());
+    } else {
+      EXPECT_FALSE(pl.format_errors.empty()) << "an attempt not counted says why";
+    }
+    EXPECT_FALSE(pl.tests_missing_points) << "PrairieLearn would hide every test's points";
+    EXPECT_EQ(pl.image_problems, std::vector<std::string>{});
   }
 
   // Gradescope's results for the same hand-in, its outputs in plain text (no heat maps embedded).
@@ -216,6 +236,40 @@ TEST(PrairieLearnSchemaTest, TheQuestionRulesCatchWhatPrairieLearnsSyncRefuses) 
   EXPECT_EQ(question_schema_breaks(no_image).size(), 1u);
 }
 
+// The re-coded parser refuses what PrairieLearn refuses, so the checks above can fail.
+TEST(PrairieLearnResultsTest, TheParserTakesWhatPrairieLearnTakesAndNothingElse) {
+  using shadelab::testkit::read_as_prairielearn;
+  const auto pl = [](const json& results, int status = 0) { return read_as_prairielearn(results.dump(), status); };
+  const json good = {{"gradable", true}, {"score", 0.5}, {"tests", {{{"name", "a"}, {"points", 1}, {"max_points", 2}}}}};
+  EXPECT_TRUE(pl(good).gradable);
+  EXPECT_DOUBLE_EQ(pl(good).score, 0.5);
+  EXPECT_FALSE(pl(good, 1).job_succeeded) << "a container that exits non-zero is a failed job";
+  EXPECT_FALSE(read_as_prairielearn(std::string(1024 * 1024 + 1, ' ')).job_succeeded) << "over 1 MiB";
+  EXPECT_FALSE(read_as_prairielearn("{\"score\": 1").job_succeeded) << "not JSON";
+  EXPECT_FALSE(read_as_prairielearn("null").job_succeeded);
+  const auto with = [&](const char* key, const json& value) {
+    json changed = good;
+    changed[key] = value;
+    return pl(changed);
+  };
+  EXPECT_EQ(with("score", 1.2).invalid, "score is out of range.");
+  EXPECT_EQ(with("score", "1").invalid, "score is not a number.");
+  EXPECT_EQ(with("score", nullptr).invalid, "score is not a number.");
+  json no_score = good;
+  no_score.erase("score");
+  EXPECT_EQ(pl(no_score).invalid, "score was not provided.");
+  EXPECT_FALSE(with("gradable", false).gradable);
+  EXPECT_FALSE(with("gradable", 0).gradable) << "JavaScript's !!0";
+  EXPECT_TRUE(with("gradable", nullptr).gradable) << "?? true";
+  EXPECT_DOUBLE_EQ(with("succeeded", false).score, 0);
+  EXPECT_EQ(with("format_errors", "one").format_errors, std::vector<std::string>{"one"});
+  json missing = good;
+  missing["tests"][0].erase("max_points");
+  EXPECT_TRUE(pl(missing).tests_missing_points);
+  EXPECT_EQ(with("images", json::array({{{"url", "https://grader.internal/x.png"}}})).image_problems.size(), 1u);
+  EXPECT_TRUE(with("images", json::array({{{"label", "x"}, {"url", "data:image/png;base64,AA=="}}})).image_problems.empty());
+}
+
 // The real student's hand-in (their HW2 folder's files), uploaded as PrairieLearn's file upload
 // keeps them, without folders; the specular code wrong: every Gradescope test is a PrairieLearn
 // test with the same words and points, the failed one with its heat map, and the student's grids
@@ -359,9 +413,11 @@ TEST_F(PrairieLearnTest, AMissingGraderStillWritesResults) {
   const auto r = shadelab::testkit::run_command("PRAIRIELEARN_JOB='" + job_.string() + "' SHADELAB_BIN=/nonexistent/shadelab bash '" +
                                                 (kSource / "prairielearn/entrypoint").string() + "'");
   EXPECT_EQ(r.status, 0) << r.output;
-  const json results = json::parse(shadelab::testkit::read_text(job_ / "results/results.json"), nullptr, false);
+  const std::string text = shadelab::testkit::read_text(job_ / "results/results.json");
+  const json results = json::parse(text, nullptr, false);
   EXPECT_EQ(results["gradable"], false) << results.dump(2);
   EXPECT_NE(format_errors(results).find("not installed"), std::string::npos) << format_errors(results);
+  expect_prairielearn_takes(text, r.status);
 }
 
 // The two question templates, installed into a PrairieLearn course as a TA would: each a question
@@ -612,4 +668,84 @@ TEST_F(PrairieLearnTest, ARealHandInGoesInWholeThroughTheQuestionsPerPart) {
   broken["zones"][0]["questions"][0]["autoPoints"] = -1;
   broken["type"] = "Quiz";
   EXPECT_EQ(assessment_schema_breaks(broken).size(), 2u);
+}
+
+// The same hand-in as real files at the real dimensions, every one made by ShadeLab: the 27 frames
+// saved from the page (512 x 512 PNGs), the three dolly-zoom cameras and the Eevee render at the
+// 1920 x 1080 students hand in (`shadelab scene` on the course's scenes), and the notebook as run,
+// its cells showing the three grids and the four renders. Each question's files pass
+// pl-file-upload's rule by their own bytes, and each graded part comes back gradable, within 1 MiB,
+// read by PrairieLearn's parser. ShadeLab's renders are flat-shaded and compress better than
+// Blender's (about 0.1-0.4 MB against 1.1 MB a render), so the byte counts of the real hand-in
+// above remain the binding case; this one proves the files themselves go through.
+TEST_F(PrairieLearnTest, ARealHandInsFilesGoInByTheirOwnBytesAndAreGraded) {
+  namespace tk = shadelab::testkit;
+  const fs::path hand_in = root_ / "hand-in", work = root_ / "work";
+  for (const char* deliverable : {"normals", "diffuse", "specular"}) {
+    tk::save_page_frames(hand_in, deliverable, deliverable, "--grid '" + (work / (std::string(deliverable) + "_grid.png")).string() + "'");
+  }
+  const std::map<std::string, std::pair<std::string, std::string>> renders = {  // file: scene, lens
+      {"camera_25.png", {"dolly_25mm", ""}}, {"camera_50.png", {"dolly_50mm", ""}}, {"camera_100.png", {"dolly_100mm", ""}}, {"eevee0001.png", {"two_objects", ""}}};
+  for (const auto& [file, scene] : renders) {
+    json description = json::parse(tk::read_text(kSource / "assets/scenes" / (scene.first + ".json")));
+    description["render"]["width"] = 1920;
+    description["render"]["height"] = 1080;
+    tk::write_file_at(work / (scene.first + ".json"), description.dump());
+    const auto r = tk::run_shadelab("scene '" + (work / (scene.first + ".json")).string() + "' -o '" + (hand_in / file).string() + "'");
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  for (const char* stem : {"starter", "phong"})
+    for (const char* stage : {"vert", "frag"})
+      tk::write_file_at(hand_in / (std::string(stem) + "_" + stage + ".js"), tk::preset_module(std::string(stem) == "starter" ? "normals" : "specular", stage));
+  json notebook = json::parse(tk::read_text(kSource / "assets/notebooks/hw2_handed_out.ipynb"));
+  const auto show = [](const fs::path& png) {
+    return json{{"output_type", "display_data"}, {"metadata", json::object()},
+                {"data", {{"image/png", shadelab::base64_encode(tk::read_text(png))}, {"text/plain", "<IPython.core.display.Image object>"}}}};
+  };
+  for (auto& cell : notebook["cells"]) {
+    if (cell["cell_type"] != "code") continue;
+    const std::string code = cell["source"].is_array() ? cell["source"].dump() : cell["source"].get<std::string>();
+    for (const char* deliverable : {"normals", "diffuse", "specular"})
+      if (code.find(std::string("hw2_") + deliverable + "_*") != std::string::npos) cell["outputs"].push_back(show(work / (std::string(deliverable) + "_grid.png")));
+    for (const auto& [file, scene] : renders)
+      if (code.find(file.starts_with("camera_") ? "camera_*" : "eevee0001") != std::string::npos) cell["outputs"].push_back(show(hand_in / file));
+  }
+  tk::write_file_at(hand_in / "HW2.ipynb", notebook.dump(1));
+
+  const fs::path course = root_ / "pl-course";
+  const auto r = tk::run_command("SHADELAB_BIN='" + std::string(SHADELAB_CLI) + "' python3 '" +
+                                 (kSource / "prairielearn/install_questions.py").string() + "' '" + course.string() + "' --course-instance Fa26");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const json assessment = json::parse(tk::read_text(course / "courseInstances/Fa26/assessments/shadelab-hw2/infoAssessment.json"));
+  std::set<std::string> placed;
+  for (const auto& q : assessment["zones"][0]["questions"]) {
+    const std::string id = q["id"];
+    const std::string html = tk::read_text(course / "questions" / id / "question.html");
+    fs::remove_all(job_ / "student");
+    fs::create_directories(job_ / "student");
+    double bytes = 0;
+    for (const auto& f : fs::directory_iterator(hand_in))
+      if (upload_takes(html, f.path().filename().string())) {
+        EXPECT_TRUE(placed.insert(f.path().filename().string()).second) << f.path().filename() << " is taken by two questions";
+        bytes += static_cast<double>(fs::file_size(f.path()));
+        fs::copy_file(f.path(), job_ / "student" / f.path().filename());
+      }
+    EXPECT_LE(bytes, kPlFileUploadMaxBytes) << id << " takes " << bytes << " bytes";
+    RecordProperty(id, std::to_string(static_cast<long>(bytes)));
+    const json info = json::parse(tk::read_text(course / "questions" / id / "info.json"));
+    if (info.value("gradingMethod", "") != "External") continue;  // the notebook is read by a TA
+    const std::string server = tk::read_text(course / "questions" / id / "server.py");
+    const size_t at = server.find("SHADELAB = ");
+    ASSERT_NE(at, std::string::npos) << id << " names no params.shadelab";
+    params(json::parse(server.substr(at + 11, server.find('\n', at) - at - 11)));
+    const json results = grade();
+    EXPECT_TRUE(results.value("gradable", false)) << id << ": " << results.dump(2).substr(0, 2000);
+    EXPECT_FALSE(results["tests"].empty()) << id;
+    double points = 0, max_points = 0;
+    for (const auto& t : results["tests"]) points += t["points"].get<double>(), max_points += t["max_points"].get<double>();
+    EXPECT_DOUBLE_EQ(results["score"].get<double>(), max_points > 0 ? points / max_points : 1.0)
+        << id << ": a part worth no points shows 100%, not a red 0%";
+    RecordProperty(id + " score", results["score"].dump());
+  }
+  for (const auto& f : fs::directory_iterator(hand_in)) EXPECT_TRUE(placed.count(f.path().filename().string())) << f.path().filename() << " has no question";
 }

@@ -71,8 +71,10 @@ json prairielearn_results(const HandInResults& r, const PrairieLearnLimits& limi
       if (t.outcome == TestOutcome::grader_failed)
         return prairielearn_not_gradable("ShadeLab could not grade this submission: " + t.grader_error +
                                          ". This is not a problem with your submission, and the attempt is not counted; please tell the course staff.");
+  // A part worth no points (the Blender renders, where the course scores none) loses nothing: a 0
+  // there would show the student "0%" in red for renders that match the handout.
   json results = {{"gradable", true},
-                  {"score", r.max_score > 0 ? std::clamp(std::round(r.score / r.max_score * 1e6) / 1e6, 0.0, 1.0) : 0.0},
+                  {"score", r.max_score > 0 ? std::clamp(std::round(r.score / r.max_score * 1e6) / 1e6, 0.0, 1.0) : 1.0},
                   {"message", first_line(printable_lines(r.summary))},
                   {"output", printable_lines(r.summary)},
                   {"tests", json::array()},
