@@ -308,8 +308,11 @@ TEST_F(CliTest, BatchCountsFailingStudentsByTheirRepair) {
 TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
   const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
   const std::string tutorial = shadelab::testkit::with_tutorial_main(preset("specular_frag.js"));
+  // The half vector through a local of its own: two locals the reference's cannot align one to one
+  // (grade/student_names.h), so that the reference alone offers no value for reflectDir.
   std::string half_vector = tutorial;
-  half_vector.replace(half_vector.find("reflect(-lightDir, norm)"), 24, "normalize(lightDir + viewDir)");
+  const std::string reflect_dir = "vec3 reflectDir = reflect(-lightDir, norm);";
+  half_vector.replace(half_vector.find(reflect_dir), reflect_dir.size(), "vec3 halfway = normalize(lightDir + viewDir);\n        vec3 reflectDir = halfway;");
   write("class/ana/shaders/phong_vert.js", preset("specular_vert.js"));
   write("class/ana/shaders/phong_frag.js", tutorial);
   write("class/ben/shaders/phong_vert.js", preset("specular_vert.js"));
@@ -340,7 +343,7 @@ TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
   EXPECT_EQ(ben.find("reflect(-lightDir, norm)"), std::string::npos) << "ana's line, shown to ben: " << ben;
   const std::string cyd = read_text(path("grades/students/cyd/results.json"));
   EXPECT_NE(cyd.find("line " + line + ": `reflectDir`"), std::string::npos) << cyd;
-  EXPECT_NE(cyd.find("line " + std::to_string(std::stoi(line) - 3) + ": `color` is not computed as the homework computes it"), std::string::npos)
+  EXPECT_NE(cyd.find("line " + std::to_string(std::stoi(line) - 4) + ": `color` is not computed as the homework computes it"), std::string::npos)
       << cyd;
 
   std::map<std::string, std::vector<nlohmann::json>> lines;

@@ -317,9 +317,11 @@ TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   const std::string color = "vec4 color = uAmbientColor + uDiffuseColor * uLightColor * max(0.0, NdotL);";
   EXPECT_EQ(words("normalize(uLightPosition - vPosition)", "(uLightPosition - vPosition)", "vec3 L = normalize(uLightPosition - vPosition);"),
             "`L` is not normalised: a direction must be a unit vector");
-  EXPECT_EQ(words("normalize(-vPosition)", "normalize(vPosition)", "vec3 V = normalize(-vPosition);"), "`vPosition` has the wrong sign");
+  // A sign inside normalize(...) is the direction's own: said of the local the student writes it
+  // into (the homework's V, L), not of what it normalises (it read "`vPosition` has the wrong sign").
+  EXPECT_EQ(words("normalize(-vPosition)", "normalize(vPosition)", "vec3 V = normalize(-vPosition);"), "`V` has the wrong sign");
   EXPECT_EQ(words("normalize(uLightPosition - vPosition)", "normalize(vPosition - uLightPosition)", "vec3 L = normalize(uLightPosition - vPosition);"),
-            "`vPosition - uLightPosition` has the wrong sign");
+            "`L` has the wrong sign");
   EXPECT_EQ(words("max(0.0, NdotL)", "NdotL", color), "`NdotL` is not clamped at 0: a cosine below 0 must count as 0, max(0.0, ...)");
   EXPECT_EQ(words("uDiffuseColor * uLightColor", "uSpecularColor * uLightColor", color), "`uSpecularColor` is not the value the homework uses here");
   EXPECT_EQ(words("uAmbientColor + uDiffuseColor", "uAmbientColor - uDiffuseColor", color),
@@ -440,7 +442,10 @@ TEST(RepairSearchTest, AJobsShareOfTheDeadlinesStopsAHangEarlier) {
 TEST(ClassmateEditsTest, AClassmateWhoNamesAValueAsTheStudentDoesOffersTheirValueOfIt) {
   const std::string vertex = glsl_of("specular", shader::Stage::vertex), reference = glsl_of("specular", shader::Stage::fragment);
   const std::string classmate = testkit::with_tutorial_main(reference);
-  const std::string student = typed(classmate, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)");
+  // The half vector through a local of its own: two locals the reference's cannot align one to
+  // one (grade/student_names.h), so that only the classmate names reflectDir.
+  const std::string student = typed(classmate, "vec3 reflectDir = reflect(-lightDir, norm);",
+                                    "vec3 halfway = normalize(lightDir + viewDir);\n        vec3 reflectDir = halfway;");
   const auto restores_reflect_dir = [](const grade::RepairEdit& e) { return e.kind == grade::RepairKind::value_restored && e.subject == "reflectDir"; };
 
   const auto own = grade::program_repair_edits({vertex, student}, {vertex, reference});
@@ -481,7 +486,8 @@ TEST(RepairCandidatesTest, TheClassComesFirstEachKindWithinItsCountAndNoPairTouc
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
   const std::string classmate = testkit::with_tutorial_main(reference);
   const shader::ShaderFile vertex = specular->vertex;
-  const shader::ShaderFile fragment{"phong_frag.glsl", typed(classmate, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)")};
+  const shader::ShaderFile fragment{"phong_frag.glsl", typed(classmate, "vec3 reflectDir = reflect(-lightDir, norm);",
+                                                             "vec3 halfway = normalize(lightDir + viewDir);\n        vec3 reflectDir = halfway;")};
   const auto program = grade::repair_program(vertex, fragment, specular->vertex, specular->fragment,
                                              {{specular->vertex, {"classmate.glsl", classmate}}});
   ASSERT_TRUE(program.has_value());
@@ -560,4 +566,86 @@ TEST(RepairCandidatesTest, TheClassComesFirstEachKindWithinItsCountAndNoPairTouc
         << "a pair is two of the class's, two lines read as the reference's, or has the nearest single: " << a.with << " and " << b.with;
   }
   EXPECT_TRUE(grade::pair_candidates(*program, singles, distances, 0.4, {40, 4, 3, 3, 0}).empty());
+}
+
+
+namespace {
+
+// The edits of `kind` the search would try on `student` beside the course's specular reference,
+// each as its line reads once made.
+std::vector<std::string> lines_of_kind(const std::string& student, grade::RepairKind kind) {
+  const std::string vertex = glsl_of("specular", shader::Stage::vertex), reference = glsl_of("specular", shader::Stage::fragment);
+  std::vector<std::string> out;
+  for (const auto& e : grade::program_repair_edits({vertex, student}, {vertex, reference}))
+    if (e.kind == kind) out.push_back(grade::edited_line(student, e));
+  return out;
+}
+
+bool has(const std::vector<std::string>& lines, const std::string& line) { return std::find(lines.begin(), lines.end(), line) != lines.end(); }
+
+}  // namespace
+
+// What a student written in their own shape left out is put back at the line they left it out of,
+// in their names (grade/left_out_edits.h): the tutorial's program with each thing left out in turn.
+// A program that leaves nothing out gets none of these edits.
+TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
+  using K = grade::RepairKind;
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string tutorial = testkit::with_tutorial_main(reference);
+  for (const K kind : {K::factor_added, K::term_added, K::exponent_added, K::guard_added, K::value_added, K::swizzle_removed})
+    for (const std::string& right : {reference, tutorial})
+      for (const auto& line : lines_of_kind(right, kind)) ADD_FAILURE() << "a right program gets " << line;
+
+  EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "diff * uDiffuseColor * uLightColor", "diff * uDiffuseColor"), K::factor_added),
+                  "vec4 color = uAmbientColor + diff * uDiffuseColor * uLightColor;"));
+  EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "uAmbientColor + diff", "diff"), K::term_added),
+                  "vec4 color = uAmbientColor + diff * uDiffuseColor * uLightColor;"));
+  EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "pow(max(dot(viewDir, reflectDir), 0.0), 6.0)", "max(dot(viewDir, reflectDir), 0.0)"),
+                                K::exponent_added),
+                  "float spec = pow(max(dot(viewDir, reflectDir), 0.0), 6.0);"))
+      << "the exponent the reference declares, as the number it declares it with";
+  EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "if (diff > 0.0) {", "{"), K::guard_added), "if (dot(norm, lightDir) > 0.0) {"))
+      << "the reference's NdotL > 0.0, its NdotL as the dot product it is, in the student's names";
+  EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "        color += spec * uSpecularColor * uLightColor;\n", ""), K::value_added),
+                  "float spec = pow(max(dot(viewDir, reflectDir), 0.0), 6.0); color += uSpecularColor * uLightColor * spec;"));
+  EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "fragColor = color;", "fragColor = color.bgra;"), K::swizzle_removed), "fragColor = color;"));
+  // The clamp left out of a line that reads as the reference's `float NdotL = dot(N, L);`: the
+  // student reads it where the reference reads max(0.0, NdotL), so the clamp goes where they wrote it.
+  EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "max(dot(norm, lightDir), 0.0)", "dot(norm, lightDir)"), K::clamped),
+                  "float diff = max(0.0, dot(norm, lightDir));"));
+  // The guard of a helper: an early return before its first statement that reads a parameter.
+  const std::string helper = reference.substr(0, reference.find("void main(void) {")) +
+                             "vec4 specularTerm(vec3 n, vec3 l, vec3 v) {\n"
+                             "    vec3 r = reflect(-l, n);\n"
+                             "    return uSpecularColor * uLightColor * pow(max(dot(v, r), 0.0), 6.0);\n"
+                             "}\n"
+                             "void main(void) {\n"
+                             "    vec3 n = normalize(vNormal);\n"
+                             "    vec3 l = normalize(uLightPosition - vPosition);\n"
+                             "    vec3 v = normalize(-vPosition);\n"
+                             "    fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0) + specularTerm(n, l, v);\n"
+                             "}\n";
+  EXPECT_TRUE(has(lines_of_kind(helper, K::guard_added), "if (!(dot(n, l) > 0.0)) { return vec4(0.0); } vec3 r = reflect(-l, n);"));
+
+  // Said in the homework's terms, with the student's names.
+  grade::RepairEdit factor;
+  factor.kind = K::factor_added;
+  factor.subject = "uDiffuseColor";
+  factor.other = "uLightColor";
+  EXPECT_EQ(grade::repair_words(factor), "`uDiffuseColor` is not multiplied by `uLightColor`, as the homework's formula multiplies it");
+  grade::RepairEdit guard;
+  guard.kind = K::guard_added;
+  guard.subject = "spec";
+  guard.other = "dot(norm, lightDir) > 0.0";
+  EXPECT_EQ(grade::repair_words(guard),
+            "`spec` gets the highlight where the surface faces away from the light too: the homework adds it only where "
+            "`dot(norm, lightDir) > 0.0`");
+}
+
+// A local each program leaves unaligned, one of a type on each side, is aligned: the half vector
+// written into the tutorial's reflectDir gets the reference's R back in the student's names.
+TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsNames) {
+  const std::string tutorial = testkit::with_tutorial_main(glsl_of("specular", shader::Stage::fragment));
+  const auto restored = lines_of_kind(typed(tutorial, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)"), grade::RepairKind::value_restored);
+  EXPECT_TRUE(has(restored, "vec3 reflectDir = reflect(-lightDir, norm);"));
 }

@@ -7,7 +7,9 @@
 
 #include "core/words.h"
 #include "grade/repair_edits.h"
+#include "grade/stage_names.h"
 #include "grade/stage_tokens.h"
+#include "grade/student_names.h"
 #include "grade/value_difference.h"
 #include "grade/value_variation.h"
 
@@ -85,13 +87,6 @@ size_t assignment_of(const Stage& s, std::string_view name) {
     if (k + 1 < s.size() && one_of(s.t[k].text, {"+", "-", "*", "/"})) ++k;
     if (s.is(k, "=") && !s.is(k + 1, "=")) return i;
   }
-  return s.size();
-}
-
-// The `{` that opens main's body, or size().
-size_t main_start(const Stage& s) {
-  for (size_t i = 0; i + 1 < s.size(); ++i)
-    if (s.is(i, "main") && s.is(i + 1, "(") && s.is(s.close_of(i + 1) + 1, "{")) return s.close_of(i + 1) + 1;
   return s.size();
 }
 
@@ -246,10 +241,15 @@ void restored_writes(const Stage& s, const Stage& reference, std::vector<RepairE
 void restored_values(const Stage& s, const Stage& reference, std::vector<RepairEdit>& out) {
   std::set<std::string_view, std::less<>> seen;
   const StageVariation student_varies(s.t), reference_varies(reference.t);
+  const NameMap names = student_names(s, reference);
+  NameMap reference_names;  // the student's name -> the reference's, where the two differ
+  for (const auto& [theirs, own] : names) reference_names.emplace(own, theirs);
   for (size_t i = 1; i + 2 < s.size(); ++i) {
     if (!s.identifier(i) || !s.is(i + 1, "=") || s.is(i + 2, "=") || !seen.insert(s.t[i].text).second) continue;
     const std::string_view name = s.t[i].text;
-    const auto own = whole_writes_of(s, name), theirs = whole_writes_of(reference, name);
+    const auto aligned = reference_names.find(name);
+    const std::string_view reference_name = aligned == reference_names.end() ? name : std::string_view(aligned->second);
+    const auto own = whole_writes_of(s, name), theirs = whole_writes_of(reference, reference_name);
     if (own.size() != theirs.size()) continue;
     for (size_t w = 0; w < own.size(); ++w) {
       const size_t first = value_first(s, own[w]), ref_first = value_first(reference, theirs[w]);
@@ -257,35 +257,32 @@ void restored_values(const Stage& s, const Stage& reference, std::vector<RepairE
           s.t[own[w] + 1].text != reference.t[theirs[w] + 1].text)
         continue;  // not the same form of write
       const size_t last = s.expression_last(first), ref_last = reference.expression_last(ref_first);
-      if (last < first || ref_last < ref_first || unspaced(s.text(first, last)) == unspaced(reference.text(ref_first, ref_last))) continue;
-      RepairEdit e = s.replace(RepairKind::value_restored, first, last, std::string(reference.text(ref_first, ref_last)), name);
+      if (last < first || ref_last < ref_first) continue;
+      // The reference's value, in the student's names where the student names the local otherwise
+      // (`vec3 toEye = normalize(-vPosition)` for `vec3 V = ...`). A local both name alike gets the
+      // reference's text as it is: a value of it in other names would draw as the reference at a
+      // line that sums what the student's mistake, elsewhere, computed.
+      const auto restored = aligned == reference_names.end() ? std::optional<std::string>(reference.text(ref_first, ref_last))
+                                                             : in_student_names(s, reference, ref_first, ref_last, names);
+      if (!restored || unspaced(s.text(first, last)) == unspaced(*restored)) continue;
+      RepairEdit e = s.replace(RepairKind::value_restored, first, last, *restored, name);
       e.nodes = operands(reference, ref_first, ref_last);
-      const std::span<const GlslToken> student_value(s.t.begin() + first, last - first + 1),
-          reference_value(reference.t.begin() + ref_first, ref_last - ref_first + 1);
+      const std::vector<GlslToken> restored_tokens = shader::tokens_of(*restored);
+      const std::span<const GlslToken> student_value(s.t.begin() + first, last - first + 1), reference_value(restored_tokens),
+          as_the_reference_writes_it(reference.t.begin() + ref_first, ref_last - ref_first + 1);
       if (const auto d = value_difference(student_value, reference_value, name)) {
         e.said_as = d->said_as;
         e.subject = d->subject;
         e.other = d->other;
-      } else if (student_varies.constant(student_value) && reference_varies.varies(reference_value)) {
+      } else if (student_varies.constant(student_value) && reference_varies.varies(as_the_reference_writes_it)) {
         e.constant_value = true;
         std::vector<std::string> inputs;
-        for (const auto& input : reference_varies.inputs_read(reference_value)) inputs.push_back("`" + input + "`");
+        for (const auto& input : reference_varies.inputs_read(as_the_reference_writes_it)) inputs.push_back("`" + input + "`");
         e.other = and_list(inputs);
       }
       out.push_back(std::move(e));
     }
   }
-}
-
-// The conditions of a stage's `if`s, in order: the first and last token inside each `if (...)`.
-std::vector<std::pair<size_t, size_t>> conditions_of(const Stage& s) {
-  std::vector<std::pair<size_t, size_t>> out;
-  for (size_t i = 0; i + 2 < s.size(); ++i) {
-    if (!s.is(i, "if") || !s.is(i + 1, "(")) continue;
-    const size_t close = s.close_of(i + 1);
-    if (close < s.size() && close > i + 2) out.push_back({i + 2, close - 1});
-  }
-  return out;
 }
 
 // A condition the student's stage tests otherwise than the reference's: each of the student's

@@ -1,6 +1,7 @@
 #pragma once
 // One repair edit (docs/grading.md, "Repairs"): what it does, the span of one stage's GLSL it
 // replaces, and how it is shown. The edits found in a program are grade/repair_edits.h's.
+#include <iterator>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,6 +16,13 @@ enum class RepairKind {
   normalised,        // vec3 L = X;  ->  vec3 L = normalize(X);
   unnormalised,      // normalize(X)  ->  X
   clamped,           // dot(V, R)  ->  max(0.0, dot(V, R))
+  // What a student left out, put back at their own line (grade/left_out_edits.h):
+  factor_added,      // uDiffuseColor * max(...)  ->  uDiffuseColor * uLightColor * max(...): a factor the reference multiplies by
+  term_added,        // color = D;  ->  color = uAmbientColor + D;  a uniform the reference adds and the student never reads
+  exponent_added,    // max(dot(V, R), 0.0)  ->  pow(max(dot(V, R), 0.0), specularAlpha)
+  guard_added,       // { ... }  ->  if (dot(N, L) > 0.0) { ... }: the reference's condition, in the student's names
+  value_added,       // float spec = pow(...); never read  ->  ...; color += uSpecularColor * uLightColor * spec;  the reference's term
+  swizzle_removed,   // color.bgra  ->  color
   direction_w,       // vec4(n, 1.0)  ->  vec4(n, 0.0), and the other way
   negation_removed,  // -X  ->  X
   negation_added,    // reflect(L, N)  ->  reflect(-L, N); vec3 V = X  ->  vec3 V = -X
@@ -35,6 +43,12 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::normalised, "normalised"},
     {RepairKind::unnormalised, "unnormalised"},
     {RepairKind::clamped, "clamped"},
+    {RepairKind::factor_added, "factor_added"},
+    {RepairKind::term_added, "term_added"},
+    {RepairKind::exponent_added, "exponent_added"},
+    {RepairKind::guard_added, "guard_added"},
+    {RepairKind::value_added, "value_added"},
+    {RepairKind::swizzle_removed, "swizzle_removed"},
     {RepairKind::direction_w, "direction_w"},
     {RepairKind::negation_removed, "negation_removed"},
     {RepairKind::negation_added, "negation_added"},
@@ -51,6 +65,7 @@ inline constexpr EnumName<RepairKind> kRepairKindNames[] = {
     {RepairKind::value_restored, "value_restored"},
     {RepairKind::condition_restored, "condition_restored"},
 };
+static_assert(std::size(kRepairKindNames) == static_cast<std::size_t>(RepairKind::condition_restored) + 1, "a kind without its name");
 
 // Whether an edit of this kind writes the reference's own text (a statement or a value restored):
 // such an edit is named, never shown as a repaired line.
@@ -61,7 +76,11 @@ constexpr bool writes_reference_text(RepairKind kind) {
 
 // Whether an edit of this kind reads the reference (grade::reference_edits): the search counts
 // these apart from the student's own edits (road::RepairBudget).
-constexpr bool reads_reference(RepairKind kind) { return kind == RepairKind::literal_refit || writes_reference_text(kind); }
+constexpr bool reads_reference(RepairKind kind) {
+  return kind == RepairKind::literal_refit || kind == RepairKind::factor_added || kind == RepairKind::term_added ||
+         kind == RepairKind::exponent_added || kind == RepairKind::guard_added || kind == RepairKind::value_added ||
+         writes_reference_text(kind);
+}
 
 // How much of a confirmed repair a reader is shown: what is wrong; what and where (the file's
 // line); or the repaired line too. A course chooses it for its students (the profile's
@@ -95,6 +114,10 @@ struct RepairEdit {
   // student's names for its locals aside: grade/aligned_lines.h): such an edit is tried before any
   // other, as the student's line aligned with the reference's.
   bool reads_as_reference = false;
+  // A line that reads as the reference's, edited all the same (grade/left_out_edits.h): the
+  // student reads the value it writes where the reference reads its counterpart clamped, or a
+  // guard goes in before its statement, which stays as it is.
+  bool edits_aligned_line = false;
   std::optional<OtherStageSpan> other_stage;  // flat_removed: the fragment stage's `flat`
   // value_restored: the student's own edit the restored value amounts to, where it is one
   // (grade/value_difference.h); its words are said, with `subject` and `other` set for them.

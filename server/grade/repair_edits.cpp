@@ -5,8 +5,10 @@
 #include <tuple>
 
 #include "grade/aligned_lines.h"
+#include "grade/left_out_edits.h"
 #include "grade/live_statements.h"
 #include "grade/reference_edits.h"
+#include "grade/stage_names.h"
 #include "grade/stage_tokens.h"
 #include "shader/glsl_lines.h"
 
@@ -16,28 +18,6 @@ namespace {
 
 using Stage = StageTokens;
 
-// The type each declared name has: `vec3 L`, `uniform vec4 uDiffuseColor`, `in vec3 vNormal`.
-std::map<std::string, std::string, std::less<>> declared_types(const Stage& s) {
-  std::map<std::string, std::string, std::less<>> types;
-  for (size_t i = 0; i + 1 < s.size(); ++i)
-    if (one_of(s.t[i].text, {"float", "vec2", "vec3", "vec4", "mat3", "mat4"}) && s.identifier(i + 1) && !s.is(i + 2, "("))
-      types.emplace(std::string(s.t[i + 1].text), std::string(s.t[i].text));
-  return types;
-}
-
-// A name a stage reads but does not write: a uniform or an input.
-std::map<std::string, std::string, std::less<>> read_only_names(const Stage& s) {
-  std::map<std::string, std::string, std::less<>> names;
-  for (size_t i = 0; i + 2 < s.size(); ++i) {
-    if (!one_of(s.t[i].text, {"uniform", "in", "attribute", "varying"})) continue;
-    if (s.stage == shader::Stage::vertex && s.is(i, "varying")) continue;  // a vertex stage writes its varyings
-    size_t k = i + 1;
-    if (one_of(s.t[k].text, {"lowp", "mediump", "highp", "flat", "smooth"})) ++k;
-    if (s.identifier(k) && s.identifier(k + 1) && s.is(k + 2, ";")) names.emplace(std::string(s.t[k + 1].text), std::string(s.t[k].text));
-  }
-  return names;
-}
-
 // `-X` for an operand, `-(X)` for anything longer.
 std::string negated(const Stage& s, size_t first, size_t last) {
   const std::string text(s.text(first, last));
@@ -45,7 +25,7 @@ std::string negated(const Stage& s, size_t first, size_t last) {
 }
 
 // vec3 L = X;  and  L = X;  for a vec3 L: normalise X, or negate it.
-void vector_values(const Stage& s, const std::map<std::string, std::string, std::less<>>& types, std::vector<RepairEdit>& out) {
+void vector_values(const Stage& s, const TypedNames& types, std::vector<RepairEdit>& out) {
   for (size_t i = 1; i + 2 < s.size(); ++i) {
     const bool declared = s.is(i - 1, "vec3") && s.identifier(i) && s.is(i + 1, "=");
     const auto type = types.find(s.t[i].text);
@@ -91,7 +71,7 @@ void calls(const Stage& s, std::vector<RepairEdit>& out) {
 }
 
 // -X -> X; 0.5 * X -> X; X * 2.0 -> X; M * P -> P for a matrix M; X + vec3(0.0, 4.0, 0.0) -> X.
-void operators(const Stage& s, const std::map<std::string, std::string, std::less<>>& types, std::vector<RepairEdit>& out) {
+void operators(const Stage& s, const TypedNames& types, std::vector<RepairEdit>& out) {
   for (size_t i = 1; i + 1 < s.size(); ++i) {
     const std::string_view op = s.t[i].text;
     const bool unary = before_operand(s.t[i - 1].text);
@@ -130,6 +110,26 @@ void operators(const Stage& s, const std::map<std::string, std::string, std::les
   }
 }
 
+// color.bgra -> color: a swizzle of three or four channels out of their order.
+void swizzles(const Stage& s, std::vector<RepairEdit>& out) {
+  for (size_t i = 1; i + 1 < s.size(); ++i) {
+    if (!s.is(i, ".") || !s.identifier(i + 1) || (!s.identifier(i - 1) && !s.is(i - 1, ")"))) continue;
+    const std::string_view field = s.t[i + 1].text;
+    if (field.size() < 3 || field.size() > 4) continue;
+    const bool colour = field.find_first_not_of("rgba") == std::string_view::npos, place = field.find_first_not_of("xyzw") == std::string_view::npos;
+    if ((!colour && !place) || std::string_view(colour ? "rgba" : "xyzw").starts_with(field)) continue;
+    size_t first = i - 1;
+    if (s.is(first, ")")) {
+      for (size_t k = first; k-- > 0;)
+        if (s.is(k, "(") && s.close_of(k) == first) {
+          first = k > 0 && s.identifier(k - 1) ? k - 1 : k;
+          break;
+        }
+    }
+    out.push_back(s.edit(RepairKind::swizzle_removed, s.begin(i), s.end(i + 1), "", i, s.text(first, i + 1)));
+  }
+}
+
 // A value a stage can read by name: a uniform or an input (from the start), or a local, from its
 // declaration on (blocks are not scopes here: a candidate that does not compile is passed over).
 struct Readable {
@@ -144,12 +144,6 @@ std::map<std::string, Readable, std::less<>> readable_names(const Stage& s) {
     if (one_of(s.t[i - 1].text, {"float", "vec3", "vec4"}) && s.identifier(i) && s.is(i + 1, "=") && !s.is(i + 2, "="))
       names.emplace(std::string(s.t[i].text), Readable{std::string(s.t[i - 1].text), i + 2});
   return names;
-}
-
-// Whether the name at `i` is read there: not declared, assigned or a field.
-bool read_at(const Stage& s, size_t i) {
-  if (i > 0 && (s.is(i - 1, ".") || s.identifier(i - 1))) return false;  // a field, or a declaration
-  return !(s.is(i + 1, "=") && !s.is(i + 2, "="));
 }
 
 // A uniform, an input or a local read where another of its type was meant.
@@ -169,7 +163,7 @@ void names(const Stage& s, std::vector<RepairEdit>& out) {
 
 // A matrix uniform missing from a product: put before an input vec4 (aVertexNormal) or before a
 // matrix that starts a product (uMeshToWorldMatrix * P).
-void matrices(const Stage& s, const std::map<std::string, std::string, std::less<>>& types, std::vector<RepairEdit>& out) {
+void matrices(const Stage& s, const TypedNames& types, std::vector<RepairEdit>& out) {
   const auto inputs = read_only_names(s);
   std::vector<std::string> matrices;
   for (const auto& [name, type] : inputs)
@@ -250,6 +244,7 @@ std::vector<RepairEdit> repair_edits(const Stage& s) {
   matrices(s, types, out);
   names(s, out);
   argument_orders(s, out);
+  swizzles(s, out);
   std::stable_sort(out.begin(), out.end(), smaller);
   return out;
 }
@@ -273,15 +268,17 @@ std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const
   std::vector<RepairEdit> out;
   const auto add = [&](const Stage& s, const Stage& theirs, const StageLiveness& live, const AlignedLines& lines) {
     std::vector<RepairEdit> edits = repair_edits(s);
-    if (!theirs.glsl.empty())
+    if (!theirs.glsl.empty()) {
       for (auto& e : reference_edits(s, theirs)) edits.push_back(std::move(e));
+      for (auto& e : left_out_edits(s, theirs)) edits.push_back(std::move(e));
+    }
     const auto student_lines = shader::lines_of(s.glsl);
     for (auto& e : edits) {
       if (live.dead(e.begin)) continue;
       // A line the student wrote as the reference writes it (their names for its locals aside) is
       // right as it is: an edit there that makes up for a mistake elsewhere would name a change
       // the student never made.
-      if (!inserts_statement(e.kind) && lines.reads_as_reference(line_of(student_lines, e))) continue;
+      if (!inserts_statement(e.kind) && !e.edits_aligned_line && lines.reads_as_reference(line_of(student_lines, e))) continue;
       e.reads_as_reference = inserts_statement(e.kind) || lines.reads_as_reference(edited_line(s.glsl, e));
       out.push_back(std::move(e));
     }

@@ -22,6 +22,14 @@ std::string repair_words(const RepairEdit& e, std::string_view meaning) {
     case RepairKind::normalised: return name + " is not normalised: " + (meaning.empty() ? "a direction" : std::string(meaning)) + " must be a unit vector";
     case RepairKind::unnormalised: return x + " is normalised where the homework uses its length as it is";
     case RepairKind::clamped: return x + " is not clamped at 0: a cosine below 0 must count as 0, max(0.0, ...)";
+    case RepairKind::factor_added: return x + " is not multiplied by `" + e.other + "`, as the homework's formula multiplies it";
+    case RepairKind::term_added: return x + " is never added: the homework's colour adds it to the other terms";
+    case RepairKind::exponent_added: return x + " is not raised to the exponent `" + e.other + "`: the highlight is this cosine to the power alpha";
+    case RepairKind::value_added:
+      return x + " is computed and never used: the homework adds `" + e.other + "` to the colour";
+    case RepairKind::swizzle_removed: return x + " reorders the colour's channels: the homework uses them in order, red, green, blue";
+    case RepairKind::guard_added:
+      return x + " gets the highlight where the surface faces away from the light too: the homework adds it only where `" + e.other + "`";
     case RepairKind::direction_w:
       return e.other == "0.0" ? x + " is a direction, so its w must be 0: with w = 1 the matrix's translation moves it"
                               : x + " is a point, so its w must be 1: with w = 0 the matrix's translation is lost";
@@ -58,6 +66,13 @@ std::string repair_label(const RepairEdit& e, std::string_view symbol) {
     case RepairKind::normalised: return s + " not normalised";
     case RepairKind::unnormalised: return s + " normalised where the homework uses its length";
     case RepairKind::clamped: return s + " not clamped at 0";
+    case RepairKind::factor_added: return s + " not multiplied by `" + e.other + "`";
+    case RepairKind::term_added: return s + " never added";
+    // Alike for every student who made the mistake, whatever they named their values.
+    case RepairKind::exponent_added: return "the cosine not raised to the exponent";
+    case RepairKind::guard_added: return "the highlight not guarded by N.L > 0";
+    case RepairKind::value_added: return "a term computed and never added to the colour";
+    case RepairKind::swizzle_removed: return "the colour's channels reordered";
     case RepairKind::direction_w: return s + (e.other == "0.0" ? " transformed as a point (w = 1)" : " transformed as a direction (w = 0)");
     case RepairKind::negation_removed:
     case RepairKind::negation_added: return s + " with the wrong sign";

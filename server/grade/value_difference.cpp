@@ -195,9 +195,22 @@ std::optional<ValueDifference> w_given(Tokens a, Tokens b) {
 
 }  // namespace
 
-std::optional<ValueDifference> value_difference(Tokens student, Tokens reference, std::string_view name) {
-  const Tokens a = unwrapped(student), b = unwrapped(reference);
-  if (a.empty() || b.empty() || same(a, b)) return std::nullopt;
+namespace {
+
+// A sign changed inside normalize(X), X the whole argument: the direction itself has the wrong
+// sign, said of the student's local ("`toEye`, the direction to the eye, has the wrong sign")
+// rather than of what it normalises.
+std::optional<ValueDifference> said_of_the_direction(std::optional<ValueDifference> d, Tokens a, std::string_view name) {
+  if (!d || (d->said_as != RepairKind::negation_added && d->said_as != RepairKind::negation_removed)) return d;
+  const auto args = call_of(a, "normalize");
+  if (!args || args->size() != 1) return d;
+  std::string argument = written((*args)[0]);
+  if (argument.starts_with("-")) argument = argument.substr(argument.find_first_not_of("- "));
+  if (argument == d->subject) d->subject = std::string(name);
+  return d;
+}
+
+std::optional<ValueDifference> difference(Tokens a, Tokens b, std::string_view name) {
   if (auto whole = whole_change(a, b, std::string(name))) return whole;
   // Where the two share tokens before and after, the change is what lies between.
   size_t before = 0;
@@ -211,6 +224,14 @@ std::optional<ValueDifference> value_difference(Tokens student, Tokens reference
   }
   if (extra_a.size() == 1 && extra_b.size() == 1) return one_token(a, before, b, before, name);
   return one_side(a, extra_a, extra_b, before);
+}
+
+}  // namespace
+
+std::optional<ValueDifference> value_difference(Tokens student, Tokens reference, std::string_view name) {
+  const Tokens a = unwrapped(student), b = unwrapped(reference);
+  if (a.empty() || b.empty() || same(a, b)) return std::nullopt;
+  return said_of_the_direction(difference(a, b, name), a, name);
 }
 
 }  // namespace shadelab::grade

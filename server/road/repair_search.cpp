@@ -192,8 +192,9 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
   if (report.pass || report.frames.empty() || !report.diagnostics.empty()) return false;
   if (report.explanation && report.explanation->explained) return false;
   const auto changed = [&](const grade::StarterConstant& c) { return report.diagnosis == grade::changed_constant_diagnosis(c.variable); };
+  // The grader's own swapped channels say what, never where: the search finds the line.
   return report.diagnosis.empty() || report.diagnosis == grade::to_string(grade::Diagnosis::nan) ||
-         std::any_of(constants.begin(), constants.end(), changed);
+         report.diagnosis == grade::to_string(grade::Diagnosis::swapped_channels) || std::any_of(constants.begin(), constants.end(), changed);
 }
 
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,

@@ -50,7 +50,8 @@ struct RepairBudget {
 // Whether a report is one the search is for: a failing grade that drew its frames and that
 // neither the formula nor the course's catalogue explained. A starter constant the student
 // changed (one of `constants`, the grader's own diagnosis) names one change: whether it is the
-// only one, and where any other is, only a render says, so the search runs for it too.
+// only one, and where any other is, only a render says, so the search runs for it too; and for
+// the grader's swapped channels, which say what and never where.
 bool wants_repair(const grade::Report& report, const std::vector<grade::StarterConstant>& constants);
 
 // Searches the program `failed` drew (a grade job), and writes into `report` what it tried

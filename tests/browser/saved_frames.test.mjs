@@ -153,6 +153,8 @@ describe("saved frames, made as the course's page makes them", () => {
         if (invisible) return assert.ok(frames.pass, frames.messages.join(" | "));
         assert.equal(frames.pass, false, `${mistake.id}'s frames passed`);
         assert.equal(frames.diagnosis, mistake.id, frames.messages.join(" | "));
+        const verdict = await page.textContent(`#saved-results article[data-checkpoint=${checkpoint.name}] .verdict`);
+        assert.ok(!verdict.includes(mistake.id), `the page shows the internal id: ${verdict}`);
       });
     }
 });

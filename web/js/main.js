@@ -253,9 +253,18 @@ async function gradeSavedFrames(checkpoint, files, withCode) {
   return body;
 }
 
+// The mistake in a few words beside a failing verdict: the confirmed repair's, else the formula's
+// where it explains the frames; never a report's internal id (`unguarded_specular`). What is
+// wrong, at which line, follows in the messages.
+function mistakeWords(report) {
+  if (report.pass) return "";
+  const words = report.repairSearch?.found?.label || (report.explanation?.explained ? report.explanation.label : "");
+  return words ? ` (${words})` : "";
+}
+
 function verdictOf(report, what) {
   return element("p", { className: `verdict ${report.pass ? "pass" : "fail"}`,
-                        textContent: `${what}: ${report.pass ? "pass" : "fail"}${report.pass || !report.diagnosis ? "" : ` (${report.diagnosis})`}` });
+                        textContent: `${what}: ${report.pass ? "pass" : "fail"}${mistakeWords(report)}` });
 }
 
 function showSavedResult(checkpoint, result) {

@@ -1,0 +1,46 @@
+#include "grade/stage_names.h"
+
+namespace shadelab::grade {
+
+TypedNames declared_types(const StageTokens& s) {
+  TypedNames types;
+  for (size_t i = 0; i + 1 < s.size(); ++i)
+    if (one_of(s.t[i].text, {"float", "vec2", "vec3", "vec4", "mat3", "mat4"}) && s.identifier(i + 1) && !s.is(i + 2, "("))
+      types.emplace(std::string(s.t[i + 1].text), std::string(s.t[i].text));
+  return types;
+}
+
+TypedNames read_only_names(const StageTokens& s) {
+  TypedNames names;
+  for (size_t i = 0; i + 2 < s.size(); ++i) {
+    if (!one_of(s.t[i].text, {"uniform", "in", "attribute", "varying"})) continue;
+    if (s.stage == shader::Stage::vertex && s.is(i, "varying")) continue;  // a vertex stage writes its varyings
+    size_t k = i + 1;
+    if (one_of(s.t[k].text, {"lowp", "mediump", "highp", "flat", "smooth"})) ++k;
+    if (s.identifier(k) && s.identifier(k + 1) && s.is(k + 2, ";")) names.emplace(std::string(s.t[k + 1].text), std::string(s.t[k].text));
+  }
+  return names;
+}
+
+bool read_at(const StageTokens& s, size_t i) {
+  if (i > 0 && (s.is(i - 1, ".") || (s.identifier(i - 1) && !s.is(i - 1, "return")))) return false;  // a field, or a declaration
+  return !(s.is(i + 1, "=") && !s.is(i + 2, "="));
+}
+
+size_t main_start(const StageTokens& s) {
+  for (size_t i = 0; i + 1 < s.size(); ++i)
+    if (s.is(i, "main") && s.is(i + 1, "(") && s.is(s.close_of(i + 1) + 1, "{")) return s.close_of(i + 1) + 1;
+  return s.size();
+}
+
+std::vector<std::pair<size_t, size_t>> conditions_of(const StageTokens& s) {
+  std::vector<std::pair<size_t, size_t>> out;
+  for (size_t i = 0; i + 2 < s.size(); ++i) {
+    if (!s.is(i, "if") || !s.is(i + 1, "(")) continue;
+    const size_t close = s.close_of(i + 1);
+    if (close < s.size() && close > i + 2) out.push_back({i + 2, close - 1});
+  }
+  return out;
+}
+
+}  // namespace shadelab::grade
