@@ -626,6 +626,9 @@ TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
                              "    fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0) + specularTerm(n, l, v);\n"
                              "}\n";
   EXPECT_TRUE(has(lines_of_kind(helper, K::guard_added), "if (!(dot(n, l) > 0.0)) { return vec4(0.0); } vec3 r = reflect(-l, n);"));
+  // The helper never called: added to the colour, with main's locals of its parameters' names.
+  EXPECT_TRUE(has(lines_of_kind(typed(helper, " + specularTerm(n, l, v);", ";"), K::value_added),
+                  "fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0); fragColor += specularTerm(n, l, v);"));
 
   // Said in the homework's terms, with the student's names.
   grade::RepairEdit factor;

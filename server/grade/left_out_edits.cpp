@@ -402,6 +402,38 @@ void values_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) 
   }
 }
 
+// vec4 specularTerm(vec3 n, vec3 l, vec3 v) { ... pow(...) ... } never called  ->  fragColor = ...;
+// fragColor += specularTerm(n, l, v);  a helper computing what a term of the reference computes,
+// called with main's locals of its parameters' names, added to an output after its last write.
+void helpers_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) {
+  const TypedNames uniforms = read_only_names(s), outputs = output_types(s);
+  for (const Helper& h : helpers_of(s)) {
+    const std::string_view name = s.t[h.params_first - 2].text;
+    if (calls_of(s, name) != 1 || !has_token(s, "pow", h.open, h.close) || !term_with(r, "pow", "x", uniforms)) continue;
+    std::vector<std::string> params;
+    for (size_t k = h.params_first; k <= h.params_last; ++k)
+      if (s.identifier(k) && (k == h.params_last || s.is(k + 1, ","))) params.emplace_back(s.t[k].text);
+    bool in_main = true;
+    for (const auto& p : params) {
+      bool declared = false;
+      for (size_t k = main_start(s); k + 1 < s.size() && !declared; ++k) declared = s.is(k, p) && s.identifier(k - 1) && s.is(k + 1, "=");
+      in_main = in_main && declared;
+    }
+    if (!in_main) continue;
+    std::string call = std::string(name) + "(";
+    for (size_t k = 0; k < params.size(); ++k) call += (k ? ", " : "") + params[k];
+    call += ")";
+    for (const auto& [target, type] : outputs) {
+      const size_t written = last_write(s, target, true);
+      if (type != h.type || written >= s.size() || !main_of(s, written)) continue;
+      const size_t after = statement_end(s, written);
+      RepairEdit e = s.edit(RepairKind::value_added, s.end(after), s.end(after), " " + target + " += " + call + ";", after, name);
+      e.other = call;
+      out.push_back(std::move(e));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<RepairEdit> left_out_edits(const StageTokens& s, const StageTokens& r) {
@@ -414,6 +446,7 @@ std::vector<RepairEdit> left_out_edits(const StageTokens& s, const StageTokens& 
   guards_added(s, r, out);
   clamps_added(s, r, out);
   values_added(s, r, out);
+  helpers_added(s, r, out);
   return out;
 }
 
