@@ -104,9 +104,10 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
   };
   for (size_t i = 0; i < singles.size() && singles[i].from_class; ++i)
     for (size_t j = i + 1; j < singles.size() && singles[j].from_class; ++j) add(i, j);
+  const auto aligned = [&](size_t i) { return singles[i].edits.front().reads_as_reference || puts_back(singles[i].edits.front().kind); };
   for (size_t i = 0; i < singles.size(); ++i)
     for (size_t j = i + 1; j < singles.size(); ++j)
-      if (singles[i].edits.front().reads_as_reference && singles[j].edits.front().reads_as_reference) add(i, j);
+      if (aligned(i) && aligned(j)) add(i, j);
   size_t nearest = distances.size();
   for (size_t i = 0; i < distances.size(); ++i)
     if (distances[i] < own && (nearest == distances.size() || distances[i] < distances[nearest])) nearest = i;

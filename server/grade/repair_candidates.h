@@ -75,8 +75,8 @@ std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const Can
 // Pairs for a program no single edit repairs, at most `counts.pairs`, in this order:
 // - two singles the class offers (two of a passing program's values, where the student's program
 //   is written as that program is), in the singles' order;
-// - two singles that each make their line read as the reference's (the student's program aligned
-//   with the reference at two lines), in the singles' order;
+// - two singles that each make their line read as the reference's or put back what the student
+//   left out (the student's program aligned with the reference at two lines), in the singles' order;
 // - the single that drew nearest the reference (`distances`, each single's screen; a mistake of two
 //   mended must draw nearer than the student's `own` program) with each other single, in the
 //   singles' order. A second mistake's edit need not draw nearer alone: the first mistake's error

@@ -74,12 +74,18 @@ constexpr bool writes_reference_text(RepairKind kind) {
          kind == RepairKind::condition_restored;
 }
 
+// Whether an edit of this kind puts back what the student left out, read from the reference's
+// formula (grade/left_out_edits.h): the student's line aligned with the reference's by what it
+// lacks, as a line that then reads as the reference's is by its tokens.
+constexpr bool puts_back(RepairKind kind) {
+  return kind == RepairKind::factor_added || kind == RepairKind::term_added || kind == RepairKind::exponent_added ||
+         kind == RepairKind::guard_added || kind == RepairKind::value_added;
+}
+
 // Whether an edit of this kind reads the reference (grade::reference_edits): the search counts
 // these apart from the student's own edits (road::RepairBudget).
 constexpr bool reads_reference(RepairKind kind) {
-  return kind == RepairKind::literal_refit || kind == RepairKind::factor_added || kind == RepairKind::term_added ||
-         kind == RepairKind::exponent_added || kind == RepairKind::guard_added || kind == RepairKind::value_added ||
-         writes_reference_text(kind);
+  return kind == RepairKind::literal_refit || puts_back(kind) || writes_reference_text(kind);
 }
 
 // How much of a confirmed repair a reader is shown: what is wrong; what and where (the file's
