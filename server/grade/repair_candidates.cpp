@@ -104,6 +104,18 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
   };
   for (size_t i = 0; i < singles.size() && singles[i].from_class; ++i)
     for (size_t j = i + 1; j < singles.size() && singles[j].from_class; ++j) add(i, j);
+  // A single that puts back a term or a statement, with each edit of a line only that could make
+  // live (V's line, where the deleted term was all that read V): a mistake the missing term hid.
+  std::vector<RepairEdit> dead;
+  for (size_t i = 0; i < singles.size(); ++i) {
+    const RepairEdit& a = singles[i].edits.front();
+    if (a.kind != RepairKind::write_restored && a.kind != RepairKind::statement_restored && a.kind != RepairKind::value_added) continue;
+    if (dead.empty() && !p.reference_fragment.empty()) dead = program_repair_edits(ProgramTokens(p.student()), ProgramTokens(p.reference()), Liveness::dead);
+    for (const RepairEdit& b : dead) {
+      if (out.size() >= static_cast<size_t>(std::max(0, counts.pairs))) break;
+      if (!overlapping(a, b)) out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
+    }
+  }
   const auto aligned = [&](size_t i) { return singles[i].edits.front().reads_as_reference || puts_back(singles[i].edits.front().kind); };
   for (size_t i = 0; i < singles.size(); ++i)
     for (size_t j = i + 1; j < singles.size(); ++j)

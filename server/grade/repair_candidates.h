@@ -75,6 +75,8 @@ std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const Can
 // Pairs for a program no single edit repairs, at most `counts.pairs`, in this order:
 // - two singles the class offers (two of a passing program's values, where the student's program
 //   is written as that program is), in the singles' order;
+// - a single that puts back a term or a statement, with each edit of a line only that could make
+//   live (grade/repair_edits.h, Liveness::dead): a mistake the missing term hid;
 // - two singles that each make their line read as the reference's or put back what the student
 //   left out (the student's program aligned with the reference at two lines), in the singles' order;
 // - the single that drew nearest the reference (`distances`, each single's screen; a mistake of two

@@ -261,7 +261,7 @@ std::string_view line_of(const std::vector<std::string_view>& lines, const Repai
 
 }  // namespace
 
-std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference) {
+std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference, Liveness which) {
   const StageLiveness fragment_live = fragment_liveness(student.fragment);
   const StageLiveness vertex_live = vertex_liveness(student.vertex, fragment_live.live_names);
   const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
@@ -274,7 +274,7 @@ std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const
     }
     const auto student_lines = shader::lines_of(s.glsl);
     for (auto& e : edits) {
-      if (live.dead(e.begin)) continue;
+      if (live.dead(e.begin) != (which == Liveness::dead)) continue;
       // A line the student wrote as the reference writes it (their names for its locals aside) is
       // right as it is: an edit there that makes up for a mistake elsewhere would name a change
       // the student never made.
@@ -286,7 +286,7 @@ std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const
   add(student.vertex, reference.vertex, vertex_live, vertex_lines);
   add(student.fragment, reference.fragment, fragment_live, fragment_lines);
   std::vector<RepairEdit> flat;
-  flat_removals(student.vertex, student.fragment, flat);
+  if (which == Liveness::live) flat_removals(student.vertex, student.fragment, flat);
   for (auto& e : flat) {
     const RepairEdit in{shader::Stage::fragment, e.kind, e.other_stage->begin, e.other_stage->end, e.other_stage->with};
     e.reads_as_reference = vertex_lines.reads_as_reference(edited_line(student.vertex.glsl, e)) &&

@@ -20,7 +20,12 @@ std::vector<RepairEdit> repair_edits(const StageTokens& stage);
 // Both stages' edits, smallest first, less those in an assignment that cannot reach what the
 // program draws (grade/live_statements.h): the candidates a repair search tries, in its order.
 // With the reference's stages (empty: none), the reference's edits too.
-std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference = {});
+// With `Liveness::dead`, only the edits that list leaves out for their statement's being dead:
+// a pair's second edit where its first puts back what makes that statement live again (a
+// deleted term that read V and R).
+enum class Liveness { live, dead };
+std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference = {},
+                                             Liveness which = Liveness::live);
 
 // "Smaller": an edit whose line then reads as the reference's first, then fewer nodes, then the
 // kind's order above, then the vertex stage before the fragment, then the place in the stage.
