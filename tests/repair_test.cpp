@@ -490,7 +490,7 @@ TEST(RepairCandidatesTest, TheClassComesFirstEachKindWithinItsCountAndNoPairTouc
                                                              "vec3 halfway = normalize(lightDir + viewDir);\n        vec3 reflectDir = halfway;")};
   const auto program = grade::repair_program(vertex, fragment, specular->vertex, specular->fragment,
                                              {{specular->vertex, {"classmate.glsl", classmate}}});
-  ASSERT_TRUE(program.has_value());
+  ASSERT_TRUE(program.ok()) << program.error().message;
   ASSERT_EQ(program->classmates.size(), 1u);
 
   const grade::CandidateCounts counts{40, 4, 3, 3, 4};
@@ -651,4 +651,45 @@ TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsName
   const std::string tutorial = testkit::with_tutorial_main(glsl_of("specular", shader::Stage::fragment));
   const auto restored = lines_of_kind(typed(tutorial, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)"), grade::RepairKind::value_restored);
   EXPECT_TRUE(has(restored, "vec3 reflectDir = reflect(-lightDir, norm);"));
+}
+
+// A hostile stage is not read past the search's budget: finding edits grows with the square of a
+// stage's length (a 64 KB stage of one-line statements listed 700,000 edits in 3.7 s of the
+// server's own time), so a stage over kRepairTokensAStage gets no search and the report says why;
+// one within it is read, and a classmate's stage over it is passed over.
+TEST(RepairSearchTest, AStageBeyondTheSearchsTokenBudgetIsNotReadAndTheReportSaysWhy) {
+  const course::Course& c = course::builtin_course();
+  const course::Preset* specular = c.preset("specular");
+  ASSERT_NE(specular, nullptr);
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string head = reference.substr(0, reference.find("void main(void) {"));
+  // Each line 19 tokens: a local read once more, as the edits that swap names multiply.
+  const auto stage_of = [&](size_t lines) {
+    std::string body = "void main(void) {\n  vec3 N = normalize(vNormal);\n  fragColor = vec4(0.0);\n";
+    for (size_t i = 0; i < lines; ++i) body += "  float c" + std::to_string(i) + " = dot(N, N); fragColor += vec4(c" + std::to_string(i) + ");\n";
+    return shader::ShaderFile{"hostile_frag.glsl", head + body + "}\n"};
+  };
+  const shader::ShaderFile within = stage_of(150), beyond = stage_of(1200);
+  const auto read = grade::repair_program(specular->vertex, within, specular->vertex, specular->fragment, {{specular->vertex, beyond}});
+  ASSERT_TRUE(read.ok()) << read.error().message;
+  EXPECT_TRUE(read->classmates.empty()) << "a classmate's stage over the budget is passed over";
+  const auto refused = grade::repair_program(specular->vertex, beyond, specular->vertex, specular->fragment, {});
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().code, ErrorCode::payload_too_large);
+  EXPECT_NE(refused.error().message.find("the fragment stage holds"), std::string::npos) << refused.error().message;
+
+  // Through the road: the grade's report says why no search ran, and none did.
+  worker::PoolConfig config;
+  config.workers = 1;
+  config.executable = SHADELAB_CLI;
+  config.warm_up = worker::WarmUp::none;
+  worker::WorkerPool pool(config);
+  worker::Job job = worker::course_job(c, worker::JobKind::grade, specular->vertex, beyond);
+  job.grade.reference_vertex = specular->vertex;
+  job.grade.reference_fragment = specular->fragment;
+  grade::Report report;
+  road::search_repair(pool, job, "", grade::RepairShown::repaired_line, {}, report);
+  EXPECT_FALSE(report.repair_search.has_value());
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("no repair was searched for: the fragment stage holds"), std::string::npos) << report.warnings[0];
 }

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "grade/classmate_edits.h"
+#include "shader/glsl_lines.h"
 
 namespace shadelab::grade {
 
@@ -29,18 +30,28 @@ std::vector<RepairEdit> class_edits(const RepairProgram& p, const ProgramTokens&
   return classmate_edits(student, reference, reference_edits, nearest);
 }
 
+size_t token_count(std::string_view glsl) { return shader::tokens_of(glsl).size(); }
+
+// A classmate's stage the search may read: unwrapped, and within the budget a student's stage has.
+bool readable(const std::string& glsl) { return !glsl.empty() && token_count(glsl) <= kRepairTokensAStage; }
+
 bool overlapping(const RepairEdit& a, const RepairEdit& b) {
   return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end;  // touching spans count: one token's edits
 }
 
 }  // namespace
 
-std::optional<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
-                                            const shader::ShaderFile& reference_vertex, const shader::ShaderFile& reference_fragment,
-                                            const std::vector<PassingProgram>& classmates) {
+Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
+                                       const shader::ShaderFile& reference_vertex, const shader::ShaderFile& reference_fragment,
+                                       const std::vector<PassingProgram>& classmates) {
   auto v = shader::unwrap(vertex, shader::Stage::vertex);
   auto f = shader::unwrap(fragment, shader::Stage::fragment);
-  if (!v || !f) return std::nullopt;
+  if (!v || !f) return Error{ErrorCode::invalid_argument, "a stage of the program cannot be unwrapped"};
+  for (const auto* stage : {&*v, &*f})
+    if (const size_t n = token_count(stage->glsl); n > kRepairTokensAStage)
+      return Error{ErrorCode::payload_too_large, "the " + std::string(stage == &*v ? "vertex" : "fragment") + " stage holds " +
+                                                     std::to_string(n) + " tokens, and the repair search reads at most " +
+                                                     std::to_string(kRepairTokensAStage) + " a stage"};
   RepairProgram p{{&vertex, std::move(*v)},
                   {&fragment, std::move(*f)},
                   glsl_or_empty(reference_vertex, shader::Stage::vertex),
@@ -48,7 +59,7 @@ std::optional<RepairProgram> repair_program(const shader::ShaderFile& vertex, co
                   {}};
   for (const auto& c : classmates) {
     auto cv = glsl_or_empty(c.vertex, shader::Stage::vertex), cf = glsl_or_empty(c.fragment, shader::Stage::fragment);
-    if (!cv.empty() && !cf.empty()) p.classmates.emplace_back(std::move(cv), std::move(cf));
+    if (readable(cv) && readable(cf)) p.classmates.emplace_back(std::move(cv), std::move(cf));
   }
   return p;
 }

@@ -4,11 +4,11 @@
 // those that read the reference), then, where no single one repairs it, pairs of them. Decided
 // from tokens alone; whether a candidate repairs anything only a render says, and the road runs
 // those (road/repair_search.h).
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/expected.h"
 #include "grade/repair_edits.h"
 #include "shader/shader_source.h"
 
@@ -36,9 +36,18 @@ struct RepairProgram {
   StagePair reference() const { return {reference_vertex, reference_fragment}; }
 };
 
-// The student's program (the files the grade draws; none where a stage cannot be unwrapped) read
-// beside the grade's reference and the classmates' programs that can be.
-std::optional<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
+// The tokens a stage may hold for the search to read it (each of the student's stages, each
+// classmate's). Finding the edits reads a stage's statements against each other, so its time and
+// the edits it lists grow with the square of its length: a hostile 64 KB stage of one-line
+// statements lists 700,000 edits in 3.7 s of the server's own time. The homework's programs hold
+// 200-600 tokens; at this budget the worst a stage can do is 20,000 edits in 0.06 s.
+inline constexpr size_t kRepairTokensAStage = 4096;
+
+// The student's program (the files the grade draws) read beside the grade's reference and the
+// classmates' programs that can be read (unwrapped, within the budget); invalid_argument where a
+// stage of the student's cannot be unwrapped, payload_too_large, saying which and by how much,
+// where one holds more than kRepairTokensAStage tokens.
+Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
                                             const shader::ShaderFile& reference_vertex, const shader::ShaderFile& reference_fragment,
                                             const std::vector<PassingProgram>& classmates);
 

@@ -19,7 +19,7 @@ namespace {
 constexpr int kScreenFrames = 3;
 
 // The program `job` draws, read beside its reference and the class's passing programs.
-std::optional<grade::RepairProgram> program_of(const worker::Job& job, const std::vector<grade::PassingProgram>& classmates) {
+Expected<grade::RepairProgram> program_of(const worker::Job& job, const std::vector<grade::PassingProgram>& classmates) {
   return grade::repair_program(job.request.vertex, job.request.fragment, job.grade.reference_vertex, job.grade.reference_fragment,
                                classmates);
 }
@@ -201,7 +201,12 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
                    const grade::VectorWords& vectors, grade::Report& report, const RepairBudget& budget,
                    const std::vector<grade::PassingProgram>& classmates) {
   const auto program = program_of(failed, classmates);
-  if (!program || budget.confirmations < 1) return;  // nothing screened could be stated
+  if (!program) {
+    // A program the search cannot read gets no search: a stage beyond its budget says why.
+    if (program.error().code == ErrorCode::payload_too_large) report.warnings.push_back("no repair was searched for: " + program.error().message);
+    return;
+  }
+  if (budget.confirmations < 1) return;  // nothing screened could be stated
   Search search{pool, failed, mesh_bytes, budget, report};
   const grade::CandidateCounts counts = budget.candidate_counts();
   const std::vector<grade::RepairCandidate> singles = grade::single_candidates(*program, counts);
