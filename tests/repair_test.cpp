@@ -651,6 +651,22 @@ TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsName
   const std::string tutorial = testkit::with_tutorial_main(glsl_of("specular", shader::Stage::fragment));
   const auto restored = lines_of_kind(typed(tutorial, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)"), grade::RepairKind::value_restored);
   EXPECT_TRUE(has(restored, "vec3 reflectDir = reflect(-lightDir, norm);"));
+
+  // A helper written above main declares its r from l and n before main's lines align them: the
+  // names are aligned again until no more align, so r is R and V, computed as L, is the one left.
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string helpers = reference.substr(0, reference.find("void main(void) {")) +
+                              "vec4 specularTerm(vec3 n, vec3 l, vec3 v) {\n"
+                              "    vec3 r = reflect(-l, n);\n"
+                              "    return uSpecularColor * uLightColor * pow(max(dot(v, r), 0.0), 6.0);\n"
+                              "}\n"
+                              "void main(void) {\n"
+                              "    vec3 n = normalize(vNormal);\n"
+                              "    vec3 l = normalize(uLightPosition - vPosition);\n"
+                              "    vec3 v = l;\n"
+                              "    fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0) + specularTerm(n, l, v);\n"
+                              "}\n";
+  EXPECT_TRUE(has(lines_of_kind(helpers, grade::RepairKind::value_restored), "vec3 v = normalize(-vPosition);"));
 }
 
 // A hostile stage is not read past the search's budget: finding edits grows with the square of a

@@ -52,11 +52,16 @@ AlignedLines::AlignedLines(const StageTokens& student, const StageTokens& refere
     if (const size_t at = declared_at(line); at < line.size()) names_.reference_declares.insert(line[at]);
   for (const Tokens& line : student_lines_)
     if (const size_t at = declared_at(line); at < line.size()) names_.student_declares.insert(line[at]);
-  for (const Tokens& line : student_lines_) {
-    std::pair<std::string, std::string> declared;
-    if (reads_as_reference(line, declared) && !declared.first.empty()) {
-      names_.to_reference.insert(declared);
-      names_.from_reference.emplace(declared.second, declared.first);
+  // In the order the student wrote them, and again while a pass aligns more: a helper written
+  // above main declares `vec3 r = reflect(-l, n);` before main's lines align l and n.
+  for (bool more = true; more;) {
+    more = false;
+    for (const Tokens& line : student_lines_) {
+      std::pair<std::string, std::string> declared;
+      if (reads_as_reference(line, declared) && !declared.first.empty() && names_.to_reference.insert(declared).second) {
+        names_.from_reference.emplace(declared.second, declared.first);
+        more = true;
+      }
     }
   }
 }
