@@ -667,6 +667,26 @@ TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsName
                               "    fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0) + specularTerm(n, l, v);\n"
                               "}\n";
   EXPECT_TRUE(has(lines_of_kind(helpers, grade::RepairKind::value_restored), "vec3 v = normalize(-vPosition);"));
+
+  // A local aligned by its uses alone (l, not normalised, is L where it is read) aligns the
+  // declarations that read it (r is R), so V, from the eye, is the one left and gets its value back
+  // as the reference writes it: a candidate that reads as the reference, paired early.
+  const std::string two_wrong = reference.substr(0, reference.find("void main(void) {")) +
+                                "void main(void) {\n"
+                                "    vec3 n = normalize(vNormal);\n"
+                                "    vec3 l = uLightPosition - vPosition;\n"
+                                "    vec3 v = normalize(vPosition);\n"
+                                "    vec3 r = reflect(-l, n);\n"
+                                "    float lambert = max(dot(n, l), 0.0);\n"
+                                "    float phong = max(sign(dot(n, l)), 0.0) * pow(max(dot(v, r), 0.0), 6.0);\n"
+                                "    fragColor = uAmbientColor + lambert * uDiffuseColor * uLightColor + phong * uSpecularColor * uLightColor;\n"
+                                "}\n";
+  const std::string vertex = glsl_of("specular", shader::Stage::vertex);
+  bool restored_as_the_reference = false;
+  for (const auto& e : grade::program_repair_edits({vertex, two_wrong}, {vertex, reference}))
+    if (e.kind == grade::RepairKind::value_restored && grade::edited_line(two_wrong, e) == "vec3 v = normalize(-vPosition);")
+      restored_as_the_reference = e.reads_as_reference;
+  EXPECT_TRUE(restored_as_the_reference);
 }
 
 // A hostile stage is not read past the search's budget: finding edits grows with the square of a

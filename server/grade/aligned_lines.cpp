@@ -53,14 +53,27 @@ AlignedLines::AlignedLines(const StageTokens& student, const StageTokens& refere
   for (const Tokens& line : student_lines_)
     if (const size_t at = declared_at(line); at < line.size()) names_.student_declares.insert(line[at]);
   // In the order the student wrote them, and again while a pass aligns more: a helper written
-  // above main declares `vec3 r = reflect(-l, n);` before main's lines align l and n.
+  // above main declares `vec3 r = reflect(-l, n);` before main's lines align l and n. Where no
+  // declaration aligns any more, a local the student uses where the reference uses one of its own
+  // (`stands_for`) is aligned, and the declarations read again: `vec3 l = uLightPosition -
+  // vPosition;` (not normalised) is L by its uses, so `vec3 r = reflect(-l, n);` is R.
+  const auto align = [&](std::pair<std::string, std::string> names) {
+    if (!names_.to_reference.insert(names).second) return false;
+    names_.from_reference.emplace(names.second, names.first);
+    return true;
+  };
   for (bool more = true; more;) {
     more = false;
     for (const Tokens& line : student_lines_) {
       std::pair<std::string, std::string> declared;
-      if (reads_as_reference(line, declared) && !declared.first.empty() && names_.to_reference.insert(declared).second) {
-        names_.from_reference.emplace(declared.second, declared.first);
+      if (reads_as_reference(line, declared) && !declared.first.empty()) more = align(declared) || more;
+    }
+    if (more) continue;
+    for (const auto& name : names_.student_declares) {
+      if (names_.to_reference.contains(name) || names_.reference_declares.contains(name)) continue;
+      if (std::string theirs = stands_for(name); !theirs.empty() && align({name, std::move(theirs)})) {
         more = true;
+        break;  // one at a time: the next reads its uses with this one aligned
       }
     }
   }
