@@ -645,6 +645,45 @@ TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
             "`dot(norm, lightDir) > 0.0`");
 }
 
+// Two things left out, each at a line aligned by what it lacks, are paired before any nearest
+// single is: the clamp at a line that reads as the reference's `float NdotL = dot(N, L);` (the
+// student reads it where the reference reads it clamped) and the light's colour left out of the
+// specular term, in the coefficients shape (`coeffDiffuse`, += accumulation).
+TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
+  const course::Course& c = course::builtin_course();
+  const course::Preset* specular = c.preset("specular");
+  ASSERT_NE(specular, nullptr);
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string student = reference.substr(0, reference.find("void main(void) {")) +
+                              "void main(void) {\n"
+                              "    vec3 N = normalize(vNormal);\n"
+                              "    vec3 L = normalize(uLightPosition - vPosition);\n"
+                              "    vec3 V = normalize(-vPosition);\n"
+                              "    vec3 R = -reflect(L, N);\n"
+                              "    float coeffDiffuse = dot(N, L);\n"
+                              "    float coeffSpecular = 0.0;\n"
+                              "    if (coeffDiffuse > 0.0) {\n"
+                              "        coeffSpecular = pow(max(dot(R, V), 0.0), 6.0);\n"
+                              "    }\n"
+                              "    fragColor = uAmbientColor;\n"
+                              "    fragColor += coeffDiffuse * uDiffuseColor * uLightColor;\n"
+                              "    fragColor += coeffSpecular * uSpecularColor;\n"
+                              "}\n";
+  const auto program = grade::repair_program(specular->vertex, {"phong_frag.glsl", student}, specular->vertex, specular->fragment, {});
+  ASSERT_TRUE(program.ok()) << program.error().message;
+  const grade::CandidateCounts counts{128, 16, 0, 0, 128};
+  const auto singles = grade::single_candidates(*program, counts);
+  const std::vector<double> distances(singles.size(), 0.5);  // none nearer than the student's own: aligned pairs alone
+  bool paired = false;
+  for (const auto& pair : grade::pair_candidates(*program, singles, distances, 0.5, counts)) {
+    std::set<std::string> lines;
+    for (const auto& e : pair.edits) lines.insert(grade::edited_line(program->fragment.source.glsl, e));
+    paired = paired || (lines.contains("float coeffDiffuse = max(0.0, dot(N, L));") &&
+                        lines.contains("fragColor += coeffSpecular * uSpecularColor * uLightColor;"));
+  }
+  EXPECT_TRUE(paired);
+}
+
 // A local each program leaves unaligned, one of a type on each side, is aligned: the half vector
 // written into the tutorial's reflectDir gets the reference's R back in the student's names.
 TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsNames) {

@@ -127,7 +127,12 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
       if (!overlapping(a, b)) out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
     }
   }
-  const auto aligned = [&](size_t i) { return singles[i].edits.front().reads_as_reference || puts_back(singles[i].edits.front().kind); };
+  // Aligned: a line that then reads as the reference's, or one aligned by what it lacks (a factor,
+  // a term, a clamp the reference's counterpart reads: grade/left_out_edits.h).
+  const auto aligned = [&](size_t i) {
+    const RepairEdit& e = singles[i].edits.front();
+    return e.reads_as_reference || puts_back(e.kind) || e.edits_aligned_line;
+  };
   for (size_t i = 0; i < singles.size(); ++i)
     for (size_t j = i + 1; j < singles.size(); ++j)
       if (aligned(i) && aligned(j)) add(i, j);
