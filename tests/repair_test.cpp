@@ -385,6 +385,15 @@ TEST(RepairEditsTest, AnEditChangesItsSpanAloneAndSaysWhatIsWrong) {
   EXPECT_EQ(first.line, 2);
   EXPECT_EQ(grade::with_edit(glsl, first), "void main() {\n    vec3 L = normalize(uLightPosition - vPosition);\n}\n");
   EXPECT_EQ(grade::repair_words(first), "`L` is not normalised: a direction must be a unit vector");
+
+  // A number that scales one name is said of that name: the ambient colour is doubled.
+  const std::string doubled = "void main() {\n    fragColor = 2.0 * uAmbientColor + uDiffuseColor * 0.5;\n}\n";
+  std::vector<std::string> words;
+  for (const auto& e : grade::repair_edits({doubled, shader::Stage::fragment}))
+    if (e.kind == grade::RepairKind::factor_removed) words.push_back(grade::repair_words(e) + " / " + grade::repair_label(e));
+  EXPECT_EQ(words, (std::vector<std::string>{
+                       "`uAmbientColor` is multiplied by `2.0` here: the homework uses `uAmbientColor` as it is / `uAmbientColor` scaled by a number",
+                       "`uDiffuseColor` is multiplied by `0.5` here: the homework uses `uDiffuseColor` as it is / `uDiffuseColor` scaled by a number"}));
 }
 // A condition is live where its block, or an else block after it, is: the names it reads reach
 // the output through the branch taken.

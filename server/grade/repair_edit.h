@@ -114,7 +114,8 @@ struct RepairEdit {
   std::string subject;  // what the edit changes, as the student wrote it: "L", "dot(V, R)", "uDiffuseColor"
   std::string other;    // name_replaced: the name put in its place; direction_w: the new w;
                         // operator_swapped: the new operator; matrix_added: the matrix;
-                        // literal_refit: the new number
+                        // literal_refit: the new number; factor_removed: the name a
+                        // number scales, where it is one (`uAmbientColor` in 2.0 * uAmbientColor)
   int nodes = 1;        // syntax nodes the edit changes: "smallest" is fewest
   // Whether the edited line reads as a line of the reference's stage (spaces, comments and the
   // student's names for its locals aside: grade/aligned_lines.h): such an edit is tried before any

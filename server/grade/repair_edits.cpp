@@ -83,10 +83,17 @@ void operators(const Stage& s, const TypedNames& types, std::vector<RepairEdit>&
       const bool left_starts = i >= 2 && before_operand(s.t[i - 2].text);
       const auto type = types.find(s.t[i - 1].text);
       const bool matrix = type != types.end() && type->second.starts_with("mat");
-      if (left_starts && (s.number(i - 1) || (s.identifier(i - 1) && matrix)))
+      // A number's edit names the value it scales where that is one name (`2.0 * uAmbientColor`):
+      // its words say the ambient colour is doubled, not that a number is somewhere.
+      const auto scaled = [&](size_t at) { return s.identifier(at) && !s.is(at + 1, "(") && !s.is(at - 1, ".") && !s.is(at + 1, ".") ? std::string(s.t[at].text) : std::string(); };
+      if (left_starts && (s.number(i - 1) || (s.identifier(i - 1) && matrix))) {
         out.push_back(s.edit(RepairKind::factor_removed, s.begin(i - 1), s.begin(i + 1), "", i - 1, s.t[i - 1].text));
-      if (s.number(i + 1) && (i + 2 >= s.size() || one_of(s.t[i + 2].text, {";", ")", ",", "+", "-"})))
+        if (s.number(i - 1) && !s.is(i + 2, "*")) out.back().other = scaled(i + 1);
+      }
+      if (s.number(i + 1) && (i + 2 >= s.size() || one_of(s.t[i + 2].text, {";", ")", ",", "+", "-"}))) {
         out.push_back(s.edit(RepairKind::factor_removed, s.end(i - 1), s.end(i + 1), "", i + 1, s.t[i + 1].text));
+        if (!s.is(i - 2, "*")) out.back().other = scaled(i - 1);
+      }
     }
     if ((op == "+" || op == "-") && !unary) {
       // The other operator: the right operand (after `=` for += and -=) is what it adds or subtracts.

@@ -38,7 +38,9 @@ std::string repair_words(const RepairEdit& e, std::string_view meaning) {
     case RepairKind::operator_swapped:
       return e.other == "-" ? x + " is added where the homework subtracts it" : x + " is subtracted where the homework adds it";
     case RepairKind::matrix_added: return x + " is not transformed by `" + e.other + "`";
-    case RepairKind::factor_removed: return x + " should not multiply here: the homework uses the value as it is";
+    case RepairKind::factor_removed:
+      if (!e.other.empty()) return "`" + e.other + "` is multiplied by " + name + " here: the homework uses `" + e.other + "` as it is";
+      return x + " should not multiply here: the homework uses the value as it is";
     case RepairKind::term_removed: return x + " should not be there: it moves the value away from the homework's";
     case RepairKind::name_replaced: return x + " is not the value the homework uses here";
     case RepairKind::literal_refit: return x + " is not the number the homework uses here";
@@ -78,7 +80,7 @@ std::string repair_label(const RepairEdit& e, std::string_view symbol) {
     case RepairKind::negation_added: return s + " with the wrong sign";
     case RepairKind::operator_swapped: return s + (e.other == "-" ? " added where the homework subtracts it" : " subtracted where the homework adds it");
     case RepairKind::matrix_added: return s + " not transformed by `" + e.other + "`";
-    case RepairKind::factor_removed: return s + " multiplies where it should not";
+    case RepairKind::factor_removed: return e.other.empty() ? s + " multiplies where it should not" : "`" + e.other + "` scaled by a number";
     case RepairKind::term_removed: return s + " added where it should not be";
     case RepairKind::name_replaced: return s + " in place of another value";
     case RepairKind::literal_refit: return s + " not the homework's number";
