@@ -691,6 +691,26 @@ TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
                         lines.contains("fragColor += coeffSpecular * uSpecularColor * uLightColor;"));
   }
   EXPECT_TRUE(paired);
+
+  // The exponent left out and its number changed: the changed line is dead until the power reads
+  // it again, so the power put back is paired with the edits of dead lines.
+  std::string no_power = student;
+  const auto swap = [&](const std::string& from, const std::string& to) { no_power = typed(no_power, from, to); };
+  swap("    vec3 N = normalize(vNormal);\n", "    float specularAlpha = 16.0;\n    vec3 N = normalize(vNormal);\n");
+  swap("float coeffDiffuse = dot(N, L);", "float coeffDiffuse = max(dot(N, L), 0.0);");
+  swap("pow(max(dot(R, V), 0.0), 6.0)", "max(dot(R, V), 0.0)");
+  swap("coeffSpecular * uSpecularColor;", "coeffSpecular * uSpecularColor * uLightColor;");
+  const auto without = grade::repair_program(specular->vertex, {"phong_frag.glsl", no_power}, specular->vertex, specular->fragment, {});
+  ASSERT_TRUE(without.ok()) << without.error().message;
+  const auto its_singles = grade::single_candidates(*without, counts);
+  bool power_and_number = false;
+  for (const auto& pair : grade::pair_candidates(*without, its_singles, std::vector<double>(its_singles.size(), 0.5), 0.5, counts)) {
+    std::set<std::string> lines;
+    for (const auto& e : pair.edits) lines.insert(grade::edited_line(without->fragment.source.glsl, e));
+    power_and_number = power_and_number || (lines.contains("float specularAlpha = 6.0;") &&
+                                            lines.contains("coeffSpecular = pow(max(dot(R, V), 0.0), specularAlpha);"));
+  }
+  EXPECT_TRUE(power_and_number);
 }
 
 // A local each program leaves unaligned, one of a type on each side, is aligned: the half vector

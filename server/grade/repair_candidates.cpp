@@ -115,12 +115,17 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
   };
   for (size_t i = 0; i < singles.size() && singles[i].from_class; ++i)
     for (size_t j = i + 1; j < singles.size() && singles[j].from_class; ++j) add(i, j);
-  // A single that puts back a term or a statement, with each edit of a line only that could make
-  // live (V's line, where the deleted term was all that read V): a mistake the missing term hid.
+  // A single that puts back a term, a statement or a power, with each edit of a line only that
+  // could make live (V's line, where the deleted term was all that read V; the exponent's, where
+  // the left-out `pow` was all that read it): a mistake the missing part hid.
+  const auto makes_live = [](RepairKind k) {
+    return k == RepairKind::write_restored || k == RepairKind::statement_restored || k == RepairKind::value_added ||
+           k == RepairKind::exponent_added;
+  };
   std::vector<RepairEdit> dead;
   for (size_t i = 0; i < singles.size(); ++i) {
     const RepairEdit& a = singles[i].edits.front();
-    if (a.kind != RepairKind::write_restored && a.kind != RepairKind::statement_restored && a.kind != RepairKind::value_added) continue;
+    if (!makes_live(a.kind)) continue;
     if (dead.empty() && !p.reference_fragment.empty()) dead = program_repair_edits(ProgramTokens(p.student()), ProgramTokens(p.reference()), Liveness::dead);
     for (const RepairEdit& b : dead) {
       if (out.size() >= static_cast<size_t>(std::max(0, counts.pairs))) break;
