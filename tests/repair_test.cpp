@@ -333,6 +333,15 @@ TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   for (const auto& e : grade::reference_edits({w0, shader::Stage::vertex}, {vertex, shader::Stage::vertex}))
     if (e.kind == grade::RepairKind::value_restored) w_words.push_back(grade::repair_words(e));
   EXPECT_EQ(w_words, std::vector<std::string>{"`aVertexPosition` is a point, so its w must be 1: with w = 0 the matrix's translation is lost"});
+  // The normal given w = 1 and the mesh's whole matrix: it moves with the mesh. Said of the
+  // varying, with the matrix the homework transforms it by (it read "`vNormal` is not computed as
+  // the homework computes it").
+  const std::string moved = typed(vertex, "(uMeshToWorldRotMatrix * aVertexNormal).xyz", "(uMeshToWorldMatrix * vec4(aVertexNormal.xyz, 1.0)).xyz");
+  std::vector<std::string> moved_words;
+  for (const auto& e : grade::reference_edits({moved, shader::Stage::vertex}, {vertex, shader::Stage::vertex}))
+    if (e.kind == grade::RepairKind::value_restored) moved_words.push_back(grade::repair_words(e));
+  EXPECT_EQ(moved_words, std::vector<std::string>{"`vNormal` is a direction, so its w must be 0: with w = 1 the matrix's translation moves it "
+                                                  "(the homework transforms it by `uMeshToWorldRotMatrix`)"});
   EXPECT_EQ(words("vec3 R = reflect(-L, N);", "vec3 R = normalize(L + V);", "vec3 R = reflect(-L, N);"), "`R` is not computed as the homework computes it")
       << "a term replaced by another is more than one change";
   // More than one change, where the student's value is the same everywhere and the reference's is

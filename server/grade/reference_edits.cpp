@@ -274,6 +274,7 @@ void restored_values(const Stage& s, const Stage& reference, std::vector<RepairE
         e.said_as = d->said_as;
         e.subject = d->subject;
         e.other = d->other;
+        e.homework_matrix = d->homework_matrix;
       } else if (student_varies.constant(student_value) && reference_varies.varies(as_the_reference_writes_it)) {
         e.constant_value = true;
         std::vector<std::string> inputs;

@@ -129,6 +129,8 @@ struct RepairEdit {
   // value_restored: the student's own edit the restored value amounts to, where it is one
   // (grade/value_difference.h); its words are said, with `subject` and `other` set for them.
   std::optional<RepairKind> said_as;
+  // said as direction_w, where the student's matrix differs too: the one the homework transforms by.
+  std::string homework_matrix;
   // value_restored, where no one change says it: the student's value is the same at every point
   // where the reference's varies (grade/value_variation.h); `other` then names, as words, the
   // stage's inputs the reference's value reads itself ("`vPosition`"), empty where it reads them

@@ -30,9 +30,11 @@ std::string repair_words(const RepairEdit& e, std::string_view meaning) {
     case RepairKind::swizzle_removed: return x + " reorders the colour's channels: the homework uses them in order, red, green, blue";
     case RepairKind::guard_added:
       return x + " gets the highlight where the surface faces away from the light too: the homework adds it only where `" + e.other + "`";
-    case RepairKind::direction_w:
-      return e.other == "0.0" ? x + " is a direction, so its w must be 0: with w = 1 the matrix's translation moves it"
-                              : x + " is a point, so its w must be 1: with w = 0 the matrix's translation is lost";
+    case RepairKind::direction_w: {
+      const std::string by = e.homework_matrix.empty() ? "" : " (the homework transforms it by `" + e.homework_matrix + "`)";
+      return e.other == "0.0" ? x + " is a direction, so its w must be 0: with w = 1 the matrix's translation moves it" + by
+                              : x + " is a point, so its w must be 1: with w = 0 the matrix's translation is lost" + by;
+    }
     case RepairKind::negation_removed:
     case RepairKind::negation_added: return x + " has the wrong sign";
     case RepairKind::operator_swapped:

@@ -193,6 +193,20 @@ std::optional<ValueDifference> w_given(Tokens a, Tokens b) {
   return std::nullopt;
 }
 
+// `M * vec4(X.xyz, 1.0)` where the reference reads `N * X`, M and N two matrices: the student gave
+// X a w of their own and transformed it by another matrix. Said as the w, of the local it writes
+// (`name`), with the homework's matrix: both changes are in the value the render confirmed.
+std::optional<ValueDifference> matrix_and_w(Tokens a, Tokens b, std::string_view name) {
+  if (a.size() < 3 || b.size() < 3 || a[0].kind != Kind::identifier || b[0].kind != Kind::identifier || a[0].text == b[0].text ||
+      !is(a, 1, "*") || !is(b, 1, "*"))
+    return std::nullopt;
+  auto w = w_given(a.subspan(2), b.subspan(2));
+  if (!w) return std::nullopt;
+  w->subject = std::string(name);
+  w->homework_matrix = std::string(b[0].text);
+  return w;
+}
+
 }  // namespace
 
 namespace {
@@ -221,6 +235,7 @@ std::optional<ValueDifference> difference(Tokens a, Tokens b, std::string_view n
   if (!extra_a.empty() && !extra_b.empty()) {
     if (auto part = whole_change(unwrapped(extra_a), unwrapped(extra_b), written(extra_a))) return part;
     if (auto w = w_given(extra_a, extra_b)) return w;
+    if (auto w = matrix_and_w(extra_a, extra_b, name)) return w;
   }
   if (extra_a.size() == 1 && extra_b.size() == 1) return one_token(a, before, b, before, name);
   return one_side(a, extra_a, extra_b, before);

@@ -22,6 +22,9 @@ struct ValueDifference {
   RepairKind said_as = RepairKind::value_restored;
   std::string subject;
   std::string other;
+  // direction_w, where the student's matrix differs too: the matrix the homework's value is
+  // transformed by (`uMeshToWorldRotMatrix` for a normal the student moves with the mesh).
+  std::string homework_matrix;
 };
 
 // The one change that turns the student's value of `name` (their tokens) into the reference's,
