@@ -601,6 +601,22 @@ std::vector<std::string> lines_of_kind(const std::string& student, grade::Repair
 
 bool has(const std::vector<std::string>& lines, const std::string& line) { return std::find(lines.begin(), lines.end(), line) != lines.end(); }
 
+// The specular checkpoint with its highlight in a helper function above main, V written as `v_value`.
+std::string helpers_program(const std::string& v_value) {
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  return reference.substr(0, reference.find("void main(void) {")) +
+         "vec4 specularTerm(vec3 n, vec3 l, vec3 v) {\n"
+         "    vec3 r = reflect(-l, n);\n"
+         "    return uSpecularColor * uLightColor * pow(max(dot(v, r), 0.0), 6.0);\n"
+         "}\n"
+         "void main(void) {\n"
+         "    vec3 n = normalize(vNormal);\n"
+         "    vec3 l = normalize(uLightPosition - vPosition);\n"
+         "    vec3 v = " + v_value + ";\n"
+         "    fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0) + specularTerm(n, l, v);\n"
+         "}\n";
+}
+
 }  // namespace
 
 // What a student written in their own shape left out is put back at the line they left it out of,
@@ -632,17 +648,7 @@ TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
   EXPECT_TRUE(has(lines_of_kind(typed(tutorial, "max(dot(norm, lightDir), 0.0)", "dot(norm, lightDir)"), K::clamped),
                   "float diff = max(0.0, dot(norm, lightDir));"));
   // The guard of a helper: an early return before its first statement that reads a parameter.
-  const std::string helper = reference.substr(0, reference.find("void main(void) {")) +
-                             "vec4 specularTerm(vec3 n, vec3 l, vec3 v) {\n"
-                             "    vec3 r = reflect(-l, n);\n"
-                             "    return uSpecularColor * uLightColor * pow(max(dot(v, r), 0.0), 6.0);\n"
-                             "}\n"
-                             "void main(void) {\n"
-                             "    vec3 n = normalize(vNormal);\n"
-                             "    vec3 l = normalize(uLightPosition - vPosition);\n"
-                             "    vec3 v = normalize(-vPosition);\n"
-                             "    fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0) + specularTerm(n, l, v);\n"
-                             "}\n";
+  const std::string helper = helpers_program("normalize(-vPosition)");
   EXPECT_TRUE(has(lines_of_kind(helper, K::guard_added), "if (!(dot(n, l) > 0.0)) { return vec4(0.0); } vec3 r = reflect(-l, n);"));
   // The helper never called: added to the colour, with main's locals of its parameters' names.
   EXPECT_TRUE(has(lines_of_kind(typed(helper, " + specularTerm(n, l, v);", ";"), K::value_added),
@@ -732,17 +738,7 @@ TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsName
   // A helper written above main declares its r from l and n before main's lines align them: the
   // names are aligned again until no more align, so r is R and V, computed as L, is the one left.
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
-  const std::string helpers = reference.substr(0, reference.find("void main(void) {")) +
-                              "vec4 specularTerm(vec3 n, vec3 l, vec3 v) {\n"
-                              "    vec3 r = reflect(-l, n);\n"
-                              "    return uSpecularColor * uLightColor * pow(max(dot(v, r), 0.0), 6.0);\n"
-                              "}\n"
-                              "void main(void) {\n"
-                              "    vec3 n = normalize(vNormal);\n"
-                              "    vec3 l = normalize(uLightPosition - vPosition);\n"
-                              "    vec3 v = l;\n"
-                              "    fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0) + specularTerm(n, l, v);\n"
-                              "}\n";
+  const std::string helpers = helpers_program("l");
   EXPECT_TRUE(has(lines_of_kind(helpers, grade::RepairKind::value_restored), "vec3 v = normalize(-vPosition);"));
 
   // A local aligned by its uses alone (l, not normalised, is L where it is read) aligns the
