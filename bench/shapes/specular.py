@@ -1,5 +1,5 @@
-"""The specular checkpoint's fragment stage written in five shapes, as students write it, and the
-mistakes typed into each (bench/shapes_bench.py). Written here for the harness, not taken from any
+"""The specular checkpoint's fragment stage written in five shapes, as students write it (and a
+sixth held out), and the mistakes typed into each (bench/shapes_bench.py). Written here for the harness, not taken from any
 student: the shapes are the ones issue 79 names.
 
 A shape is the body of `main` (and any helpers) between the reference's declarations and the
@@ -94,6 +94,24 @@ void main(void) {
     vec3 l = normalize(uLightPosition - vPosition);
     vec3 v = normalize(-vPosition);
     fragColor = uAmbientColor + diffuseTerm(n, l) + specularTerm(n, l, v);
+}"""
+
+# Held out: written after the search's rules were, by the same hands but never read while writing
+# them, so its figures are a check on the five above (bench/shapes_bench.py runs it only when
+# named). The guard by step(), a const exponent, a term in a vec4 of its own, other names.
+STEP_GUARD = """void main(void) {
+    const float shininess = 6.0;
+    vec3 normal = normalize(vNormal);
+    vec3 toLight = normalize(uLightPosition - vPosition);
+    vec3 toEye = normalize(-vPosition);
+    vec3 mirrored = reflect(-toLight, normal);
+    float cosTheta = dot(normal, toLight);
+    float kd = max(cosTheta, 0.0);
+    float ks = step(0.0, cosTheta) * pow(max(dot(mirrored, toEye), 0.0), shininess);
+    vec4 ambient = uAmbientColor;
+    vec4 diffuse = kd * uDiffuseColor * uLightColor;
+    vec4 specular = ks * uSpecularColor * uLightColor;
+    fragColor = ambient + diffuse + specular;
 }"""
 
 CHANGES, LEFT_OUT = "changes", "leaves out"
@@ -193,4 +211,25 @@ MISTAKES = {
     },
 }
 
-SHAPES = {"reference": REFERENCE, "tutorial": TUTORIAL, "coefficients": COEFFICIENTS, "arithmetic guard": ARITHMETIC_GUARD, "helpers": HELPERS}
+MISTAKES["step guard"] = {
+    "L not normalised": (CHANGES, [("vec3 toLight = normalize(uLightPosition - vPosition);", "vec3 toLight = uLightPosition - vPosition;")]),
+    "L from the light": (CHANGES, [("uLightPosition - vPosition", "vPosition - uLightPosition")]),
+    "V from the eye": (CHANGES, [("normalize(-vPosition)", "normalize(vPosition)")]),
+    "R's sign": (CHANGES, [("reflect(-toLight, normal)", "reflect(toLight, normal)")]),
+    "exponent changed": (CHANGES, [("shininess = 6.0", "shininess = 16.0")]),
+    "V computed as L": (CHANGES, [("vec3 toEye = normalize(-vPosition);", "vec3 toEye = toLight;")]),
+    "guard left out": (LEFT_OUT, [("step(0.0, cosTheta) * pow", "pow")]),
+    "light colour left out of the diffuse": (LEFT_OUT, [("kd * uDiffuseColor * uLightColor", "kd * uDiffuseColor")]),
+    "light colour left out of the specular": (LEFT_OUT, [("ks * uSpecularColor * uLightColor", "ks * uSpecularColor")]),
+    "max left out of the diffuse": (LEFT_OUT, [("float kd = max(cosTheta, 0.0);", "float kd = cosTheta;")]),
+    "exponent left out": (LEFT_OUT, [("pow(max(dot(mirrored, toEye), 0.0), shininess)", "max(dot(mirrored, toEye), 0.0)")]),
+    "ambient left out": (LEFT_OUT, [("fragColor = ambient + ", "fragColor = ")]),
+    "specular term left out": (LEFT_OUT, [(" + specular;", ";")]),
+    "N not normalised": (LEFT_OUT, [("vec3 normal = normalize(vNormal);", "vec3 normal = vNormal;")]),
+    "swizzle": (CHANGES, [("vec4 ambient = uAmbientColor;", "vec4 ambient = uAmbientColor.bgra;")]),
+    "half vector": (CHANGES, [("vec3 mirrored = reflect(-toLight, normal);", "vec3 mirrored = normalize(toLight + toEye);")]),
+}
+
+SHAPES = {"reference": REFERENCE, "tutorial": TUTORIAL, "coefficients": COEFFICIENTS, "arithmetic guard": ARITHMETIC_GUARD, "helpers": HELPERS,
+          "step guard": STEP_GUARD}
+HELD_OUT = ("step guard",)
