@@ -669,6 +669,36 @@ TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
             "`dot(norm, lightDir) > 0.0`");
 }
 
+// Each term in a local of its own and the guard by step() (a shape the rules were not written
+// beside: bench/shapes/specular.py's held-out step guard): what is left out is put back at the
+// student's line, a declaration's guard as a conditional value (a declaration cannot go inside an
+// `if`), the clamp on the student's copy of N.L, an unread term added to the colour.
+TEST(LeftOutEditsTest, TermsInLocalsOfTheirOwnGetWhatWasLeftOutBack) {
+  using K = grade::RepairKind;
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string step = reference.substr(0, reference.find("void main(void) {")) +
+                           "void main(void) {\n"
+                           "    vec3 normal = normalize(vNormal);\n"
+                           "    vec3 toLight = normalize(uLightPosition - vPosition);\n"
+                           "    vec3 toEye = normalize(-vPosition);\n"
+                           "    vec3 mirrored = reflect(-toLight, normal);\n"
+                           "    float cosTheta = dot(normal, toLight);\n"
+                           "    float kd = max(cosTheta, 0.0);\n"
+                           "    float ks = step(0.0, cosTheta) * pow(max(dot(mirrored, toEye), 0.0), 6.0);\n"
+                           "    vec4 ambient = uAmbientColor;\n"
+                           "    vec4 diffuse = kd * uDiffuseColor * uLightColor;\n"
+                           "    vec4 specular = ks * uSpecularColor * uLightColor;\n"
+                           "    fragColor = ambient + diffuse + specular;\n"
+                           "}\n";
+  EXPECT_TRUE(has(lines_of_kind(typed(step, "step(0.0, cosTheta) * pow", "pow"), K::guard_added),
+                  "float ks = cosTheta > 0.0 ? pow(max(dot(mirrored, toEye), 0.0), 6.0) : 0.0;"));
+  EXPECT_TRUE(has(lines_of_kind(typed(step, "float kd = max(cosTheta, 0.0);", "float kd = cosTheta;"), K::clamped), "float kd = max(0.0, cosTheta);"));
+  EXPECT_TRUE(has(lines_of_kind(typed(step, "fragColor = ambient + ", "fragColor = "), K::value_added),
+                  "fragColor = diffuse + specular; fragColor += ambient;"));
+  EXPECT_TRUE(has(lines_of_kind(typed(step, " + specular;", ";"), K::value_added), "fragColor = ambient + diffuse; fragColor += specular;"));
+  for (const K kind : {K::clamped, K::value_added}) EXPECT_TRUE(lines_of_kind(step, kind).empty()) << "nothing is left out of it";
+}
+
 // Two things left out, each at a line aligned by what it lacks, are paired before any nearest
 // single is: the clamp at a line that reads as the reference's `float NdotL = dot(N, L);` (the
 // student reads it where the reference reads it clamped) and the light's colour left out of the

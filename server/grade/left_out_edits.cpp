@@ -294,8 +294,10 @@ void guards_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) 
     const auto condition = in_student_names(s, r, first, last, names);
     if (!condition) continue;
     helper_guards(s, *condition, out);
+    bool block_guarded = false;
     for (size_t i = 1; i + 2 < s.size(); ++i) {
       if (s.is(i, "{") && statement_start(s, i) && main_of(s, i)) {
+        block_guarded = true;
         RepairEdit e = s.replace(RepairKind::guard_added, i, i, "if (" + *condition + ") {", guarded_name(s, i));
         e.other = *condition;
         out.push_back(std::move(e));
@@ -304,6 +306,19 @@ void guards_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) 
         const size_t end = statement_end(s, i);
         if (end >= s.size() || !has_token(s, "pow", i, end)) continue;
         RepairEdit e = s.replace(RepairKind::guard_added, i, end, "if (" + *condition + ") { " + std::string(s.text(i, end)) + " }", s.t[i].text);
+        e.other = *condition;
+        out.push_back(std::move(e));
+      }
+      // A declaration cannot go inside an `if` (its name would end with the block): its value
+      // takes the guard, `float ks = cosTheta > 0.0 ? pow(...) : 0.0;`, where no bare block
+      // before it could take the `if` instead.
+      if (!block_guarded && s.identifier(i) && s.identifier(i - 1) && statement_start(s, i - 1) && s.is(i + 1, "=") && !s.is(i + 2, "=")) {
+        const size_t end = statement_end(s, i);
+        const std::string_view type = s.t[i - 1].text;
+        if (end >= s.size() || end == i + 2 || !has_token(s, "pow", i, end) || !(type == "float" || type.starts_with("vec"))) continue;
+        const std::string zero = type == "float" ? "0.0" : std::string(type) + "(0.0)";
+        RepairEdit e = s.replace(RepairKind::guard_added, i + 2, end - 1, *condition + " ? " + std::string(s.text(i + 2, end - 1)) + " : " + zero,
+                                 s.t[i].text);
         e.other = *condition;
         out.push_back(std::move(e));
       }
@@ -340,7 +355,16 @@ size_t last_write(const Stage& s, std::string_view name, bool updates) {
 // the student's line reads as the reference's `float NdotL = dot(N, L);`, and is edited all the
 // same, since the student uses its value where the reference clamps it.
 void clamps_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) {
+  // Each shared local, and each copy the student makes of one (`float kd = cosTheta;`, cosTheta
+  // the reference's NdotL): the copy is what they read where the reference reads NdotL clamped.
+  std::vector<std::pair<std::string, std::string>> shared;
   for (const auto& [theirs, own] : shared_locals(s, r)) {
+    shared.emplace_back(theirs, own);
+    for (size_t k = 2; k + 2 < s.size(); ++k)
+      if (s.identifier(k - 1) && s.identifier(k) && s.is(k + 1, "=") && s.is(k + 2, own) && s.is(k + 3, ";") && s.t[k].text != own)
+        shared.emplace_back(theirs, std::string(s.t[k].text));
+  }
+  for (const auto& [theirs, own] : shared) {
     bool clamped_there = false, bare_here = false;
     for (size_t k = 0; k < r.size(); ++k) clamped_there = clamped_there || (r.is(k, theirs) && read_at(r, k) && clamped_at(r, k));
     for (size_t k = 1; k + 1 < s.size(); ++k)
@@ -375,18 +399,22 @@ std::optional<std::string> term_with(const Stage& r, std::string_view call, cons
 
 // float spec = pow(...); never read  ->  ...; color += uSpecularColor * uLightColor * spec;  the
 // reference's term that calls what the student's unread value calls, with that value in its
-// place, added to what the student accumulates the colour in, after both are written.
+// place, added to what the student accumulates the colour in, after both are written. A colour
+// term computed into a local of its own and never read (`vec4 ambient = uAmbientColor;`) is
+// added as it is.
 void values_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) {
   const TypedNames uniforms = read_only_names(s);
   TypedNames targets = output_types(s);
   for (const auto& [theirs, own] : shared_locals(s, r))
     if (declared_types(r).at(theirs) == "vec4") targets.emplace(own, "vec4");
   for (size_t i = 1; i + 1 < s.size(); ++i) {
-    if (!s.is(i - 1, "float") || !s.identifier(i) || !s.is(i + 1, "=") || reads(s, s.t[i].text)) continue;
+    const bool colour = s.is(i - 1, "vec4");
+    if (!(colour || s.is(i - 1, "float")) || !s.identifier(i) || !s.is(i + 1, "=") || reads(s, s.t[i].text)) continue;
     const std::string name(s.t[i].text);
     const size_t written = last_write(s, name, false);
-    if (written >= s.size()) continue;
+    if (written >= s.size() || !main_of(s, written)) continue;
     std::optional<std::string> term;
+    if (colour) term = name;
     for (size_t k = written + 2; k + 1 < statement_end(s, written) && !term; ++k)
       if (s.identifier(k) && s.is(k + 1, "(")) term = term_with(r, s.t[k].text, name, uniforms);
     if (!term) continue;
