@@ -85,7 +85,10 @@ void operators(const Stage& s, const TypedNames& types, std::vector<RepairEdit>&
       const bool matrix = type != types.end() && type->second.starts_with("mat");
       // A number's edit names the value it scales where that is one name (`2.0 * uAmbientColor`):
       // its words say the ambient colour is doubled, not that a number is somewhere.
-      const auto scaled = [&](size_t at) { return s.identifier(at) && !s.is(at + 1, "(") && !s.is(at - 1, ".") && !s.is(at + 1, ".") ? std::string(s.t[at].text) : std::string(); };
+      const auto scaled = [&](size_t at) {
+        const bool one_name = s.identifier(at) && !s.is(at + 1, "(") && !s.is(at - 1, ".") && !s.is(at + 1, ".");
+        return one_name ? std::string(s.t[at].text) : std::string();
+      };
       if (left_starts && (s.number(i - 1) || (s.identifier(i - 1) && matrix))) {
         out.push_back(s.edit(RepairKind::factor_removed, s.begin(i - 1), s.begin(i + 1), "", i - 1, s.t[i - 1].text));
         if (s.number(i - 1) && !s.is(i + 2, "*")) out.back().other = scaled(i + 1);
