@@ -309,7 +309,7 @@ TEST_F(CliTest, BatchSearchesAgainBesideTheClassesPassingPrograms) {
   const auto preset = [](const std::string& f) { return read_text(std::string(SHADELAB_SOURCE_DIR) + "/shaders/" + f); };
   const std::string tutorial = shadelab::testkit::with_tutorial_main(preset("specular_frag.js"));
   // The half vector through a local of its own: two locals the reference's cannot align one to one
-  // (grade/student_names.h), so that the reference alone offers no value for reflectDir.
+  // (repair/student_names.h), so that the reference alone offers no value for reflectDir.
   std::string half_vector = tutorial;
   const std::string reflect_dir = "vec3 reflectDir = reflect(-lightDir, norm);";
   half_vector.replace(half_vector.find(reflect_dir), reflect_dir.size(), "vec3 halfway = normalize(lightDir + viewDir);\n        vec3 reflectDir = halfway;");

@@ -68,7 +68,7 @@ TEST(CourseProfileTest, TheBuiltInProfileRoundTripsFieldForField) {
   shown["repairShown"] = "what";
   auto what = course::read_course(shown.dump(), course::embedded_source("courses"), "repairShown");
   ASSERT_TRUE(what) << what.error().message;
-  EXPECT_EQ(what->repair_shown, grade::RepairShown::what);
+  EXPECT_EQ(what->repair_shown, repair::RepairShown::what);
   EXPECT_EQ(course::to_json(*what), shown) << "a course's choice of what its students read of a repair is kept";
   // Portable: every file named where it was read, so the JSON loads from any folder.
   const json portable = course::to_json(c, true);

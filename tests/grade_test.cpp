@@ -86,7 +86,7 @@ TEST_F(GradeTest, MissingSpecularIsRecognised) {
 }
 
 // Written the way a student would, not as the catalogue's own edit: the guard left out is put back
-// at the student's line (grade/left_out_edits.h), confirmed by a render, so the catalogue that
+// at the student's line (repair/left_out_edits.h), confirmed by a render, so the catalogue that
 // names it without a line (`unguarded_specular`) is not needed; the words say what the guard is.
 TEST_F(GradeTest, SpecularWithoutTheNdotLGuardIsRecognised) {
   const json r = grade(submission("specular", "    if (NdotL > 0.0) {", "    {"), "specular");

@@ -1,4 +1,4 @@
-// The repair search's edits (grade/repair_edits.h) on the mistakes a Phong homework is made of:
+// The repair search's edits (repair/repair_edits.h) on the mistakes a Phong homework is made of:
 // for each, the course's reference with the mistake typed in, an edit that undoes it is among
 // those the search's budget reaches.
 #include <gtest/gtest.h>
@@ -7,15 +7,15 @@
 #include <set>
 
 #include "course/course_reader.h"
-#include "grade/aligned_lines.h"
-#include "grade/classmate_edits.h"
-#include "grade/live_statements.h"
-#include "grade/reference_edits.h"
-#include "grade/repair_candidates.h"
-#include "grade/repair_edits.h"
-#include "grade/repair_words.h"
-#include "grade/stage_tokens.h"
-#include "grade/value_variation.h"
+#include "repair/aligned_lines.h"
+#include "repair/classmate_edits.h"
+#include "repair/live_statements.h"
+#include "repair/reference_edits.h"
+#include "repair/repair_candidates.h"
+#include "repair/repair_edits.h"
+#include "repair/repair_words.h"
+#include "repair/stage_tokens.h"
+#include "repair/value_variation.h"
 #include "road/repair_search.h"
 #include "shader/glsl_lines.h"
 #include "shader/shader_source.h"
@@ -91,19 +91,19 @@ TEST(RepairEditsTest, EachMistakeIsUndoneByAnEditOfItsOwnLineWithinTheBudget) {
     std::string vertex = glsl_of("specular", shader::Stage::vertex), fragment = glsl_of("specular", shader::Stage::fragment);
     std::string& wrong = m.stage == shader::Stage::vertex ? vertex : fragment;
     wrong = typed(wrong, m.find, m.replace);
-    const auto edits = grade::program_repair_edits({vertex, fragment}, {glsl_of("specular", shader::Stage::vertex),
+    const auto edits = repair::program_repair_edits({vertex, fragment}, {glsl_of("specular", shader::Stage::vertex),
                                                                         glsl_of("specular", shader::Stage::fragment)});
     // Its place among the edits of its class (the student's own, or those that read the reference),
     // each class with its own budget.
     size_t found = edits.size();
     for (size_t i = 0; i < edits.size() && found == edits.size(); ++i)
-      if (edits[i].stage == m.stage && std::count(m.repaired.begin(), m.repaired.end(), grade::edited_line(wrong, edits[i]))) found = i;
+      if (edits[i].stage == m.stage && std::count(m.repaired.begin(), m.repaired.end(), repair::edited_line(wrong, edits[i]))) found = i;
     ASSERT_LT(found, edits.size()) << m.name << ": no edit undoes it";
     const auto place = static_cast<size_t>(std::count_if(edits.begin(), edits.begin() + static_cast<std::ptrdiff_t>(found), [&](const auto& e) {
-      return grade::reads_reference(e.kind) == grade::reads_reference(edits[found].kind);
+      return repair::reads_reference(e.kind) == repair::reads_reference(edits[found].kind);
     }));
     const road::RepairBudget budget;
-    EXPECT_LT(place, static_cast<size_t>(grade::reads_reference(edits[found].kind) ? budget.reference_candidates : budget.candidates))
+    EXPECT_LT(place, static_cast<size_t>(repair::reads_reference(edits[found].kind) ? budget.reference_candidates : budget.candidates))
         << m.name << ": candidate " << place << " of its class";
   }
 }
@@ -114,14 +114,14 @@ TEST(RepairEditsTest, EachMistakeIsUndoneByAnEditOfItsOwnLineWithinTheBudget) {
 TEST(RepairEditsTest, AnAssignmentThatCannotReachTheOutputGetsNoCandidate) {
   const std::string vertex = glsl_of("specular", shader::Stage::vertex);
   const std::string fragment = typed(glsl_of("specular", shader::Stage::fragment), "fragColor = color;", "fragColor = vec4(0.3, 0.8, 0.2, 1.0);");
-  const auto edits = grade::program_repair_edits({vertex, fragment});
+  const auto edits = repair::program_repair_edits({vertex, fragment});
   ASSERT_FALSE(edits.empty());
   for (const auto& e : edits) {
-    const std::string line = grade::edited_line(e.stage == shader::Stage::vertex ? vertex : fragment, e);
+    const std::string line = repair::edited_line(e.stage == shader::Stage::vertex ? vertex : fragment, e);
     if (e.stage == shader::Stage::vertex) EXPECT_EQ(line.rfind("gl_Position", 0), 0u) << line;
     else EXPECT_EQ(line.rfind("fragColor", 0), 0u) << line;
   }
-  const auto all = grade::program_repair_edits({vertex, glsl_of("specular", shader::Stage::fragment)});
+  const auto all = repair::program_repair_edits({vertex, glsl_of("specular", shader::Stage::fragment)});
   EXPECT_GT(all.size(), 3 * edits.size()) << "the whole program has candidates everywhere";
 }
 
@@ -131,36 +131,36 @@ TEST(RepairEditsTest, AnAssignmentThatCannotReachTheOutputGetsNoCandidate) {
 TEST(RepairEditsTest, AMissingOutputIsRestoredWhereTheReferenceWritesItAndOnlyForeignNumbersAreRefit) {
   const std::string reference = glsl_of("specular", shader::Stage::vertex);
   const std::string deleted = typed(reference, "vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;", "");
-  const auto edits = grade::reference_edits({deleted, shader::Stage::vertex}, {reference, shader::Stage::vertex});
-  const auto restored = std::find_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; });
+  const auto edits = repair::reference_edits({deleted, shader::Stage::vertex}, {reference, shader::Stage::vertex});
+  const auto restored = std::find_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == repair::RepairKind::statement_restored; });
   ASSERT_NE(restored, edits.end());
   EXPECT_EQ(restored->subject, "vNormal");
-  EXPECT_EQ(grade::with_edit(deleted, *restored).find("vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;"),
+  EXPECT_EQ(repair::with_edit(deleted, *restored).find("vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;"),
             reference.find("vNormal = (uMeshToWorldRotMatrix * aVertexNormal).xyz;"))
       << "restored where it was deleted";
   EXPECT_EQ(restored->line, shader::lines_of(reference.substr(0, reference.find("vNormal ="))).size());
-  EXPECT_EQ(grade::repair_words(*restored), "`vNormal` is never written: the fragment stage reads what the vertex stage writes there");
-  EXPECT_EQ(std::count_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; }), 1);
+  EXPECT_EQ(repair::repair_words(*restored), "`vNormal` is never written: the fragment stage reads what the vertex stage writes there");
+  EXPECT_EQ(std::count_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == repair::RepairKind::statement_restored; }), 1);
 
   // A write of a name the stage writes elsewhere too: the specular term's accumulation deleted.
   const std::string fragment = glsl_of("specular", shader::Stage::fragment);
   const std::string accumulation = "color += uSpecularColor * uLightColor * pow(max(0.0, dot(V, R)), specularAlpha);";
   const std::string unlit = typed(fragment, "        " + accumulation + "\n", "");
-  const auto fragment_edits = grade::reference_edits({unlit, shader::Stage::fragment}, {fragment, shader::Stage::fragment});
-  const auto write = std::find_if(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::write_restored; });
+  const auto fragment_edits = repair::reference_edits({unlit, shader::Stage::fragment}, {fragment, shader::Stage::fragment});
+  const auto write = std::find_if(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == repair::RepairKind::write_restored; });
   ASSERT_NE(write, fragment_edits.end());
-  EXPECT_EQ(grade::unspaced(grade::with_edit(unlit, *write)), grade::unspaced(fragment)) << "restored after the statement before it";
+  EXPECT_EQ(repair::unspaced(repair::with_edit(unlit, *write)), repair::unspaced(fragment)) << "restored after the statement before it";
   EXPECT_EQ(write->line, shader::lines_of(fragment.substr(0, fragment.find(accumulation))).size());
-  EXPECT_EQ(grade::repair_words(*write), "`color` misses a statement the homework has here: it writes `color` once more than yours does");
-  EXPECT_FALSE(std::any_of(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::statement_restored; }))
+  EXPECT_EQ(repair::repair_words(*write), "`color` misses a statement the homework has here: it writes `color` once more than yours does");
+  EXPECT_FALSE(std::any_of(fragment_edits.begin(), fragment_edits.end(), [](const auto& e) { return e.kind == repair::RepairKind::statement_restored; }))
       << "the stage writes its colour: nothing is never written";
 
-  for (const auto& e : grade::reference_edits({fragment, shader::Stage::fragment}, {fragment, shader::Stage::fragment}))
-    ADD_FAILURE() << "the reference itself has an edit: " << grade::edited_line(fragment, e);
+  for (const auto& e : repair::reference_edits({fragment, shader::Stage::fragment}, {fragment, shader::Stage::fragment}))
+    ADD_FAILURE() << "the reference itself has an edit: " << repair::edited_line(fragment, e);
   const std::string halved = typed(fragment, "float specularAlpha = 6.0;", "float specularAlpha = 3.0;");
   std::vector<std::string> refits;
-  for (const auto& e : grade::reference_edits({halved, shader::Stage::fragment}, {fragment, shader::Stage::fragment}))
-    if (e.kind == grade::RepairKind::literal_refit) refits.push_back(grade::edited_line(halved, e));
+  for (const auto& e : repair::reference_edits({halved, shader::Stage::fragment}, {fragment, shader::Stage::fragment}))
+    if (e.kind == repair::RepairKind::literal_refit) refits.push_back(repair::edited_line(halved, e));
   EXPECT_EQ(refits, (std::vector<std::string>{"float specularAlpha = 6.0;", "float specularAlpha = 0.0;"}));
 }
 
@@ -172,21 +172,21 @@ TEST(RepairEditsTest, AVaryingMadeFlatInBothStagesIsOneEditOfBoth) {
   const std::string flat_vertex = typed(vertex, "out vec3 vNormal;", "flat out vec3 vNormal;");
   const std::string flat_fragment = typed(fragment, "in vec3 vNormal;", "flat in vec3 vNormal;");
   const auto flat_removed = [](const auto& edits) {
-    return std::find_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == grade::RepairKind::flat_removed; });
+    return std::find_if(edits.begin(), edits.end(), [](const auto& e) { return e.kind == repair::RepairKind::flat_removed; });
   };
-  const auto edits = grade::program_repair_edits({flat_vertex, flat_fragment}, {vertex, fragment});
+  const auto edits = repair::program_repair_edits({flat_vertex, flat_fragment}, {vertex, fragment});
   const auto found = flat_removed(edits);
   ASSERT_NE(found, edits.end());
   EXPECT_EQ(found, edits.begin()) << "the first tried: both lines then read as the reference's";
   EXPECT_TRUE(found->reads_as_reference);
   EXPECT_EQ(found->stage, shader::Stage::vertex);
   EXPECT_EQ(found->subject, "vNormal");
-  EXPECT_EQ(grade::with_edit(flat_vertex, *found), vertex);
+  EXPECT_EQ(repair::with_edit(flat_vertex, *found), vertex);
   ASSERT_TRUE(found->other_stage.has_value());
   EXPECT_EQ(flat_fragment.substr(0, found->other_stage->begin) + found->other_stage->with + flat_fragment.substr(found->other_stage->end),
             fragment);
-  EXPECT_NE(grade::repair_words(*found).find("`vNormal` is declared `flat`"), std::string::npos) << grade::repair_words(*found);
-  const auto one_stage = grade::program_repair_edits({flat_vertex, fragment}, {vertex, fragment});
+  EXPECT_NE(repair::repair_words(*found).find("`vNormal` is declared `flat`"), std::string::npos) << repair::repair_words(*found);
+  const auto one_stage = repair::program_repair_edits({flat_vertex, fragment}, {vertex, fragment});
   EXPECT_EQ(flat_removed(one_stage), one_stage.end());
 }
 
@@ -198,8 +198,8 @@ TEST(RepairEditsTest, AStudentsExtraIfOrFieldWriteDoesNotHideTheChangedStatement
   const std::string extra = typed(reference, "    fragColor = color;", "    if (gl_FragCoord.x < -1.0) color.r += 1.0;\n    fragColor = color;");
   const auto restored = [](const std::string& wrong, const std::string& ref) {
     std::vector<std::string> lines;
-    for (const auto& e : grade::reference_edits({wrong, shader::Stage::fragment}, {ref, shader::Stage::fragment}))
-      if (e.kind != grade::RepairKind::literal_refit) lines.push_back(grade::edited_line(wrong, e));
+    for (const auto& e : repair::reference_edits({wrong, shader::Stage::fragment}, {ref, shader::Stage::fragment}))
+      if (e.kind != repair::RepairKind::literal_refit) lines.push_back(repair::edited_line(wrong, e));
     return lines;
   };
   const auto guard = restored(typed(extra, "if (NdotL > 0.0) {", "if (true) {"), reference);
@@ -215,17 +215,17 @@ TEST(RepairEditsTest, ALineWrittenAsTheReferenceWritesItIsNeverEdited) {
   const std::string vertex = glsl_of("specular", shader::Stage::vertex), fragment = glsl_of("specular", shader::Stage::fragment);
   const std::string wrong = typed(typed(fragment, "dot(V, R)", "dot(V, -R)"), "vec3 L = normalize(uLightPosition - vPosition);",
                                   "vec3 L = -normalize(uLightPosition - vPosition);");
-  const auto edits = grade::program_repair_edits({vertex, wrong}, {vertex, fragment});
+  const auto edits = repair::program_repair_edits({vertex, wrong}, {vertex, fragment});
   const auto vertex_lines = shader::lines_of(vertex);
   const auto wrong_lines = shader::lines_of(wrong);
   bool changed_line_edited = false;
   for (const auto& e : edits) {
-    if (e.kind == grade::RepairKind::statement_restored) continue;
+    if (e.kind == repair::RepairKind::statement_restored) continue;
     const auto& lines = e.stage == shader::Stage::vertex ? vertex_lines : wrong_lines;
     const std::string_view line = lines[e.line - 1];
     EXPECT_TRUE(line.find("-R") != std::string_view::npos || line.find("-normalize") != std::string_view::npos)
-        << name_in(grade::kRepairKindNames, e.kind) << " at an unchanged line: " << line;
-    changed_line_edited = changed_line_edited || e.kind == grade::RepairKind::negation_removed;
+        << name_in(repair::kRepairKindNames, e.kind) << " at an unchanged line: " << line;
+    changed_line_edited = changed_line_edited || e.kind == repair::RepairKind::negation_removed;
   }
   EXPECT_TRUE(changed_line_edited) << "each negation is still undone at its own line";
 }
@@ -239,7 +239,7 @@ TEST(RepairEditsTest, AStudentsOwnNamesForTheLocalsAlignWithTheReferences) {
                                                   "dot(N, L)", "dot(n, toLight)"),
                                             "vec3 R = reflect(-L, N);", "vec3 mirrored = reflect(-toLight, n);"),
                                       "dot(V, R)", "dot(V, mirrored)");
-  const grade::AlignedLines lines(student, reference);
+  const repair::AlignedLines lines(student, reference);
   EXPECT_TRUE(lines.reads_as_reference("    vec3 mirrored = reflect(-toLight, n);  // R"));
   EXPECT_TRUE(lines.reads_as_reference("float NdotL = dot(n, toLight);"));
   EXPECT_FALSE(lines.reads_as_reference("vec3 mirrored = reflect(-n, toLight);")) << "the arguments swapped";
@@ -250,19 +250,19 @@ TEST(RepairEditsTest, AStudentsOwnNamesForTheLocalsAlignWithTheReferences) {
   // A declaration the student got wrong aligns its name once an edit mends it.
   const std::string view_away =
       typed(typed(student, "vec3 V = normalize(-vPosition);", "vec3 toEye = normalize(vPosition);"), "dot(V, mirrored)", "dot(toEye, mirrored)");
-  const grade::AlignedLines mended(view_away, reference);
+  const repair::AlignedLines mended(view_away, reference);
   EXPECT_FALSE(mended.reads_as_reference("vec3 toEye = normalize(vPosition);"));
   EXPECT_TRUE(mended.reads_as_reference("vec3 toEye = normalize(-vPosition);"));
   // So the search edits the line the student changed, not the reflection they wrote as the
   // reference does (negating R's -L would draw the same frames).
-  const auto edits = grade::program_repair_edits({glsl_of("specular", shader::Stage::vertex), view_away},
+  const auto edits = repair::program_repair_edits({glsl_of("specular", shader::Stage::vertex), view_away},
                                                  {glsl_of("specular", shader::Stage::vertex), reference});
   const auto student_lines = shader::lines_of(view_away);
   bool view_negated = false;
   for (const auto& e : edits) {
-    if (e.stage != shader::Stage::fragment || e.kind == grade::RepairKind::statement_restored || e.kind == grade::RepairKind::write_restored) continue;
-    EXPECT_EQ(student_lines[e.line - 1].find("reflect("), std::string_view::npos) << name_in(grade::kRepairKindNames, e.kind);
-    view_negated = view_negated || (e.kind == grade::RepairKind::negation_added && student_lines[e.line - 1].find("toEye =") != std::string_view::npos);
+    if (e.stage != shader::Stage::fragment || e.kind == repair::RepairKind::statement_restored || e.kind == repair::RepairKind::write_restored) continue;
+    EXPECT_EQ(student_lines[e.line - 1].find("reflect("), std::string_view::npos) << name_in(repair::kRepairKindNames, e.kind);
+    view_negated = view_negated || (e.kind == repair::RepairKind::negation_added && student_lines[e.line - 1].find("toEye =") != std::string_view::npos);
   }
   EXPECT_TRUE(view_negated) << "the view vector's own line is negated";
 }
@@ -276,28 +276,28 @@ TEST(RepairEditsTest, AStudentsLocalIsNamedAsTheReferencesVector) {
       typed(typed(typed(typed(reference, "vec3 L = normalize(", "vec3 toLight = normalize("), "dot(N, L)", "dot(N, toLight)"),
                   "vec3 V = normalize(-vPosition);", "vec3 toEye = normalize(vPosition);"),
             "dot(V, R)", "dot(toEye, R)");
-  const grade::AlignedLines lines(student, reference);
+  const repair::AlignedLines lines(student, reference);
   EXPECT_EQ(lines.reference_name("toLight", "float NdotL = dot(N, toLight);"), "L");
   EXPECT_EQ(lines.reference_name("N", "vec3 N = normalize(vNormal);"), "N") << "a name both declare is one variable";
   EXPECT_EQ(lines.reference_name("toEye", "vec3 toEye = normalize(-vPosition);"), "V") << "the edit mends its declaration";
   EXPECT_EQ(lines.reference_name("toEye", "vec3 toEye = -normalize(vPosition);"), "V") << "it stands in for V in dot(toEye, R)";
-  const grade::AlignedLines unused(typed(student, "dot(toEye, R)", "dot(toLight, R)"), reference);
+  const repair::AlignedLines unused(typed(student, "dot(toEye, R)", "dot(toLight, R)"), reference);
   EXPECT_EQ(unused.reference_name("toEye", "vec3 toEye = normalize(vPosition);"), "") << "declared unlike V, and used nowhere";
   EXPECT_EQ(lines.reference_name("uLightColor", "vec4 color = uAmbientColor;"), "");
   // A uniform where the reference reads L is the uniform still, never "the direction to the light".
   const std::string no_l = typed(typed(reference, "vec3 L = normalize(uLightPosition - vPosition);", ""), "dot(N, L)", "dot(N, uLightPosition)");
-  const grade::AlignedLines uniform_for_l(no_l, reference);
+  const repair::AlignedLines uniform_for_l(no_l, reference);
   EXPECT_EQ(uniform_for_l.reference_name("uLightPosition", "float NdotL = dot(N, uLightPosition);"), "");
   EXPECT_EQ(lines.reference_name("dot(N, toLight)", "float NdotL = dot(N, toLight);"), "");
   // The words: the student's name, and what it is in the homework's formula.
-  grade::RepairEdit e;
-  e.kind = grade::RepairKind::normalised;
+  repair::RepairEdit e;
+  e.kind = repair::RepairKind::normalised;
   e.subject = "toLight";
-  EXPECT_EQ(grade::repair_words(e, "the direction to the light"), "`toLight` is not normalised: the direction to the light must be a unit vector");
-  e.kind = grade::RepairKind::negation_added;
+  EXPECT_EQ(repair::repair_words(e, "the direction to the light"), "`toLight` is not normalised: the direction to the light must be a unit vector");
+  e.kind = repair::RepairKind::negation_added;
   e.subject = "toEye";
-  EXPECT_EQ(grade::repair_words(e, "the direction to the eye"), "`toEye`, the direction to the eye, has the wrong sign");
-  EXPECT_EQ(grade::repair_words(e), "`toEye` has the wrong sign");
+  EXPECT_EQ(repair::repair_words(e, "the direction to the eye"), "`toEye`, the direction to the eye, has the wrong sign");
+  EXPECT_EQ(repair::repair_words(e), "`toEye` has the wrong sign");
 }
 
 // A restored value is the reference's text, named and never shown; where it differs from the
@@ -306,8 +306,8 @@ TEST(RepairEditsTest, AStudentsLocalIsNamedAsTheReferencesVector) {
 TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
   const auto words_in = [&](const std::string& wrong, const std::string& restored_line) {
-    for (const auto& e : grade::reference_edits({wrong, shader::Stage::fragment}, {reference, shader::Stage::fragment}))
-      if (e.kind == grade::RepairKind::value_restored && grade::edited_line(wrong, e) == restored_line) return grade::repair_words(e);
+    for (const auto& e : repair::reference_edits({wrong, shader::Stage::fragment}, {reference, shader::Stage::fragment}))
+      if (e.kind == repair::RepairKind::value_restored && repair::edited_line(wrong, e) == restored_line) return repair::repair_words(e);
     ADD_FAILURE() << "no value restored to " << restored_line;
     return std::string();
   };
@@ -330,16 +330,16 @@ TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
   const std::string w0 = typed(vertex, "uWorldToClipSpaceMatrix * uMeshToWorldMatrix * aVertexPosition",
                                "uWorldToClipSpaceMatrix * uMeshToWorldMatrix * vec4(aVertexPosition.xyz, 0.0)");
   std::vector<std::string> w_words;
-  for (const auto& e : grade::reference_edits({w0, shader::Stage::vertex}, {vertex, shader::Stage::vertex}))
-    if (e.kind == grade::RepairKind::value_restored) w_words.push_back(grade::repair_words(e));
+  for (const auto& e : repair::reference_edits({w0, shader::Stage::vertex}, {vertex, shader::Stage::vertex}))
+    if (e.kind == repair::RepairKind::value_restored) w_words.push_back(repair::repair_words(e));
   EXPECT_EQ(w_words, std::vector<std::string>{"`aVertexPosition` is a point, so its w must be 1: with w = 0 the matrix's translation is lost"});
   // The normal given w = 1 and the mesh's whole matrix: it moves with the mesh. Said of the
   // varying, with the matrix the homework transforms it by (it read "`vNormal` is not computed as
   // the homework computes it").
   const std::string moved = typed(vertex, "(uMeshToWorldRotMatrix * aVertexNormal).xyz", "(uMeshToWorldMatrix * vec4(aVertexNormal.xyz, 1.0)).xyz");
   std::vector<std::string> moved_words;
-  for (const auto& e : grade::reference_edits({moved, shader::Stage::vertex}, {vertex, shader::Stage::vertex}))
-    if (e.kind == grade::RepairKind::value_restored) moved_words.push_back(grade::repair_words(e));
+  for (const auto& e : repair::reference_edits({moved, shader::Stage::vertex}, {vertex, shader::Stage::vertex}))
+    if (e.kind == repair::RepairKind::value_restored) moved_words.push_back(repair::repair_words(e));
   EXPECT_EQ(moved_words, std::vector<std::string>{"`vNormal` is a direction, so its w must be 0: with w = 1 the matrix's translation moves it "
                                                   "(the homework transforms it by `uMeshToWorldRotMatrix`)"});
   EXPECT_EQ(words("vec3 R = reflect(-L, N);", "vec3 R = normalize(L + V);", "vec3 R = reflect(-L, N);"), "`R` is not computed as the homework computes it")
@@ -366,7 +366,7 @@ TEST(RepairEditsTest, ARestoredValueIsSaidAsTheOneChangeItMakes) {
 TEST(RepairEditsTest, AValueVariesWhereItReadsAnInputThroughAnyLocal) {
   const std::string glsl = glsl_of("specular", shader::Stage::fragment);
   const auto t = shader::tokens_of(glsl);
-  const grade::StageVariation stage(t);
+  const repair::StageVariation stage(t);
   const auto value = [](const std::string& text) { return shader::tokens_of(text); };
   for (const std::string v : {"vPosition", "-vPosition.xyz", "R", "dot(V, R)", "NdotL", "gl_FragCoord.x"}) {
     const auto tokens = value(v);
@@ -387,19 +387,19 @@ TEST(RepairEditsTest, AValueVariesWhereItReadsAnInputThroughAnyLocal) {
 // An edit says what is wrong in the homework's words and leaves the rest of the stage as it was.
 TEST(RepairEditsTest, AnEditChangesItsSpanAloneAndSaysWhatIsWrong) {
   const std::string glsl = "void main() {\n    vec3 L = uLightPosition - vPosition;\n}\n";
-  const auto edits = grade::repair_edits({glsl, shader::Stage::fragment});
+  const auto edits = repair::repair_edits({glsl, shader::Stage::fragment});
   ASSERT_FALSE(edits.empty());
-  const grade::RepairEdit& first = edits.front();
-  EXPECT_EQ(first.kind, grade::RepairKind::normalised);
+  const repair::RepairEdit& first = edits.front();
+  EXPECT_EQ(first.kind, repair::RepairKind::normalised);
   EXPECT_EQ(first.line, 2);
-  EXPECT_EQ(grade::with_edit(glsl, first), "void main() {\n    vec3 L = normalize(uLightPosition - vPosition);\n}\n");
-  EXPECT_EQ(grade::repair_words(first), "`L` is not normalised: a direction must be a unit vector");
+  EXPECT_EQ(repair::with_edit(glsl, first), "void main() {\n    vec3 L = normalize(uLightPosition - vPosition);\n}\n");
+  EXPECT_EQ(repair::repair_words(first), "`L` is not normalised: a direction must be a unit vector");
 
   // A number that scales one name is said of that name: the ambient colour is doubled.
   const std::string doubled = "void main() {\n    fragColor = 2.0 * uAmbientColor + uDiffuseColor * 0.5;\n}\n";
   std::vector<std::string> words;
-  for (const auto& e : grade::repair_edits({doubled, shader::Stage::fragment}))
-    if (e.kind == grade::RepairKind::factor_removed) words.push_back(grade::repair_words(e) + " / " + grade::repair_label(e));
+  for (const auto& e : repair::repair_edits({doubled, shader::Stage::fragment}))
+    if (e.kind == repair::RepairKind::factor_removed) words.push_back(repair::repair_words(e) + " / " + repair::repair_label(e));
   EXPECT_EQ(words, (std::vector<std::string>{
                        "`uAmbientColor` is multiplied by `2.0` here: the homework uses `uAmbientColor` as it is / `uAmbientColor` scaled by a number",
                        "`uDiffuseColor` is multiplied by `0.5` here: the homework uses `uDiffuseColor` as it is / `uDiffuseColor` scaled by a number"}));
@@ -410,7 +410,7 @@ TEST(LiveStatementsTest, AConditionIsLiveWhereAnyOfItsBranchesIs) {
   const std::string glsl =
       "out vec4 fragColor;\nin vec3 vN;\nvoid main() {\n  float c = vN.x;\n  float unused = 2.0;\n  float d = vN.y;\n"
       "  if (c > 0.0) { d += 1.0; } else { fragColor = vec4(1.0); }\n  if (unused > 1.0) { d = 0.0; }\n}\n";
-  const grade::StageLiveness live = grade::fragment_liveness({glsl, shader::Stage::fragment});
+  const repair::StageLiveness live = repair::fragment_liveness({glsl, shader::Stage::fragment});
   EXPECT_TRUE(live.live_names.count("c")) << "read by a condition whose else block writes the output";
   EXPECT_TRUE(live.live_names.count("vN"));
   EXPECT_FALSE(live.live_names.count("unused")) << "read only by a condition whose block is dead";
@@ -461,39 +461,39 @@ TEST(ClassmateEditsTest, AClassmateWhoNamesAValueAsTheStudentDoesOffersTheirValu
   const std::string vertex = glsl_of("specular", shader::Stage::vertex), reference = glsl_of("specular", shader::Stage::fragment);
   const std::string classmate = testkit::with_tutorial_main(reference);
   // The half vector through a local of its own: two locals the reference's cannot align one to
-  // one (grade/student_names.h), so that only the classmate names reflectDir.
+  // one (repair/student_names.h), so that only the classmate names reflectDir.
   const std::string student = typed(classmate, "vec3 reflectDir = reflect(-lightDir, norm);",
                                     "vec3 halfway = normalize(lightDir + viewDir);\n        vec3 reflectDir = halfway;");
-  const auto restores_reflect_dir = [](const grade::RepairEdit& e) { return e.kind == grade::RepairKind::value_restored && e.subject == "reflectDir"; };
+  const auto restores_reflect_dir = [](const repair::RepairEdit& e) { return e.kind == repair::RepairKind::value_restored && e.subject == "reflectDir"; };
 
-  const auto own = grade::program_repair_edits({vertex, student}, {vertex, reference});
+  const auto own = repair::program_repair_edits({vertex, student}, {vertex, reference});
   EXPECT_FALSE(std::any_of(own.begin(), own.end(), restores_reflect_dir)) << "the reference never writes reflectDir";
-  const auto offered = grade::classmate_edits({vertex, student}, {vertex, reference}, {{vertex, classmate}});
+  const auto offered = repair::classmate_edits({vertex, student}, {vertex, reference}, {{vertex, classmate}});
   const auto restored = std::find_if(offered.begin(), offered.end(), restores_reflect_dir);
   ASSERT_NE(restored, offered.end());
-  EXPECT_EQ(grade::edited_line(student, *restored), "vec3 reflectDir = reflect(-lightDir, norm);");
-  EXPECT_TRUE(grade::writes_reference_text(restored->kind)) << "a classmate's text is named, never shown";
+  EXPECT_EQ(repair::edited_line(student, *restored), "vec3 reflectDir = reflect(-lightDir, norm);");
+  EXPECT_TRUE(repair::writes_reference_text(restored->kind)) << "a classmate's text is named, never shown";
   for (const auto& e : offered) {
-    EXPECT_TRUE(grade::reads_reference(e.kind)) << "only edits that read the other program";
+    EXPECT_TRUE(repair::reads_reference(e.kind)) << "only edits that read the other program";
     for (const auto& o : own)
       EXPECT_FALSE(o.stage == e.stage && o.begin == e.begin && o.end == e.end && o.with == e.with) << "offered twice: " << e.with;
   }
-  EXPECT_TRUE(grade::classmate_edits({vertex, student}, {vertex, reference}, {{vertex, reference}}).empty())
+  EXPECT_TRUE(repair::classmate_edits({vertex, student}, {vertex, reference}, {{vertex, reference}}).empty())
       << "the reference as a classmate offers nothing the reference does not";
   // To a student written as the reference is, the tutorial's values and conditions name its own
   // locals (`diff > 0.0`), which that student never declares: none could compile, none is offered.
-  for (const auto& e : grade::classmate_edits({vertex, reference}, {vertex, reference}, {{vertex, classmate}}))
+  for (const auto& e : repair::classmate_edits({vertex, reference}, {vertex, reference}, {{vertex, classmate}}))
     ADD_FAILURE() << "offered an edit naming a local the student never declares: " << e.with;
 
   // Nearest: the classmate whose lines are the student's, before the reference; a copy counts once.
-  const auto nearest = grade::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}, {vertex, classmate}}, 3);
+  const auto nearest = repair::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}, {vertex, classmate}}, 3);
   ASSERT_EQ(nearest.size(), 2u);
   EXPECT_EQ(nearest[0].fragment, classmate);
   EXPECT_EQ(nearest[1].fragment, reference);
-  EXPECT_EQ(grade::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}}, 1).front().fragment, classmate);
+  EXPECT_EQ(repair::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}}, 1).front().fragment, classmate);
 }
 
-// What a search tries, in its order, decided without a worker (grade/repair_candidates.h): the
+// What a search tries, in its order, decided without a worker (repair/repair_candidates.h): the
 // class's singles first, each kind within its count, every candidate the student's program with
 // its edits made and nothing else, and pairs within their count, none twice, none of two edits
 // that touch.
@@ -506,37 +506,37 @@ TEST(RepairCandidatesTest, TheClassComesFirstEachKindWithinItsCountAndNoPairTouc
   const shader::ShaderFile vertex = specular->vertex;
   const shader::ShaderFile fragment{"phong_frag.glsl", typed(classmate, "vec3 reflectDir = reflect(-lightDir, norm);",
                                                              "vec3 halfway = normalize(lightDir + viewDir);\n        vec3 reflectDir = halfway;")};
-  const auto program = grade::repair_program(vertex, fragment, specular->vertex, specular->fragment,
+  const auto program = repair::repair_program(vertex, fragment, specular->vertex, specular->fragment,
                                              {{specular->vertex, {"classmate.glsl", classmate}}});
   ASSERT_TRUE(program.ok()) << program.error().message;
   ASSERT_EQ(program->classmates.size(), 1u);
 
-  const grade::CandidateCounts counts{40, 4, 3, 3, 4};
-  const size_t offered = grade::class_edits(*program, counts).size();
+  const repair::CandidateCounts counts{40, 4, 3, 3, 4};
+  const size_t offered = repair::class_edits(*program, counts).size();
   ASSERT_GT(offered, 0u) << "the classmate writes reflectDir as the homework computes it";
-  const auto singles = grade::single_candidates(*program, counts);
+  const auto singles = repair::single_candidates(*program, counts);
   const size_t from_class = std::min<size_t>(offered, 3);
   int own = 0, reads = 0;
   for (size_t i = 0; i < singles.size(); ++i) {
     const auto& s = singles[i];
     ASSERT_EQ(s.edits.size(), 1u);
     EXPECT_EQ(s.from_class, i < from_class) << "candidate " << i;
-    if (!s.from_class) ++(grade::reads_reference(s.edits.front().kind) ? reads : own);
-    const grade::RepairEdit& e = s.edits.front();
+    if (!s.from_class) ++(repair::reads_reference(s.edits.front().kind) ? reads : own);
+    const repair::RepairEdit& e = s.edits.front();
     const auto& edited = e.stage == shader::Stage::vertex ? s.vertex : s.fragment;
     const auto& kept = e.stage == shader::Stage::vertex ? s.fragment : s.vertex;
-    EXPECT_EQ(edited.text, grade::with_edit((*program)[e.stage].source.glsl, e)) << "candidate " << i;
+    EXPECT_EQ(edited.text, repair::with_edit((*program)[e.stage].source.glsl, e)) << "candidate " << i;
     if (!e.other_stage) {
       EXPECT_EQ(kept.text, (e.stage == shader::Stage::vertex ? fragment : vertex).text) << "candidate " << i;
     }
   }
   EXPECT_EQ(own, counts.own);
   EXPECT_LE(reads, counts.reference);
-  EXPECT_TRUE(grade::single_candidates(*program, {0, 0, 0, 0, 0}).empty());
+  EXPECT_TRUE(repair::single_candidates(*program, {0, 0, 0, 0, 0}).empty());
 
   // The nearest single, one that drew nearer than the student's own program, is paired with the
   // others after the class's pairs.
-  const auto touch = [](const grade::RepairEdit& a, const grade::RepairEdit& b) { return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end; };
+  const auto touch = [](const repair::RepairEdit& a, const repair::RepairEdit& b) { return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end; };
   size_t nearest = singles.size();  // a single another touches, so that pairing it has one pair to leave out
   for (size_t i = 0; i < singles.size() && nearest == singles.size(); ++i)
     for (size_t j = 0; j < singles.size(); ++j)
@@ -544,21 +544,21 @@ TEST(RepairCandidatesTest, TheClassComesFirstEachKindWithinItsCountAndNoPairTouc
   ASSERT_LT(nearest, singles.size());
   std::vector<double> distances(singles.size(), 0.5);
   distances[nearest] = 0.1;
-  const auto pairs = grade::pair_candidates(*program, singles, distances, 0.4, counts);
+  const auto pairs = repair::pair_candidates(*program, singles, distances, 0.4, counts);
   ASSERT_FALSE(pairs.empty());
   EXPECT_LE(pairs.size(), static_cast<size_t>(counts.pairs));
-  const auto all = grade::pair_candidates(*program, singles, distances, 0.4, {40, 4, 3, 3, 1000});
+  const auto all = repair::pair_candidates(*program, singles, distances, 0.4, {40, 4, 3, 3, 1000});
   ASSERT_GT(all.size(), pairs.size());
   std::set<std::pair<std::string, std::string>> seen;
   for (const auto& pair : all) {
     ASSERT_EQ(pair.edits.size(), 2u);
-    const grade::RepairEdit &a = pair.edits[0], &b = pair.edits[1];
+    const repair::RepairEdit &a = pair.edits[0], &b = pair.edits[1];
     EXPECT_FALSE(touch(a, b)) << "two edits that touch: " << a.with << " and " << b.with;
-    EXPECT_FALSE(grade::smaller(b, a)) << "a pair's edits in the singles' order of size";
+    EXPECT_FALSE(repair::smaller(b, a)) << "a pair's edits in the singles' order of size";
     EXPECT_TRUE(seen.emplace(a.with + "@" + std::to_string(a.begin), b.with + "@" + std::to_string(b.begin)).second) << "a pair twice";
   }
-  const auto same = [](const grade::RepairEdit& x, const grade::RepairEdit& y) { return x.stage == y.stage && x.begin == y.begin && x.with == y.with; };
-  const auto is_single = [&](const grade::RepairEdit& e, size_t i) { return same(e, singles[i].edits.front()); };
+  const auto same = [](const repair::RepairEdit& x, const repair::RepairEdit& y) { return x.stage == y.stage && x.begin == y.begin && x.with == y.with; };
+  const auto is_single = [&](const repair::RepairEdit& e, size_t i) { return same(e, singles[i].edits.front()); };
   // The class's pairs first, then those of two lines that each read as the reference's.
   const auto& first = pairs.front().edits;
   const size_t as_reference = static_cast<size_t>(
@@ -572,18 +572,18 @@ TEST(RepairCandidatesTest, TheClassComesFirstEachKindWithinItsCountAndNoPairTouc
   EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const auto& pair) {
     return is_single(pair.edits[0], nearest) || is_single(pair.edits[1], nearest);
   })) << "the single nearer than the student's own program is paired";
-  const auto from_the_class = [&](const grade::RepairEdit& e) {
+  const auto from_the_class = [&](const repair::RepairEdit& e) {
     for (size_t i = 0; i < from_class; ++i)
       if (is_single(e, i)) return true;
     return false;
   };
   for (const auto& pair : all) {
-    const grade::RepairEdit &a = pair.edits[0], &b = pair.edits[1];
+    const repair::RepairEdit &a = pair.edits[0], &b = pair.edits[1];
     EXPECT_TRUE((from_the_class(a) && from_the_class(b)) || (a.reads_as_reference && b.reads_as_reference) ||
                 is_single(a, nearest) || is_single(b, nearest))
         << "a pair is two of the class's, two lines read as the reference's, or has the nearest single: " << a.with << " and " << b.with;
   }
-  EXPECT_TRUE(grade::pair_candidates(*program, singles, distances, 0.4, {40, 4, 3, 3, 0}).empty());
+  EXPECT_TRUE(repair::pair_candidates(*program, singles, distances, 0.4, {40, 4, 3, 3, 0}).empty());
 }
 
 
@@ -591,11 +591,11 @@ namespace {
 
 // The edits of `kind` the search would try on `student` beside the course's specular reference,
 // each as its line reads once made.
-std::vector<std::string> lines_of_kind(const std::string& student, grade::RepairKind kind) {
+std::vector<std::string> lines_of_kind(const std::string& student, repair::RepairKind kind) {
   const std::string vertex = glsl_of("specular", shader::Stage::vertex), reference = glsl_of("specular", shader::Stage::fragment);
   std::vector<std::string> out;
-  for (const auto& e : grade::program_repair_edits({vertex, student}, {vertex, reference}))
-    if (e.kind == kind) out.push_back(grade::edited_line(student, e));
+  for (const auto& e : repair::program_repair_edits({vertex, student}, {vertex, reference}))
+    if (e.kind == kind) out.push_back(repair::edited_line(student, e));
   return out;
 }
 
@@ -620,10 +620,10 @@ std::string helpers_program(const std::string& v_value) {
 }  // namespace
 
 // What a student written in their own shape left out is put back at the line they left it out of,
-// in their names (grade/left_out_edits.h): the tutorial's program with each thing left out in turn.
+// in their names (repair/left_out_edits.h): the tutorial's program with each thing left out in turn.
 // A program that leaves nothing out gets none of these edits.
 TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
-  using K = grade::RepairKind;
+  using K = repair::RepairKind;
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
   const std::string tutorial = testkit::with_tutorial_main(reference);
   for (const K kind : {K::factor_added, K::term_added, K::exponent_added, K::guard_added, K::value_added, K::swizzle_removed})
@@ -655,16 +655,16 @@ TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
                   "fragColor = uAmbientColor + uDiffuseColor * uLightColor * max(dot(n, l), 0.0); fragColor += specularTerm(n, l, v);"));
 
   // Said in the homework's terms, with the student's names.
-  grade::RepairEdit factor;
+  repair::RepairEdit factor;
   factor.kind = K::factor_added;
   factor.subject = "uDiffuseColor";
   factor.other = "uLightColor";
-  EXPECT_EQ(grade::repair_words(factor), "`uDiffuseColor` is not multiplied by `uLightColor`, as the homework's formula multiplies it");
-  grade::RepairEdit guard;
+  EXPECT_EQ(repair::repair_words(factor), "`uDiffuseColor` is not multiplied by `uLightColor`, as the homework's formula multiplies it");
+  repair::RepairEdit guard;
   guard.kind = K::guard_added;
   guard.subject = "spec";
   guard.other = "dot(norm, lightDir) > 0.0";
-  EXPECT_EQ(grade::repair_words(guard),
+  EXPECT_EQ(repair::repair_words(guard),
             "`spec` gets the highlight where the surface faces away from the light too: the homework adds it only where "
             "`dot(norm, lightDir) > 0.0`");
 }
@@ -674,7 +674,7 @@ TEST(LeftOutEditsTest, WhatAStudentLeftOutIsPutBackAtTheirLineInTheirNames) {
 // student's line, a declaration's guard as a conditional value (a declaration cannot go inside an
 // `if`), the clamp on the student's copy of N.L, an unread term added to the colour.
 TEST(LeftOutEditsTest, TermsInLocalsOfTheirOwnGetWhatWasLeftOutBack) {
-  using K = grade::RepairKind;
+  using K = repair::RepairKind;
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
   const std::string step = reference.substr(0, reference.find("void main(void) {")) +
                            "void main(void) {\n"
@@ -723,15 +723,15 @@ TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
                               "    fragColor += coeffDiffuse * uDiffuseColor * uLightColor;\n"
                               "    fragColor += coeffSpecular * uSpecularColor;\n"
                               "}\n";
-  const auto program = grade::repair_program(specular->vertex, {"phong_frag.glsl", student}, specular->vertex, specular->fragment, {});
+  const auto program = repair::repair_program(specular->vertex, {"phong_frag.glsl", student}, specular->vertex, specular->fragment, {});
   ASSERT_TRUE(program.ok()) << program.error().message;
-  const grade::CandidateCounts counts{128, 16, 0, 0, 128};
-  const auto singles = grade::single_candidates(*program, counts);
+  const repair::CandidateCounts counts{128, 16, 0, 0, 128};
+  const auto singles = repair::single_candidates(*program, counts);
   const std::vector<double> distances(singles.size(), 0.5);  // none nearer than the student's own: aligned pairs alone
   bool paired = false;
-  for (const auto& pair : grade::pair_candidates(*program, singles, distances, 0.5, counts)) {
+  for (const auto& pair : repair::pair_candidates(*program, singles, distances, 0.5, counts)) {
     std::set<std::string> lines;
-    for (const auto& e : pair.edits) lines.insert(grade::edited_line(program->fragment.source.glsl, e));
+    for (const auto& e : pair.edits) lines.insert(repair::edited_line(program->fragment.source.glsl, e));
     paired = paired || (lines.contains("float coeffDiffuse = max(0.0, dot(N, L));") &&
                         lines.contains("fragColor += coeffSpecular * uSpecularColor * uLightColor;"));
   }
@@ -745,13 +745,13 @@ TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
   swap("float coeffDiffuse = dot(N, L);", "float coeffDiffuse = max(dot(N, L), 0.0);");
   swap("pow(max(dot(R, V), 0.0), 6.0)", "max(dot(R, V), 0.0)");
   swap("coeffSpecular * uSpecularColor;", "coeffSpecular * uSpecularColor * uLightColor;");
-  const auto without = grade::repair_program(specular->vertex, {"phong_frag.glsl", no_power}, specular->vertex, specular->fragment, {});
+  const auto without = repair::repair_program(specular->vertex, {"phong_frag.glsl", no_power}, specular->vertex, specular->fragment, {});
   ASSERT_TRUE(without.ok()) << without.error().message;
-  const auto its_singles = grade::single_candidates(*without, counts);
+  const auto its_singles = repair::single_candidates(*without, counts);
   bool power_and_number = false;
-  for (const auto& pair : grade::pair_candidates(*without, its_singles, std::vector<double>(its_singles.size(), 0.5), 0.5, counts)) {
+  for (const auto& pair : repair::pair_candidates(*without, its_singles, std::vector<double>(its_singles.size(), 0.5), 0.5, counts)) {
     std::set<std::string> lines;
-    for (const auto& e : pair.edits) lines.insert(grade::edited_line(without->fragment.source.glsl, e));
+    for (const auto& e : pair.edits) lines.insert(repair::edited_line(without->fragment.source.glsl, e));
     power_and_number = power_and_number || (lines.contains("float specularAlpha = 6.0;") &&
                                             lines.contains("coeffSpecular = pow(max(dot(R, V), 0.0), specularAlpha);"));
   }
@@ -762,14 +762,14 @@ TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
 // written into the tutorial's reflectDir gets the reference's R back in the student's names.
 TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsNames) {
   const std::string tutorial = testkit::with_tutorial_main(glsl_of("specular", shader::Stage::fragment));
-  const auto restored = lines_of_kind(typed(tutorial, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)"), grade::RepairKind::value_restored);
+  const auto restored = lines_of_kind(typed(tutorial, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)"), repair::RepairKind::value_restored);
   EXPECT_TRUE(has(restored, "vec3 reflectDir = reflect(-lightDir, norm);"));
 
   // A helper written above main declares its r from l and n before main's lines align them: the
   // names are aligned again until no more align, so r is R and V, computed as L, is the one left.
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
   const std::string helpers = helpers_program("l");
-  EXPECT_TRUE(has(lines_of_kind(helpers, grade::RepairKind::value_restored), "vec3 v = normalize(-vPosition);"));
+  EXPECT_TRUE(has(lines_of_kind(helpers, repair::RepairKind::value_restored), "vec3 v = normalize(-vPosition);"));
 
   // A local aligned by its uses alone (l, not normalised, is L where it is read) aligns the
   // declarations that read it (r is R), so V, from the eye, is the one left and gets its value back
@@ -786,8 +786,8 @@ TEST(LeftOutEditsTest, TheOneLocalEachLeavesUnalignedIsRestoredInTheStudentsName
                                 "}\n";
   const std::string vertex = glsl_of("specular", shader::Stage::vertex);
   bool restored_as_the_reference = false;
-  for (const auto& e : grade::program_repair_edits({vertex, two_wrong}, {vertex, reference}))
-    if (e.kind == grade::RepairKind::value_restored && grade::edited_line(two_wrong, e) == "vec3 v = normalize(-vPosition);")
+  for (const auto& e : repair::program_repair_edits({vertex, two_wrong}, {vertex, reference}))
+    if (e.kind == repair::RepairKind::value_restored && repair::edited_line(two_wrong, e) == "vec3 v = normalize(-vPosition);")
       restored_as_the_reference = e.reads_as_reference;
   EXPECT_TRUE(restored_as_the_reference);
 }
@@ -809,10 +809,10 @@ TEST(RepairSearchTest, AStageBeyondTheSearchsTokenBudgetIsNotReadAndTheReportSay
     return shader::ShaderFile{"hostile_frag.glsl", head + body + "}\n"};
   };
   const shader::ShaderFile within = stage_of(150), beyond = stage_of(1200);
-  const auto read = grade::repair_program(specular->vertex, within, specular->vertex, specular->fragment, {{specular->vertex, beyond}});
+  const auto read = repair::repair_program(specular->vertex, within, specular->vertex, specular->fragment, {{specular->vertex, beyond}});
   ASSERT_TRUE(read.ok()) << read.error().message;
   EXPECT_TRUE(read->classmates.empty()) << "a classmate's stage over the budget is passed over";
-  const auto refused = grade::repair_program(specular->vertex, beyond, specular->vertex, specular->fragment, {});
+  const auto refused = repair::repair_program(specular->vertex, beyond, specular->vertex, specular->fragment, {});
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.error().code, ErrorCode::payload_too_large);
   EXPECT_NE(refused.error().message.find("the fragment stage holds"), std::string::npos) << refused.error().message;
@@ -827,7 +827,7 @@ TEST(RepairSearchTest, AStageBeyondTheSearchsTokenBudgetIsNotReadAndTheReportSay
   job.grade.reference_vertex = specular->vertex;
   job.grade.reference_fragment = specular->fragment;
   grade::Report report;
-  road::search_repair(pool, job, "", grade::RepairShown::repaired_line, {}, report);
+  road::search_repair(pool, job, "", repair::RepairShown::repaired_line, {}, report);
   EXPECT_FALSE(report.repair_search.has_value());
   ASSERT_EQ(report.warnings.size(), 1u);
   EXPECT_NE(report.warnings[0].find("no repair was searched for: the fragment stage holds"), std::string::npos) << report.warnings[0];

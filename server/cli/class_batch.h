@@ -15,7 +15,7 @@
 //
 // A second pass, where the batch can run one: a failing student for whom the repair search found
 // no repair is graded again with the programs of the shard's passing students beside the course's
-// reference (road/repair_search.h, grade/classmate_edits.h); their line is appended again, saying
+// reference (road/repair_search.h, repair/classmate_edits.h); their line is appended again, saying
 // so, and their results.json rewritten. It runs once a student, resumed like the first.
 //
 // `--shard I/N` takes the students whose name hashes to I modulo N: stable when students are

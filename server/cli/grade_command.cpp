@@ -104,7 +104,7 @@ Expected<StudentGrade> grade_student_on_server(const course::Course& c, const co
 }
 
 Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f,
-                                     const Student& s, std::vector<grade::PassingProgram> classmates = {}) {
+                                     const Student& s, std::vector<repair::PassingProgram> classmates = {}) {
   std::optional<std::pair<fs::path, fs::path>> pair;
   if (auto zero = without_pair(c, checkpoint, f, s, pair)) return *zero;
   if (!classmates.empty()) {
@@ -119,8 +119,8 @@ Expected<StudentGrade> grade_student(worker::WorkerPool& pool, const course::Cou
 }
 
 // The programs of `passing` students, as each handed them in, for a class batch's second pass.
-std::vector<grade::PassingProgram> programs_of(const course::Course& c, const course::Checkpoint& checkpoint, const std::vector<Student>& passing) {
-  std::vector<grade::PassingProgram> out;
+std::vector<repair::PassingProgram> programs_of(const course::Course& c, const course::Checkpoint& checkpoint, const std::vector<Student>& passing) {
+  std::vector<repair::PassingProgram> out;
   for (const auto& s : passing)
     if (const auto pair = find_pair(c, s.dir, checkpoint))
       out.push_back({{pair->first.filename().string(), read_text(pair->first)}, {pair->second.filename().string(), read_text(pair->second)}});
@@ -155,7 +155,7 @@ int run_batch(const course::Course& c, const GradeFlags& f) {
   // the course shows its students (`repairShown`), never the repaired line a TA's single grade shows.
   GradeFlags as_students_see = f;
   as_students_see.show_repaired_line = false;
-  const auto grade = [&](const Student& s, std::vector<grade::PassingProgram> classmates) -> Expected<StudentGrade> {
+  const auto grade = [&](const Student& s, std::vector<repair::PassingProgram> classmates) -> Expected<StudentGrade> {
     auto graded = grade_student(pool, c, checkpoint, as_students_see, s, std::move(classmates));
     if (graded && !graded->first_grade_stands) frames.check(s, *graded);
     return graded;  // an error stops the batch, resumable: nobody is graded for the grader's failure

@@ -59,7 +59,7 @@ Expected<road::CodeSubmission> submission_of(const course::Course& c, const Grad
   submission->repair.class_candidates = f.class_candidates;
   submission->spec.warm = f.warm_store;
   if (f.show_repaired_line) {  // a TA's own grade: the repaired line and every pixel of the difference
-    submission->repair_shown = grade::RepairShown::repaired_line;
+    submission->repair_shown = repair::RepairShown::repaired_line;
     submission->spec.picture = grade::DifferencePicture::full;
   }
   return submission;
@@ -80,7 +80,7 @@ Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& c, c
 }
 
 Expected<std::optional<Graded>> grade_beside_class(worker::WorkerPool& pool, const course::Course& c, const GradeFlags& f,
-                                                   const fs::path& vert, const fs::path& frag, std::vector<grade::PassingProgram> classmates) {
+                                                   const fs::path& vert, const fs::path& frag, std::vector<repair::PassingProgram> classmates) {
   auto submission = submission_of(c, f, {vert.filename().string(), read_text(vert)}, {frag.filename().string(), read_text(frag)});
   if (!submission) return submission.take_error();
   submission->classmates = std::move(classmates);

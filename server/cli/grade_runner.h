@@ -67,7 +67,7 @@ Expected<Graded> grade_pair(worker::WorkerPool& pool, const course::Course& cour
 // did not try (road::second_search_has_candidates).
 Expected<std::optional<Graded>> grade_beside_class(worker::WorkerPool& pool, const course::Course& course, const GradeFlags& f,
                                                    const std::filesystem::path& vert, const std::filesystem::path& frag,
-                                                   std::vector<grade::PassingProgram> classmates);
+                                                   std::vector<repair::PassingProgram> classmates);
 
 // A deliverable's saved frames (`files`, relative to `root`) graded against `checkpoint`'s
 // reference and, with `code` (vertex, fragment; relative to `root`), against what that code

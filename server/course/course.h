@@ -16,7 +16,7 @@
 #include "core/expected.h"
 #include "grade/formula_vectors.h"
 #include "grade/grade_spec.h"
-#include "grade/repair_edit.h"
+#include "repair/repair_edit.h"
 #include "render/render_request.h"
 #include "scene/mesh.h"
 #include "scene/scene_description.h"
@@ -198,7 +198,7 @@ struct Course {
   grade::GradeOptions tolerance;
   // How much of a confirmed repair of a failing code grade its students are shown (the profile's
   // `repairShown`): what is wrong, where (the line: the default), or the repaired line too.
-  grade::RepairShown repair_shown = grade::RepairShown::where;
+  repair::RepairShown repair_shown = repair::RepairShown::where;
   // What a failing grade's picture of where it differs shows its students (the profile's
   // `differencePicture`): blocks by default, which no number of grades a class could make inverts
   // to the reference's pixels; staff see every pixel.

@@ -89,9 +89,9 @@ class Parser {
 
   void repair_shown(const JsonReader& r) {
     std::set<std::string> names;
-    for (const auto& row : grade::kRepairShownNames) names.emplace(row.name);
-    const std::string where = std::string(name_in(grade::kRepairShownNames, grade::RepairShown::where));
-    course_.repair_shown = value_in(grade::kRepairShownNames, r.text("repairShown", where, names)).value_or(grade::RepairShown::where);
+    for (const auto& row : repair::kRepairShownNames) names.emplace(row.name);
+    const std::string where = std::string(name_in(repair::kRepairShownNames, repair::RepairShown::where));
+    course_.repair_shown = value_in(repair::kRepairShownNames, r.text("repairShown", where, names)).value_or(repair::RepairShown::where);
   }
 
   void page(const JsonReader& r) {

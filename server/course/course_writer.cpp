@@ -126,7 +126,7 @@ json to_json(const Course& c, bool portable) {
               {"aliases", aliases}};
   if (!c.source.empty()) out["source"] = c.source;
   if (!c.hand_in_title.empty()) out["handIn"] = c.hand_in_title;
-  if (c.repair_shown != grade::RepairShown::where) out["repairShown"] = name_in(grade::kRepairShownNames, c.repair_shown);
+  if (c.repair_shown != repair::RepairShown::where) out["repairShown"] = name_in(repair::kRepairShownNames, c.repair_shown);
   if (c.difference_picture != grade::DifferencePicture::blocks)
     out["differencePicture"] = name_in(grade::kDifferencePictureNames, c.difference_picture);
   if (json tolerance = tolerance_json(c.tolerance); !tolerance.empty()) out["tolerance"] = std::move(tolerance);

@@ -5,9 +5,9 @@
 #include <regex>
 #include <string>
 
-#include "grade/aligned_lines.h"
+#include "repair/aligned_lines.h"
 #include "grade/diagnosis.h"
-#include "grade/repair_words.h"
+#include "repair/repair_words.h"
 #include "grade/starter_constants.h"
 #include "shader/glsl_lines.h"
 
@@ -18,35 +18,35 @@ namespace {
 // Which of the homework formula's `vectors` the edit's subject is, where it is a local of the
 // student's fragment stage that stands for one of the reference fragment stage's (by the student's
 // own name or the one aligned with it): the formula's name for it ("L") and its words; none else.
-const VectorWords::value_type* vector_of(const RepairProgram& p, const RepairEdit& e, const VectorWords& vectors) {
+const VectorWords::value_type* vector_of(const repair::RepairProgram& p, const repair::RepairEdit& e, const VectorWords& vectors) {
   if (vectors.empty() || e.stage != shader::Stage::fragment || p.reference_fragment.empty()) return nullptr;
   const std::string& glsl = p.fragment.source.glsl;
-  const std::string name = AlignedLines(glsl, p.reference_fragment).reference_name(e.subject, edited_line(glsl, e));
+  const std::string name = repair::AlignedLines(glsl, p.reference_fragment).reference_name(e.subject, repair::edited_line(glsl, e));
   const auto found = vectors.find(name);
   return found == vectors.end() ? nullptr : &*found;
 }
 
 // One edit of a confirmed repair, said as far as `shown` allows.
-Repair repair_of(const RepairProgram& p, const RepairEdit& e, RepairShown shown, const VectorWords& vectors) {
-  const StudentStage& stage = p[e.stage];
+Repair repair_of(const repair::RepairProgram& p, const repair::RepairEdit& e, repair::RepairShown shown, const VectorWords& vectors) {
+  const repair::StudentStage& stage = p[e.stage];
   const auto* vector = vector_of(p, e, vectors);
-  Repair repair{e.kind, std::nullopt, std::nullopt, repair_words(e, vector ? std::string_view(vector->second) : ""),
-                std::nullopt, repair_label(e, vector ? std::string_view(vector->first) : "")};
-  if (shown != RepairShown::what) {
+  Repair repair{e.kind, std::nullopt, std::nullopt, repair::repair_words(e, vector ? std::string_view(vector->second) : ""),
+                std::nullopt, repair::repair_label(e, vector ? std::string_view(vector->first) : "")};
+  if (shown != repair::RepairShown::what) {
     repair.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
     repair.line = stage.source.locate(e.line, 0).file_line;
   }
   // A restored statement or value is the reference's text, not the student's line: named, never shown.
-  if (shown == RepairShown::repaired_line && !writes_reference_text(e.kind)) repair.repaired_line = edited_line(stage.source.glsl, e);
+  if (shown == repair::RepairShown::repaired_line && !repair::writes_reference_text(e.kind)) repair.repaired_line = repair::edited_line(stage.source.glsl, e);
   return repair;
 }
 
 // Where the grader named a changed starter constant ("your shader's exponent is 20.0; the
 // course's starter uses 6.0", the first message: grade/judge_code.h) and `e` refits the number
 // that line gives it, that message is the edit's words at its line: said once, not twice.
-std::optional<std::string> constant_named(const RepairProgram& p, const RepairEdit& e, const std::vector<StarterConstant>& constants,
+std::optional<std::string> constant_named(const repair::RepairProgram& p, const repair::RepairEdit& e, const std::vector<StarterConstant>& constants,
                                           const Report& report) {
-  if (e.kind != RepairKind::literal_refit || e.stage != shader::Stage::fragment || report.messages.empty()) return std::nullopt;
+  if (e.kind != repair::RepairKind::literal_refit || e.stage != shader::Stage::fragment || report.messages.empty()) return std::nullopt;
   if (report.diagnosis.empty() || report.diagnosis == to_string(Diagnosis::nan)) return std::nullopt;
   const auto changed = changed_starter_constants(constants, p.fragment.file->text);
   if (changed.size() != 1) return std::nullopt;  // which message names which constant is not ours to guess
@@ -59,7 +59,7 @@ std::optional<std::string> constant_named(const RepairProgram& p, const RepairEd
 
 }  // namespace
 
-void state_repair(const RepairProgram& p, const std::vector<RepairEdit>& edits, RepairShown shown, const VectorWords& vectors,
+void state_repair(const repair::RepairProgram& p, const std::vector<repair::RepairEdit>& edits, repair::RepairShown shown, const VectorWords& vectors,
                   const std::vector<StarterConstant>& constants, Report& report) {
   std::vector<Repair> repairs;
   for (const auto& e : edits) repairs.push_back(repair_of(p, e, shown, vectors));

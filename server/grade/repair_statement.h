@@ -7,7 +7,7 @@
 
 #include "grade/formula_vectors.h"
 #include "grade/grade_spec.h"
-#include "grade/repair_candidates.h"
+#include "repair/repair_candidates.h"
 #include "grade/report.h"
 
 namespace shadelab::grade {
@@ -16,7 +16,7 @@ namespace shadelab::grade {
 // `shown` allows; a local `vectors` names said in its words; a changed starter constant of
 // `constants` the grader named said once, at its line), superseding the formula's "cannot say
 // why", and `found` (and `also`, for a pair) in its `repair_search`, which the search has set.
-void state_repair(const RepairProgram& p, const std::vector<RepairEdit>& edits, RepairShown shown, const VectorWords& vectors,
+void state_repair(const repair::RepairProgram& p, const std::vector<repair::RepairEdit>& edits, repair::RepairShown shown, const VectorWords& vectors,
                   const std::vector<StarterConstant>& constants, Report& report);
 
 }  // namespace shadelab::grade

@@ -30,7 +30,7 @@
 
 #include "core/expected.h"
 #include "core/json_fields.h"
-#include "grade/repair_edit.h"
+#include "repair/repair_edit.h"
 #include "grade/grader.h"
 #include "grade/provenance.h"
 
@@ -64,7 +64,7 @@ struct Explanation {
 // A failing code grade's repair (road/repair_search.h): the smallest edit of the student's own
 // program that makes it draw what the reference draws, confirmed on every frame the grade draws.
 struct Repair {
-  RepairKind kind = RepairKind::normalised;
+  repair::RepairKind kind = repair::RepairKind::normalised;
   // Where: the student's file (phong_frag.js) and its line (1-based); none where the course shows
   // its students only what is wrong (RepairShown::what).
   std::optional<std::string> file;

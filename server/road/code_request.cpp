@@ -105,7 +105,7 @@ Expected<BuiltCode> code_submission(const course::Course& c, CodeRequest request
   if (!spec) return spec.take_error();
   if (auto s = apply_tolerance(request.tolerance, spec->options); !s) return s.take_error();
   out.submission.spec = std::move(*spec);
-  out.submission.repair_shown = viewer.sees_references() ? grade::RepairShown::repaired_line : c.repair_shown;
+  out.submission.repair_shown = viewer.sees_references() ? repair::RepairShown::repaired_line : c.repair_shown;
   if (viewer.sees_references()) out.submission.spec.picture = grade::DifferencePicture::full;
   return out;
 }

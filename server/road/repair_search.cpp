@@ -19,8 +19,8 @@ namespace {
 constexpr int kScreenFrames = 3;
 
 // The program `job` draws, read beside its reference and the class's passing programs.
-Expected<grade::RepairProgram> program_of(const worker::Job& job, const std::vector<grade::PassingProgram>& classmates) {
-  return grade::repair_program(job.request.vertex, job.request.fragment, job.grade.reference_vertex, job.grade.reference_fragment,
+Expected<repair::RepairProgram> program_of(const worker::Job& job, const std::vector<repair::PassingProgram>& classmates) {
+  return repair::repair_program(job.request.vertex, job.request.fragment, job.grade.reference_vertex, job.grade.reference_fragment,
                                classmates);
 }
 
@@ -40,7 +40,7 @@ std::vector<std::string> screen_probes(const grade::Report& failed) {
 // The grade's job for a candidate: a verdict only (no catalogue, no formula, no heat map), on the
 // grade's canvas or, to screen (`screen`: the probes it keeps), one `budget.screen_size` on its
 // longer side within its share of the deadlines.
-worker::Job candidate_job(const worker::Job& failed, const grade::RepairCandidate& c, const RepairBudget& budget,
+worker::Job candidate_job(const worker::Job& failed, const repair::RepairCandidate& c, const RepairBudget& budget,
                           const std::vector<std::string>* screen) {
   worker::Job job = failed;
   job.request.vertex = c.vertex;
@@ -136,8 +136,8 @@ struct Search {
   // is confirmed (`winner`) or the confirmations are spent. `distances`: each screen's distance.
   // The first wave is the smallest candidate alone: it is most often the repair (a median of one
   // candidate), and a wave's others would be screened for nothing, a class's workers' time.
-  Pass try_in_order(const std::vector<grade::RepairCandidate>& candidates, int confirmations, std::vector<double>* distances,
-                    const grade::RepairCandidate** winner) {
+  Pass try_in_order(const std::vector<repair::RepairCandidate>& candidates, int confirmations, std::vector<double>* distances,
+                    const repair::RepairCandidate** winner) {
     const int confirmed_before = spent.confirmations;
     const size_t width = static_cast<size_t>(std::max({1, budget.wave, pool.config().workers}));
     for (size_t first = 0, wave = 1; first < candidates.size(); first += wave, wave = width) {
@@ -171,8 +171,8 @@ struct Search {
 
   // The student's own program's distance on the screening canvas: what a single edit must improve
   // on to be one of a pair.
-  std::optional<double> own_distance(const grade::RepairProgram& p) {
-    auto own = grade_candidates(pool, {candidate_job(failed, grade::candidate_of(p, {}), budget, &probes)}, mesh);
+  std::optional<double> own_distance(const repair::RepairProgram& p) {
+    auto own = grade_candidates(pool, {candidate_job(failed, repair::candidate_of(p, {}), budget, &probes)}, mesh);
     if (!own) {
       could_not_run(own.error());
       return std::nullopt;
@@ -183,9 +183,9 @@ struct Search {
 
 }  // namespace
 
-bool class_offers_edits(const worker::Job& failed, const std::vector<grade::PassingProgram>& classmates, const RepairBudget& budget) {
+bool class_offers_edits(const worker::Job& failed, const std::vector<repair::PassingProgram>& classmates, const RepairBudget& budget) {
   const auto program = program_of(failed, classmates);
-  return program && !grade::class_edits(*program, budget.candidate_counts()).empty();
+  return program && !repair::class_edits(*program, budget.candidate_counts()).empty();
 }
 
 bool wants_repair(const grade::Report& report, const std::vector<grade::StarterConstant>& constants) {
@@ -197,9 +197,9 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
          report.diagnosis == grade::to_string(grade::Diagnosis::swapped_channels) || std::any_of(constants.begin(), constants.end(), changed);
 }
 
-void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
+void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, repair::RepairShown shown,
                    const grade::VectorWords& vectors, grade::Report& report, const RepairBudget& budget,
-                   const std::vector<grade::PassingProgram>& classmates) {
+                   const std::vector<repair::PassingProgram>& classmates) {
   const auto program = program_of(failed, classmates);
   if (!program) {
     // A program the search cannot read gets no search: a stage beyond its budget says why.
@@ -208,19 +208,19 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   }
   if (budget.confirmations < 1) return;  // nothing screened could be stated
   Search search{pool, failed, mesh_bytes, budget, report};
-  const grade::CandidateCounts counts = budget.candidate_counts();
-  const std::vector<grade::RepairCandidate> singles = grade::single_candidates(*program, counts);
+  const repair::CandidateCounts counts = budget.candidate_counts();
+  const std::vector<repair::RepairCandidate> singles = repair::single_candidates(*program, counts);
   std::vector<double> distances;
-  std::vector<grade::RepairCandidate> pairs;
-  const grade::RepairCandidate* winner = nullptr;  // in `singles` or `pairs`
+  std::vector<repair::RepairCandidate> pairs;
+  const repair::RepairCandidate* winner = nullptr;  // in `singles` or `pairs`
   Pass pass = search.try_in_order(singles, budget.confirmations, &distances, &winner);
   // A single whose screen passed and whose full render did not is a mistake half mended: the
   // pairs still get confirmations of their own.
   if (pass != Pass::confirmed && pass != Pass::trouble && budget.pairs > 0 && budget.pair_confirmations > 0) {
-    // No one edit repairs it: two edits (grade::pair_candidates says which, in what order).
+    // No one edit repairs it: two edits (repair::pair_candidates says which, in what order).
     const auto own = search.own_distance(*program);
     if (!own) return;
-    pairs = grade::pair_candidates(*program, singles, distances, *own, counts);
+    pairs = repair::pair_candidates(*program, singles, distances, *own, counts);
     pass = search.try_in_order(pairs, budget.pair_confirmations, nullptr, &winner);
   }
   if (pass == Pass::trouble) return;

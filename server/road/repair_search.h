@@ -1,8 +1,8 @@
 #pragma once
 // The repair search of a failing code grade (docs/grading.md, "Repairs"): the smallest edit of
-// the student's own program (grade/repair_edits.h) that makes it draw what the reference draws,
+// the student's own program (repair/repair_edits.h) that makes it draw what the reference draws,
 // under every light the grade uses and within its tolerance. What to try, in what order, is
-// grade/repair_candidates.h's; how a confirmed repair is said, grade/repair_statement.h's; this
+// repair/repair_candidates.h's; how a confirmed repair is said, grade/repair_statement.h's; this
 // file runs the candidates.
 //
 // Each candidate is a grade of its own in a worker, killable like any: one that does not pass
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "grade/formula_vectors.h"
-#include "grade/repair_candidates.h"
+#include "repair/repair_candidates.h"
 #include "grade/report.h"
 #include "worker/job.h"
 #include "worker/pool.h"
@@ -25,7 +25,7 @@ namespace shadelab::road {
 struct RepairBudget {
   int candidates = 128;   // single edits of the student's own program screened, at most
   // Single edits that read the reference (a number refit, a statement or a value restored:
-  // grade/reference_edits.h), at most: counted apart, as they are few and come last by size.
+  // repair/reference_edits.h), at most: counted apart, as they are few and come last by size.
   int reference_candidates = 16;
   // Where no single edit repairs the program: the single that drew nearest the reference, paired
   // with each other single in order, at most `pairs` pairs.
@@ -38,13 +38,13 @@ struct RepairBudget {
   // candidate that hangs is dropped after this share, never the grade's failure. The confirming
   // render has the grade's whole deadlines, as the student's own program had.
   double screen_deadline_share = 0.25;
-  // A class batch's second pass (grade/classmate_edits.h): the edits the class's passing programs
+  // A class batch's second pass (repair/classmate_edits.h): the edits the class's passing programs
   // offer that the course's reference does not, at most, from the `classmates` nearest the
   // student's program; tried first, as the first search tried the others.
   int class_candidates = 16;
   int classmates = 3;
 
-  grade::CandidateCounts candidate_counts() const { return {candidates, reference_candidates, class_candidates, classmates, pairs}; }
+  repair::CandidateCounts candidate_counts() const { return {candidates, reference_candidates, class_candidates, classmates, pairs}; }
 };
 
 // Whether a report is one the search is for: a failing grade that drew its frames and that
@@ -61,13 +61,13 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 // batch gives them, offer edits of their own after the reference's. When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
-void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, grade::RepairShown shown,
+void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, repair::RepairShown shown,
                    const grade::VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {},
-                   const std::vector<grade::PassingProgram>& classmates = {});
+                   const std::vector<repair::PassingProgram>& classmates = {});
 
 // Whether `classmates` offer any edit of the program `failed` drew (a grade job) that its first
 // search, beside the reference alone, did not try: where none, a second search would screen again
 // what the first screened, and is not run.
-bool class_offers_edits(const worker::Job& failed, const std::vector<grade::PassingProgram>& classmates, const RepairBudget& budget = {});
+bool class_offers_edits(const worker::Job& failed, const std::vector<repair::PassingProgram>& classmates, const RepairBudget& budget = {});
 
 }  // namespace shadelab::road

@@ -41,10 +41,10 @@ struct CodeSubmission {
   render::RenderLimits limits;  // the caller's: its sources are checked against them, once, on the road
   // How much of a failing grade's repair (road/repair_search.h) is said: the course's choice for
   // its students, the repaired line for whoever may see the references.
-  grade::RepairShown repair_shown = grade::RepairShown::where;
+  repair::RepairShown repair_shown = repair::RepairShown::where;
   grade::VectorWords vector_words;  // the checkpoint's formula's vectors, for a repair's words
   RepairBudget repair;  // 0 candidates: no search
-  std::vector<grade::PassingProgram> classmates;  // a class batch's second pass: its passing programs (road/repair_search.h)
+  std::vector<repair::PassingProgram> classmates;  // a class batch's second pass: its passing programs (road/repair_search.h)
 };
 
 struct CodeGrade {

@@ -1,7 +1,7 @@
 #pragma once
 // The specular checkpoint written as a tutorial writes it (`lightDir`, `reflectDir`, `spec`, where
 // the course's reference writes L, R and its exponent's constant): right, but for its names and
-// its order, for the tests of what a class's passing programs offer (grade/classmate_edits.h).
+// its order, for the tests of what a class's passing programs offer (repair/classmate_edits.h).
 #include <string>
 
 namespace shadelab::testkit {

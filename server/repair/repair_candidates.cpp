@@ -1,12 +1,12 @@
-#include "grade/repair_candidates.h"
+#include "repair/repair_candidates.h"
 
 #include <algorithm>
 #include <set>
 
-#include "grade/classmate_edits.h"
+#include "repair/classmate_edits.h"
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -133,7 +133,7 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
     }
   }
   // Aligned: a line that then reads as the reference's, or one aligned by what it lacks (a factor,
-  // a term, a clamp the reference's counterpart reads: grade/left_out_edits.h).
+  // a term, a clamp the reference's counterpart reads: repair/left_out_edits.h).
   const auto aligned = [&](size_t i) {
     const RepairEdit& e = singles[i].edits.front();
     return e.reads_as_reference || puts_back(e.kind) || e.edits_aligned_line;
@@ -149,4 +149,4 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -10,11 +10,11 @@
 // only: a render says whether one repairs anything.
 #include <vector>
 
-#include "grade/repair_edit.h"
-#include "grade/stage_tokens.h"
+#include "repair/repair_edit.h"
+#include "repair/stage_tokens.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 std::vector<RepairEdit> left_out_edits(const StageTokens& student, const StageTokens& reference);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -12,7 +12,7 @@
 
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 class StageVariation {
  public:
@@ -35,4 +35,4 @@ class StageVariation {
   std::set<std::string, std::less<>> uniforms_, inputs_, varying_;
 };
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

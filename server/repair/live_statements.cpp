@@ -1,11 +1,11 @@
-#include "grade/live_statements.h"
+#include "repair/live_statements.h"
 
 #include <algorithm>
 #include <optional>
 
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -180,4 +180,4 @@ StageLiveness vertex_liveness(const StageTokens& vertex, const std::set<std::str
   return liveness(vertex, std::move(outputs));
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

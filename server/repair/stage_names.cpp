@@ -1,6 +1,6 @@
-#include "grade/stage_names.h"
+#include "repair/stage_names.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 TypedNames declared_types(const StageTokens& s) {
   TypedNames types;
@@ -43,4 +43,4 @@ std::vector<std::pair<size_t, size_t>> conditions_of(const StageTokens& s) {
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -8,17 +8,17 @@
 #include <string_view>
 #include <vector>
 
-#include "grade/repair_edit.h"
-#include "grade/stage_tokens.h"
+#include "repair/repair_edit.h"
+#include "repair/stage_tokens.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
-// Every edit of the kinds grade/repair_edit.h lists that applies to one stage (its GLSL as the
+// Every edit of the kinds repair/repair_edit.h lists that applies to one stage (its GLSL as the
 // driver gets it), smallest first.
 std::vector<RepairEdit> repair_edits(const StageTokens& stage);
 
 // Both stages' edits, smallest first, less those in an assignment that cannot reach what the
-// program draws (grade/live_statements.h): the candidates a repair search tries, in its order.
+// program draws (repair/live_statements.h): the candidates a repair search tries, in its order.
 // With the reference's stages (empty: none), the reference's edits too.
 // With `Liveness::dead`, only the edits that list leaves out for their statement's being dead:
 // a pair's second edit where its first puts back what makes that statement live again (a
@@ -37,4 +37,4 @@ std::string with_edit(std::string_view glsl, const RepairEdit& edit);
 // The line `edit` is on, as it reads after the edit.
 std::string edited_line(std::string_view glsl, const RepairEdit& edit);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

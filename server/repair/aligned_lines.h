@@ -13,9 +13,9 @@
 #include <string_view>
 #include <vector>
 
-#include "grade/stage_tokens.h"
+#include "repair/stage_tokens.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 class AlignedLines {
  public:
@@ -57,4 +57,4 @@ class AlignedLines {
   Names names_;
 };
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,9 +1,9 @@
-#include "grade/value_variation.h"
+#include "repair/value_variation.h"
 
 #include <algorithm>
 #include <iterator>
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -92,4 +92,4 @@ std::vector<std::string> StageVariation::inputs_read(Tokens value) const {
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

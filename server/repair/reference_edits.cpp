@@ -1,4 +1,4 @@
-#include "grade/reference_edits.h"
+#include "repair/reference_edits.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -6,14 +6,14 @@
 #include <set>
 
 #include "core/words.h"
-#include "grade/repair_edits.h"
-#include "grade/stage_names.h"
-#include "grade/stage_tokens.h"
-#include "grade/student_names.h"
-#include "grade/value_difference.h"
-#include "grade/value_variation.h"
+#include "repair/repair_edits.h"
+#include "repair/stage_names.h"
+#include "repair/stage_tokens.h"
+#include "repair/student_names.h"
+#include "repair/value_difference.h"
+#include "repair/value_variation.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -319,4 +319,4 @@ std::vector<RepairEdit> reference_edits(const Stage& s, const Stage& r) {
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -4,9 +4,9 @@
 #include <string>
 #include <string_view>
 
-#include "grade/repair_edit.h"
+#include "repair/repair_edit.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 // "`L` is not normalised: a direction must be a unit vector". `meaning`: what the edit's subject
 // is in the homework's formula, where the course names it (grade/formula_vectors.h): "`L` is not
@@ -19,4 +19,4 @@ std::string repair_words(const RepairEdit& edit, std::string_view meaning = {});
 // subject as written ("`uSpecularColor` in place of another value").
 std::string repair_label(const RepairEdit& edit, std::string_view symbol = {});
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,11 +1,11 @@
-#include "grade/aligned_lines.h"
+#include "repair/aligned_lines.h"
 
 #include <algorithm>
 #include <array>
 
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -155,4 +155,4 @@ bool AlignedLines::aligned(const Tokens& student, const Tokens& reference, const
   return true;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,5 +1,5 @@
 #pragma once
-// One stage's GLSL as the repair edits read it (grade/repair_edits.h, grade/reference_edits.h): its
+// One stage's GLSL as the repair edits read it (repair/repair_edits.h, repair/reference_edits.h): its
 // tokens, the bytes each covers, and how far a call, an operand or an expression reaches. A
 // search reads each stage of each program into tokens once, for every edit it looks for.
 #include <algorithm>
@@ -9,10 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "grade/repair_edit.h"
+#include "repair/repair_edit.h"
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 using shader::GlslToken;
 
@@ -132,4 +132,4 @@ inline std::string unspaced(std::string_view text) {
   return kept;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -5,10 +5,10 @@
 // repairs anything.
 #include <vector>
 
-#include "grade/repair_edit.h"
-#include "grade/stage_tokens.h"
+#include "repair/repair_edit.h"
+#include "repair/stage_tokens.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 // The edits that read the course's reference program beside the student's (one stage of each):
 // a number refit to one the reference writes, an output the student's stage never writes
@@ -17,4 +17,4 @@ namespace shadelab::grade {
 // (grade::Repair::repaired_line), only named by what it writes.
 std::vector<RepairEdit> reference_edits(const StageTokens& student, const StageTokens& reference);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

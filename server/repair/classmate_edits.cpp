@@ -1,15 +1,15 @@
-#include "grade/classmate_edits.h"
+#include "repair/classmate_edits.h"
 
 #include <algorithm>
 #include <set>
 #include <string>
 #include <tuple>
 
-#include "grade/aligned_lines.h"
-#include "grade/stage_tokens.h"
+#include "repair/aligned_lines.h"
+#include "repair/stage_tokens.h"
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -101,4 +101,4 @@ std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const Prog
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,4 +1,4 @@
-#include "grade/left_out_edits.h"
+#include "repair/left_out_edits.h"
 
 #include <algorithm>
 #include <map>
@@ -7,10 +7,10 @@
 #include <string>
 #include <utility>
 
-#include "grade/stage_names.h"
-#include "grade/student_names.h"
+#include "repair/stage_names.h"
+#include "repair/student_names.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -478,4 +478,4 @@ std::vector<RepairEdit> left_out_edits(const StageTokens& s, const StageTokens& 
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,20 +1,20 @@
 #pragma once
 // The repair edits a class offers (docs/grading.md, "Repairs", "A class's programs"): the student's
 // program read beside classmates' programs that pass the same checkpoint, as it is read beside the
-// course's reference (grade/reference_edits.h). A student who names and orders their program as
+// course's reference (repair/reference_edits.h). A student who names and orders their program as
 // classmates do, and not as the reference does (`lightDir`, `reflectDir`, `spec` where the
 // reference writes L and R), has values a classmate computes under the same name, where the
 // reference computes none: aligning with several correct programs, not one (Clara, PLDI 2018).
 //
 // Only edits that read another program: a number refit to one a classmate writes, a statement, a
 // write, a value or a condition put back. A restored one is a classmate's text, so it is named and
-// never shown (grade::writes_reference_text): a repaired line anyone reads is the student's own
+// never shown (repair::writes_reference_text): a repaired line anyone reads is the student's own
 // line edited, never a line copied from another student's program.
 #include <vector>
 
-#include "grade/repair_edits.h"
+#include "repair/repair_edits.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 // The `count` programs of `classmates` nearest the student's: most of the student's lines written
 // alike (spaces aside), ties in the order given (a batch gives them by student name).
@@ -32,4 +32,4 @@ std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const Prog
 std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
                                         const std::vector<StagePair>& classmates);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

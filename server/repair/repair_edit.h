@@ -1,6 +1,6 @@
 #pragma once
 // One repair edit (docs/grading.md, "Repairs"): what it does, the span of one stage's GLSL it
-// replaces, and how it is shown. The edits found in a program are grade/repair_edits.h's.
+// replaces, and how it is shown. The edits found in a program are repair/repair_edits.h's.
 #include <iterator>
 #include <optional>
 #include <string>
@@ -9,14 +9,14 @@
 #include "core/enum_names.h"
 #include "shader/shader_source.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 // What an edit does, in the order "smallest" breaks its ties (docs/grading.md, "Repairs").
 enum class RepairKind {
   normalised,        // vec3 L = X;  ->  vec3 L = normalize(X);
   unnormalised,      // normalize(X)  ->  X
   clamped,           // dot(V, R)  ->  max(0.0, dot(V, R))
-  // What a student left out, put back at their own line (grade/left_out_edits.h):
+  // What a student left out, put back at their own line (repair/left_out_edits.h):
   factor_added,      // uDiffuseColor * max(...)  ->  uDiffuseColor * uLightColor * max(...): a factor the reference multiplies by
   term_added,        // color = D;  ->  color = uAmbientColor + D;  a uniform the reference adds and the student never reads
   exponent_added,    // max(dot(V, R), 0.0)  ->  pow(max(dot(V, R), 0.0), specularAlpha)
@@ -75,14 +75,14 @@ constexpr bool writes_reference_text(RepairKind kind) {
 }
 
 // Whether an edit of this kind puts back what the student left out, read from the reference's
-// formula (grade/left_out_edits.h): the student's line aligned with the reference's by what it
+// formula (repair/left_out_edits.h): the student's line aligned with the reference's by what it
 // lacks, as a line that then reads as the reference's is by its tokens.
 constexpr bool puts_back(RepairKind kind) {
   return kind == RepairKind::factor_added || kind == RepairKind::term_added || kind == RepairKind::exponent_added ||
          kind == RepairKind::guard_added || kind == RepairKind::value_added;
 }
 
-// Whether an edit of this kind reads the reference (grade::reference_edits): the search counts
+// Whether an edit of this kind reads the reference (repair::reference_edits): the search counts
 // these apart from the student's own edits (road::RepairBudget).
 constexpr bool reads_reference(RepairKind kind) {
   return kind == RepairKind::literal_refit || puts_back(kind) || writes_reference_text(kind);
@@ -118,21 +118,21 @@ struct RepairEdit {
                         // number scales, where it is one (`uAmbientColor` in 2.0 * uAmbientColor)
   int nodes = 1;        // syntax nodes the edit changes: "smallest" is fewest
   // Whether the edited line reads as a line of the reference's stage (spaces, comments and the
-  // student's names for its locals aside: grade/aligned_lines.h): such an edit is tried before any
+  // student's names for its locals aside: repair/aligned_lines.h): such an edit is tried before any
   // other, as the student's line aligned with the reference's.
   bool reads_as_reference = false;
-  // A line that reads as the reference's, edited all the same (grade/left_out_edits.h): the
+  // A line that reads as the reference's, edited all the same (repair/left_out_edits.h): the
   // student reads the value it writes where the reference reads its counterpart clamped, or a
   // guard goes in before its statement, which stays as it is.
   bool edits_aligned_line = false;
   std::optional<OtherStageSpan> other_stage;  // flat_removed: the fragment stage's `flat`
   // value_restored: the student's own edit the restored value amounts to, where it is one
-  // (grade/value_difference.h); its words are said, with `subject` and `other` set for them.
+  // (repair/value_difference.h); its words are said, with `subject` and `other` set for them.
   std::optional<RepairKind> said_as;
   // said as direction_w, where the student's matrix differs too: the one the homework transforms by.
   std::string homework_matrix;
   // value_restored, where no one change says it: the student's value is the same at every point
-  // where the reference's varies (grade/value_variation.h); `other` then names, as words, the
+  // where the reference's varies (repair/value_variation.h); `other` then names, as words, the
   // stage's inputs the reference's value reads itself ("`vPosition`"), empty where it reads them
   // through its locals alone.
   bool constant_value = false;
@@ -143,4 +143,4 @@ struct StagePair {
   std::string_view vertex, fragment;
 };
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

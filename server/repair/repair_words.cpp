@@ -1,6 +1,6 @@
-#include "grade/repair_words.h"
+#include "repair/repair_words.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -98,4 +98,4 @@ std::string repair_label(const RepairEdit& e, std::string_view symbol) {
   return s + " differs from the homework";
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,6 +1,6 @@
 #pragma once
 // Which assignments of a stage can change what the program draws, read from tokens: an edit
-// anywhere else cannot repair it, so the repair search (grade/repair_edits.h) spends no candidate
+// anywhere else cannot repair it, so the repair search (repair/repair_edits.h) spends no candidate
 // there. Conservative: only an assignment to a name nothing live reads, and a condition or loop
 // whose blocks hold nothing live, are dead; every other statement that is not an assignment (a
 // call, a return) is live, and so is every name it reads.
@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "grade/stage_tokens.h"
+#include "repair/stage_tokens.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 struct StageLiveness {
   std::set<std::string, std::less<>> live_names;
@@ -27,4 +27,4 @@ StageLiveness fragment_liveness(const StageTokens& fragment);
 // (`fragment_reads`: the fragment stage's live names).
 StageLiveness vertex_liveness(const StageTokens& vertex, const std::set<std::string, std::less<>>& fragment_reads);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,18 +1,18 @@
-#include "grade/repair_edits.h"
+#include "repair/repair_edits.h"
 
 #include <algorithm>
 #include <map>
 #include <tuple>
 
-#include "grade/aligned_lines.h"
-#include "grade/left_out_edits.h"
-#include "grade/live_statements.h"
-#include "grade/reference_edits.h"
-#include "grade/stage_names.h"
-#include "grade/stage_tokens.h"
+#include "repair/aligned_lines.h"
+#include "repair/left_out_edits.h"
+#include "repair/live_statements.h"
+#include "repair/reference_edits.h"
+#include "repair/stage_names.h"
+#include "repair/stage_tokens.h"
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -329,4 +329,4 @@ std::string edited_line(std::string_view glsl, const RepairEdit& edit) {
   return indent == std::string::npos ? std::string() : line.substr(indent);
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

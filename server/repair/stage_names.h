@@ -1,15 +1,15 @@
 #pragma once
 // The names one stage declares, with their types, and where its main and its conditions are, as
 // the repair edits read them
-// (grade/repair_edits.h, grade/left_out_edits.h).
+// (repair/repair_edits.h, repair/left_out_edits.h).
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "grade/stage_tokens.h"
+#include "repair/stage_tokens.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 using TypedNames = std::map<std::string, std::string, std::less<>>;
 
@@ -28,4 +28,4 @@ size_t main_start(const StageTokens& s);
 // The conditions of a stage's `if`s, in order: the first and last token inside each `if (...)`.
 std::vector<std::pair<size_t, size_t>> conditions_of(const StageTokens& s);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -10,10 +10,10 @@
 #include <string>
 #include <string_view>
 
-#include "grade/repair_edit.h"
+#include "repair/repair_edit.h"
 #include "shader/glsl_lines.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 // The words of a restored value: the kind whose words say the change, and what they name. Every
 // name in `subject` is the student's own text; `other` only a new operator or, for a matrix, the
@@ -32,4 +32,4 @@ struct ValueDifference {
 std::optional<ValueDifference> value_difference(std::span<const shader::GlslToken> student,
                                                 std::span<const shader::GlslToken> reference, std::string_view name);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

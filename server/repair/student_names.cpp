@@ -1,14 +1,14 @@
-#include "grade/student_names.h"
+#include "repair/student_names.h"
 
 #include <algorithm>
 #include <functional>
 #include <set>
 #include <vector>
 
-#include "grade/aligned_lines.h"
-#include "grade/stage_names.h"
+#include "repair/aligned_lines.h"
+#include "repair/stage_names.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -101,4 +101,4 @@ std::optional<std::string> in_student_names(const StageTokens& s, const StageTok
   return out;
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

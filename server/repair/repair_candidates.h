@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "core/expected.h"
-#include "grade/repair_edits.h"
+#include "repair/repair_edits.h"
 #include "shader/shader_source.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 // Another program that passes the same checkpoint: a classmate's, read beside the student's in a
 // class batch's second search.
@@ -54,7 +54,7 @@ Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const s
 // How many candidates of each kind a search may try (road::RepairBudget counts them).
 struct CandidateCounts {
   int own = 0;          // single edits of the student's own program
-  int reference = 0;    // single edits that read the reference (grade/reference_edits.h)
+  int reference = 0;    // single edits that read the reference (repair/reference_edits.h)
   int from_class = 0;   // single edits the class offers, from the `classmates` nearest the student's program
   int classmates = 0;
   int pairs = 0;
@@ -63,7 +63,7 @@ struct CandidateCounts {
 struct RepairCandidate {
   std::vector<RepairEdit> edits;        // one, or a pair
   shader::ShaderFile vertex, fragment;  // the program with the edits made
-  bool from_class = false;              // a single a classmate's program offers (grade/classmate_edits.h)
+  bool from_class = false;              // a single a classmate's program offers (repair/classmate_edits.h)
 };
 
 // The program with `edits` made: an edited stage given as the GLSL the edits made (the same
@@ -85,7 +85,7 @@ std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const Can
 // - two singles the class offers (two of a passing program's values, where the student's program
 //   is written as that program is), in the singles' order;
 // - a single that puts back a term or a statement, with each edit of a line only that could make
-//   live (grade/repair_edits.h, Liveness::dead): a mistake the missing term hid;
+//   live (repair/repair_edits.h, Liveness::dead): a mistake the missing term hid;
 // - two singles that each make their line read as the reference's or put back what the student
 //   left out (the student's program aligned with the reference at two lines), in the singles' order;
 // - the single that drew nearest the reference (`distances`, each single's screen; a mistake of two
@@ -96,4 +96,4 @@ std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const Can
 std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::vector<RepairCandidate>& singles,
                                              const std::vector<double>& distances, double own, const CandidateCounts& counts);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

@@ -1,9 +1,9 @@
-#include "grade/value_difference.h"
+#include "repair/value_difference.h"
 
 #include <algorithm>
 #include <cstdlib>
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 namespace {
 
@@ -249,4 +249,4 @@ std::optional<ValueDifference> value_difference(Tokens student, Tokens reference
   return said_of_the_direction(difference(a, b, name), a, name);
 }
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair

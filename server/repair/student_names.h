@@ -1,14 +1,14 @@
 #pragma once
 // The reference's text written in a student's names: the locals the student named otherwise
-// (grade/aligned_lines.h), so that an edit that puts back what the reference has (a guard's
+// (repair/aligned_lines.h), so that an edit that puts back what the reference has (a guard's
 // condition, a value) reads as the student's own program.
 #include <map>
 #include <optional>
 #include <string>
 
-#include "grade/stage_tokens.h"
+#include "repair/stage_tokens.h"
 
-namespace shadelab::grade {
+namespace shadelab::repair {
 
 using NameMap = std::map<std::string, std::string, std::less<>>;
 
@@ -22,4 +22,4 @@ NameMap student_names(const StageTokens& student, const StageTokens& reference);
 std::optional<std::string> in_student_names(const StageTokens& student, const StageTokens& reference, size_t first, size_t last,
                                             const NameMap& names, bool expand = true);
 
-}  // namespace shadelab::grade
+}  // namespace shadelab::repair
