@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <set>
 
 #include "course/course_reader.h"
@@ -19,6 +20,7 @@
 #include "road/repair_search.h"
 #include "shader/glsl_lines.h"
 #include "shader/shader_source.h"
+#include "support/openapi_check.h"
 #include "support/tutorial_program.h"
 #include "worker/course_job.h"
 #include "worker/pool.h"
@@ -224,7 +226,7 @@ TEST(RepairEditsTest, ALineWrittenAsTheReferenceWritesItIsNeverEdited) {
     const auto& lines = e.stage == shader::Stage::vertex ? vertex_lines : wrong_lines;
     const std::string_view line = lines[e.line - 1];
     EXPECT_TRUE(line.find("-R") != std::string_view::npos || line.find("-normalize") != std::string_view::npos)
-        << name_in(repair::kRepairKindNames, e.kind) << " at an unchanged line: " << line;
+        << repair::to_string(e.kind) << " at an unchanged line: " << line;
     changed_line_edited = changed_line_edited || e.kind == repair::RepairKind::negation_removed;
   }
   EXPECT_TRUE(changed_line_edited) << "each negation is still undone at its own line";
@@ -261,7 +263,7 @@ TEST(RepairEditsTest, AStudentsOwnNamesForTheLocalsAlignWithTheReferences) {
   bool view_negated = false;
   for (const auto& e : edits) {
     if (e.stage != shader::Stage::fragment || e.kind == repair::RepairKind::statement_restored || e.kind == repair::RepairKind::write_restored) continue;
-    EXPECT_EQ(student_lines[e.line - 1].find("reflect("), std::string_view::npos) << name_in(repair::kRepairKindNames, e.kind);
+    EXPECT_EQ(student_lines[e.line - 1].find("reflect("), std::string_view::npos) << repair::to_string(e.kind);
     view_negated = view_negated || (e.kind == repair::RepairKind::negation_added && student_lines[e.line - 1].find("toEye =") != std::string_view::npos);
   }
   EXPECT_TRUE(view_negated) << "the view vector's own line is negated";
@@ -406,6 +408,36 @@ TEST(RepairEditsTest, AnEditChangesItsSpanAloneAndSaysWhatIsWrong) {
 }
 // A condition is live where its block, or an else block after it, is: the names it reads reach
 // the output through the branch taken.
+// The kinds are one table (repair/repair_kind.cpp): each kind has its row, its name reads back as
+// the kind, its words and label say something, and the API document lists exactly the table's
+// names wherever a repair's kind is described.
+TEST(RepairKindsTest, EachKindIsOneRowWhoseNameTheApiDocumentLists) {
+  std::vector<std::string> names;
+  for (int k = 0; k <= static_cast<int>(repair::RepairKind::condition_restored); ++k) {
+    const auto kind = static_cast<repair::RepairKind>(k);
+    EXPECT_EQ(repair::info(kind).kind, kind) << k;
+    EXPECT_EQ(repair::repair_kind_named(repair::to_string(kind)), kind) << repair::to_string(kind);
+    repair::RepairEdit e;
+    e.kind = kind;
+    e.subject = "L";
+    EXPECT_NE(repair::repair_words(e).find("`L`"), std::string::npos) << repair::to_string(kind) << ": " << repair::repair_words(e);
+    EXPECT_FALSE(repair::repair_label(e, "L").empty()) << repair::to_string(kind);
+    names.emplace_back(repair::to_string(kind));
+  }
+  EXPECT_FALSE(repair::repair_kind_named("not_a_kind"));
+  int listed = 0;
+  const std::function<void(const nlohmann::json&)> visit = [&](const nlohmann::json& j) {
+    if (j.is_object() && j.contains("enum") && j["enum"].is_array() && !j["enum"].empty() && j["enum"][0] == names.front()) {
+      EXPECT_EQ(j["enum"].get<std::vector<std::string>>(), names);
+      ++listed;
+    }
+    if (j.is_structured())
+      for (const auto& child : j) visit(child);
+  };
+  visit(testkit::openapi());
+  EXPECT_GE(listed, 2) << "a repair search's found and also";
+}
+
 TEST(LiveStatementsTest, AConditionIsLiveWhereAnyOfItsBranchesIs) {
   const std::string glsl =
       "out vec4 fragColor;\nin vec3 vN;\nvoid main() {\n  float c = vN.x;\n  float unused = 2.0;\n  float d = vN.y;\n"

@@ -98,7 +98,7 @@ SHADELAB_JSON_FIELDS(Explanation, field("explained", &Explanation::explained), f
                      field("alsoFits", &Explanation::also_fits), field("parameters", &Explanation::parameters),
                      field("residual", &Explanation::residual), field("text", &Explanation::text), field("label", &Explanation::label))
 
-constexpr json_fields::Names kRepairKinds{repair::kRepairKindNames};
+constexpr json_fields::Named<repair::RepairKind> kRepairKinds{repair::to_string, repair::repair_kind_named};
 
 SHADELAB_JSON_FIELDS(Repair, field("kind", &Repair::kind, kRepairKinds), field("file", &Repair::file, When::omitted_when_empty),
                      field("line", &Repair::line, When::omitted_when_empty),

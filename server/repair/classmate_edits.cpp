@@ -88,7 +88,7 @@ std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const Prog
       if (names_a_local_missing(e, vertex ? vertex_locals : fragment_locals, student[e.stage])) continue;
       const AlignedLines& lines = vertex ? vertex_lines : fragment_lines;
       const auto& student_lines = vertex ? vertex_student : fragment_student;
-      const bool inserts = e.kind == RepairKind::statement_restored || e.kind == RepairKind::write_restored;
+      const bool inserts = inserts_statement(e.kind);
       const std::string_view own_line =
           e.line >= 1 && static_cast<size_t>(e.line) <= student_lines.size() ? student_lines[e.line - 1] : std::string_view();
       // As with the reference's offers: a line the student wrote as the reference writes it is right.

@@ -118,10 +118,6 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
   // A single that puts back a term, a statement or a power, with each edit of a line only that
   // could make live (V's line, where the deleted term was all that read V; the exponent's, where
   // the left-out `pow` was all that read it): a mistake the missing part hid.
-  const auto makes_live = [](RepairKind k) {
-    return k == RepairKind::write_restored || k == RepairKind::statement_restored || k == RepairKind::value_added ||
-           k == RepairKind::exponent_added;
-  };
   std::vector<RepairEdit> dead;
   for (size_t i = 0; i < singles.size(); ++i) {
     const RepairEdit& a = singles[i].edits.front();

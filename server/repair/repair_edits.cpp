@@ -261,9 +261,6 @@ std::vector<RepairEdit> repair_edits(const Stage& s) {
 
 namespace {
 
-// Whether an edit of this kind adds a statement of its own rather than change one of the student's.
-bool inserts_statement(RepairKind kind) { return kind == RepairKind::statement_restored || kind == RepairKind::write_restored; }
-
 // The student's line `edit` changes, as they wrote it (`lines`: their stage's, split once).
 std::string_view line_of(const std::vector<std::string_view>& lines, const RepairEdit& edit) {
   return edit.line >= 1 && static_cast<size_t>(edit.line) <= lines.size() ? lines[edit.line - 1] : std::string_view();
