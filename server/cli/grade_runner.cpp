@@ -10,6 +10,7 @@
 #include "core/cpu_budget.h"
 #include "course/submission_files.h"
 #include "grade/report.h"
+#include "road/code_request.h"
 #include "render/render_request.h"
 
 namespace shadelab::cli {
@@ -29,40 +30,34 @@ std::optional<std::pair<fs::path, fs::path>> find_pair(const course::Course& cou
 
 namespace {
 
-// The course's tolerance for the checkpoint, with what the flags set.
-grade::GradeOptions options_of(const course::Course& c, const course::Checkpoint& checkpoint, const GradeFlags& f) {
-  grade::GradeOptions options = c.grade_options(checkpoint);
-  options.compare.threshold = f.threshold.value_or(options.compare.threshold);
-  options.compare.spatial_tolerance = f.spatial;
-  options.max_failing_fraction = f.max_failing.value_or(options.max_failing_fraction);
-  options.max_score = f.max_score;
-  return options;
-}
-
-// The course's submission of the pair, as the flags draw it.
+// The course's submission of the pair, as the flags draw it: the checkpoint's tolerance with what
+// the flags set.
 Expected<road::CodeSubmission> submission_of(const course::Course& c, const GradeFlags& f, shader::ShaderFile vert, shader::ShaderFile frag) {
-  auto checkpoint = c.checkpoint(f.reference.empty() ? c.default_checkpoint : f.reference);
-  if (!checkpoint) return checkpoint.take_error();
-  road::CourseRender render{f.mesh, std::nullopt, std::nullopt, f.frames};
+  road::CodeRequest request;
+  request.code = road::ShaderPair{std::move(vert), std::move(frag)};
+  request.reference = f.reference.empty() ? c.default_checkpoint : f.reference;
+  request.mesh.name = f.mesh;
+  request.render.frames = f.frames;
   if (!f.size.empty()) {
     int width = 0, height = 0;
     if (auto s = parse_size(f.size, "--size", width, height); !s) return s.take_error();
-    render.width = width;
-    render.height = height;
+    request.render.width = width;
+    request.render.height = height;
   }
-  auto submission = road::course_code(c, *checkpoint->checkpoint, options_of(c, *checkpoint->checkpoint, f), render, std::move(vert),
-                                       std::move(frag));
-  if (!submission) return submission.take_error();
-  submission->spec.reference_store.folder = f.cache_dir;
-  submission->spec.heatmap = f.heatmaps;
-  submission->repair.candidates = f.warm_store ? 0 : f.repair_candidates;
-  submission->repair.class_candidates = f.class_candidates;
-  submission->spec.warm = f.warm_store;
+  request.tolerance = {f.threshold, f.max_failing, f.max_score, f.spatial};
+  auto built = road::code_submission(c, std::move(request), course::Viewer{}, {});
+  if (!built) return built.take_error();
+  road::CodeSubmission& submission = built->submission;
+  submission.spec.reference_store.folder = f.cache_dir;
+  submission.spec.heatmap = f.heatmaps;
+  submission.repair.candidates = f.warm_store ? 0 : f.repair_candidates;
+  submission.repair.class_candidates = f.class_candidates;
+  submission.spec.warm = f.warm_store;
   if (f.show_repaired_line) {  // a TA's own grade: the repaired line and every pixel of the difference
-    submission->repair_shown = repair::RepairShown::repaired_line;
-    submission->spec.picture = grade::DifferencePicture::full;
+    submission.repair_shown = repair::RepairShown::repaired_line;
+    submission.spec.picture = grade::DifferencePicture::full;
   }
-  return submission;
+  return std::move(submission);
 }
 
 }  // namespace

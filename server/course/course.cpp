@@ -29,6 +29,14 @@ const CourseMesh* Course::mesh(std::string_view name) const {
   return nullptr;
 }
 
+Expected<const CourseMesh*> Course::find_mesh(std::string_view name) const {
+  const std::string wanted(name.empty() ? std::string_view(default_mesh) : name);
+  if (const CourseMesh* m = mesh(wanted)) return m;
+  std::string names;
+  for (const auto& n : mesh_names()) names += (names.empty() ? "" : ", ") + n;
+  return make_error(ErrorCode::mesh_not_found, "no mesh '" + wanted + "' in " + id + " (its meshes: " + names + ")");
+}
+
 namespace {
 constexpr EnumName<UniformRole> kUniformRoles[] = {{UniformRole::ambient, "ambient"},
                                                    {UniformRole::diffuse, "diffuse"},

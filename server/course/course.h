@@ -224,6 +224,8 @@ struct Course {
 
   const Preset* preset(std::string_view name) const;
   const CourseMesh* mesh(std::string_view name) const;
+  // The mesh `name` names (empty: the default); mesh_not_found naming the course's meshes.
+  Expected<const CourseMesh*> find_mesh(std::string_view name) const;
   const PageUniform* uniform_with_role(UniformRole role) const;
   std::vector<std::string> preset_names() const;
   std::vector<std::string> checkpoint_names() const;
@@ -250,6 +252,9 @@ struct Course {
   grade::GradeOptions grade_options(const Checkpoint& checkpoint) const;
   // What a submission of `checkpoint` is graded against, with `options`' tolerance.
   grade::GradeSpec grade_spec(const Checkpoint& checkpoint, const grade::GradeOptions& options) const;
+  // What a program is graded against where the page supplies its own reference ("custom"): the
+  // course's tolerance, out of 1.
+  grade::GradeSpec own_reference_spec(shader::ShaderFile vertex, shader::ShaderFile fragment) const;
   // What a checkpoint's saved frames are graded against: its grade spec without probe lights (the
   // page draws only under its own light), its mistakes, and the frames a student may have saved in
   // their place: each other preset's (another deliverable's frames under this one's names, the
@@ -280,5 +285,9 @@ Expected<scene::Bounds> fit_bounds(const Course& course);
 
 // A course mesh, parsed (embedded ones from the binary).
 Expected<scene::Mesh> load_course_mesh(const CourseMesh& mesh);
+
+// The reference's locals that are `checkpoint`'s formula's vectors, with their words ("V": "the
+// direction to the eye"); none where the checkpoint has no formula or names none.
+grade::VectorWords vector_words(const Checkpoint& checkpoint);
 
 }  // namespace shadelab::course

@@ -48,6 +48,25 @@ grade::GradeOptions Course::grade_options(const Checkpoint& c) const {
   return options;
 }
 
+grade::GradeSpec Course::own_reference_spec(shader::ShaderFile vertex, shader::ShaderFile fragment) const {
+  grade::GradeSpec spec;
+  spec.reference_name = "custom";
+  spec.reference_vertex = std::move(vertex);
+  spec.reference_fragment = std::move(fragment);
+  spec.light_position_uniforms = light_position_names();
+  spec.light_color_uniform = light_color_uniform();
+  spec.options = tolerance;
+  spec.options.max_score = 1;
+  return spec;
+}
+
+grade::VectorWords vector_words(const Checkpoint& checkpoint) {
+  grade::VectorWords out;
+  if (checkpoint.formula)
+    for (const auto& [vector, local] : checkpoint.formula->vectors) out.emplace(local, name_in(grade::kFormulaVectorWords, vector));
+  return out;
+}
+
 grade::GradeSpec Course::grade_spec(const Checkpoint& c, const grade::GradeOptions& options) const {
   grade::GradeSpec spec;
   spec.reference_name = c.name;

@@ -10,14 +10,17 @@ void add_warnings(std::vector<std::string>& report, const std::vector<std::strin
   report.insert(report.end(), road.begin(), road.end());
 }
 
+// A request the adapter could not read whole: the submission's grade where the fault is the
+// submission's, else the adapter's Error.
+Expected<ClientGraded> unread_for_client(const ClientRoad& road, const CodeRequest& request, const Error& unread) {
+  auto misread = grade_misread(unread, request.code, request.reference.empty() ? "custom" : request.reference,
+                               request.tolerance.max_score.value_or(1.0), road.limits);
+  if (!misread) return misread.take_error();
+  return ClientGraded{std::move(*misread), {}};
+}
+
 Expected<ClientGraded> code_for_client(const ClientRoad& road, const course::Course& c, CodeRequest request, const ClientGrade& grade,
                                        const course::Viewer& viewer) {
-  if (grade.unread) {
-    auto misread = grade_misread(*grade.unread, request.code, request.reference.empty() ? "custom" : request.reference,
-                                 request.tolerance.max_score.value_or(1.0), road.limits);
-    if (!misread) return misread.take_error();
-    return ClientGraded{std::move(*misread), {}};
-  }
   auto built = code_submission(c, std::move(request), viewer, road.limits);
   if (!built) return built.take_error();
   built->submission.spec.reference_store = road.reference_store;
@@ -46,7 +49,9 @@ Expected<ClientGraded> frames_for_client(const ClientRoad& road, const course::C
 Expected<ClientGraded> grade_for_client(const ClientRoad& road, const course::Course& course, ClientGrade grade,
                                         const course::Viewer& viewer) {
   if (auto* frames = std::get_if<FramesRequest>(&grade.request)) return frames_for_client(road, course, std::move(*frames), grade, viewer);
-  return code_for_client(road, course, std::move(std::get<CodeRequest>(grade.request)), grade, viewer);
+  auto& code = std::get<CodeRequest>(grade.request);
+  if (grade.unread) return unread_for_client(road, code, *grade.unread);
+  return code_for_client(road, course, std::move(code), grade, viewer);
 }
 
 }  // namespace shadelab::road

@@ -1,23 +1,12 @@
 #include "road/code_request.h"
 
-#include "core/words.h"
 #include "worker/course_job.h"
 
 namespace shadelab::road {
 
 namespace {
 
-// The student's shaders, or the preset's when the request names one the viewer may see.
-Expected<ShaderPair> shaders_of(const course::Course& c, const CodeRequest& request, const course::Viewer& viewer,
-                                std::vector<std::string>& warnings) {
-  if (request.preset.empty()) return *request.code;
-  auto found = course::find_visible_preset(c, request.preset, viewer);
-  if (!found) return found.take_error();
-  if (found->alias) warnings.push_back(found->alias->note);
-  return ShaderPair{found->preset->vertex, found->preset->fragment};
-}
-
-// The course's request with the client's changes.
+// The course's render with the client's changes.
 Status shape_render(const course::Course& c, const RenderShape& shape, worker::Job& job) {
   auto& r = job.request;
   r.width = shape.width.value_or(r.width);
@@ -33,38 +22,12 @@ Status shape_render(const course::Course& c, const RenderShape& shape, worker::J
   return Ok{};
 }
 
-Status attach_mesh(const course::Course& c, MeshChoice mesh, CodeSubmission& out) {
-  if (!mesh.upload) return worker::attach_course_mesh(c, mesh.name.empty() ? c.default_mesh : mesh.name, out.render, out.mesh_bytes);
+// The course's mesh the answer names, or the one the client uploaded.
+void attach_mesh(const course::CourseMesh* course_mesh, MeshChoice mesh, CodeSubmission& out) {
+  if (course_mesh) return worker::attach_mesh(*course_mesh, out.render, out.mesh_bytes);
   out.render.mesh = std::move(mesh.upload->id);
   out.render.mesh_format = std::move(mesh.upload->format);
   out.mesh_bytes = std::move(mesh.upload->bytes);
-  return Ok{};
-}
-
-// The page's own reference: graded at the course's tolerance, out of 1.
-grade::GradeSpec own_reference_spec(const course::Course& c, ShaderPair reference) {
-  grade::GradeSpec spec;
-  spec.reference_name = "custom";
-  spec.reference_vertex = std::move(reference.vertex);
-  spec.reference_fragment = std::move(reference.fragment);
-  spec.light_position_uniforms = c.light_position_names();
-  spec.light_color_uniform = c.light_color_uniform();
-  spec.options = c.tolerance;
-  spec.options.max_score = 1;
-  return spec;
-}
-
-// The spec graded against, and the words of its checkpoint's vectors (`vectors`).
-Expected<grade::GradeSpec> spec_of(const course::Course& c, CodeRequest& request, std::vector<std::string>& warnings, grade::VectorWords& vectors) {
-  if (request.reference.empty() == !request.own_reference)
-    return make_error(ErrorCode::invalid_argument, "give either 'reference' (a checkpoint: " + comma_list(c.checkpoint_names()) +
-                                                       ") or 'referenceVertex' and 'referenceFragment'");
-  if (request.own_reference) return own_reference_spec(c, std::move(*request.own_reference));
-  auto found = c.checkpoint(request.reference);
-  if (!found) return found.take_error();
-  if (found->alias) warnings.push_back(found->alias->note);
-  vectors = vector_words(*found->checkpoint);
-  return c.grade_spec(*found->checkpoint, c.grade_options(*found->checkpoint));
 }
 
 Status apply_tolerance(const ToleranceShape& t, grade::GradeOptions& options) {
@@ -82,31 +45,24 @@ Status apply_tolerance(const ToleranceShape& t, grade::GradeOptions& options) {
 
 }  // namespace
 
-// Here rather than beside course_code: the request's parsers are built without the road's pool
-// (tests/fuzz), and both need it.
-grade::VectorWords vector_words(const course::Checkpoint& checkpoint) {
-  grade::VectorWords out;
-  if (checkpoint.formula)
-    for (const auto& [vector, local] : checkpoint.formula->vectors) out.emplace(local, name_in(grade::kFormulaVectorWords, vector));
-  return out;
-}
-
 Expected<BuiltCode> code_submission(const course::Course& c, CodeRequest request, const course::Viewer& viewer,
                                     const render::RenderLimits& limits) {
-  std::vector<std::string> warnings;
-  auto shaders = shaders_of(c, request, viewer, warnings);
-  if (!shaders) return shaders.take_error();
-  BuiltCode out{{worker::course_job(c, worker::JobKind::grade, std::move(shaders->vertex), std::move(shaders->fragment)), {}, {}, limits},
-                std::move(warnings)};
-  if (auto s = shape_render(c, request.render, out.submission.render); !s) return s.take_error();
-  if (auto s = attach_mesh(c, std::move(request.mesh), out.submission); !s) return s.take_error();
-  if (auto valid = render::validate(out.submission.render.request, limits); !valid) return valid.take_error();
-  auto spec = spec_of(c, request, out.warnings, out.submission.vector_words);
-  if (!spec) return spec.take_error();
-  if (auto s = apply_tolerance(request.tolerance, spec->options); !s) return s.take_error();
-  out.submission.spec = std::move(*spec);
-  out.submission.repair_shown = viewer.sees_references() ? repair::RepairShown::repaired_line : c.repair_shown;
-  if (viewer.sees_references()) out.submission.spec.picture = grade::DifferencePicture::full;
+  course::CodeQuestion question{std::move(request.code), request.preset, request.reference, std::move(request.own_reference), {}};
+  if (!request.mesh.upload) question.mesh = request.mesh.name;
+  auto asked = course::answer(c, std::move(question), viewer);
+  if (!asked) return asked.take_error();
+  BuiltCode out{{worker::Job{}, {}, std::move(asked->spec), limits}, std::move(asked->notes)};
+  CodeSubmission& s = out.submission;
+  s.render.kind = worker::JobKind::grade;
+  s.render.request = std::move(asked->request);
+  s.render.frame_name = c.frame_name;
+  s.vector_words = std::move(asked->vectors);
+  if (auto shaped = shape_render(c, request.render, s.render); !shaped) return shaped.take_error();
+  attach_mesh(asked->mesh, std::move(request.mesh), s);
+  if (auto valid = render::validate(s.render.request, limits); !valid) return valid.take_error();
+  if (auto t = apply_tolerance(request.tolerance, s.spec.options); !t) return t.take_error();
+  s.repair_shown = viewer.sees_references() ? repair::RepairShown::repaired_line : c.repair_shown;
+  if (viewer.sees_references()) s.spec.picture = grade::DifferencePicture::full;
   return out;
 }
 

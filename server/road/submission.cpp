@@ -161,22 +161,6 @@ int full_renders(const grade::Report& report) {
   return report.attempts + (search ? search->confirmations + (search->found ? 0 : 1) : 0);
 }
 
-Expected<CodeSubmission> course_code(const course::Course& c, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
-                                     const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment) {
-  CodeSubmission out{worker::course_job(c, worker::JobKind::grade, std::move(vertex), std::move(fragment)), {}, c.grade_spec(checkpoint, options),
-                     render.limits};
-  out.repair_shown = c.repair_shown;
-  out.vector_words = vector_words(checkpoint);
-  if (auto s = worker::attach_course_mesh(c, render.mesh.empty() ? c.default_mesh : render.mesh, out.render, out.mesh_bytes); !s)
-    return s.take_error();
-  auto& r = out.render.request;
-  r.width = render.width.value_or(r.width);
-  r.height = render.height.value_or(r.height);
-  r.frames = render.frames.value_or(r.frames);
-  if (auto valid = render::validate(r, render.limits); !valid) return valid.take_error();
-  return out;
-}
-
 Expected<FramesGrade> grade_saved_frames(worker::WorkerPool& pool, const course::Course& c, const course::Checkpoint& checkpoint,
                                    FramesSubmission submission, const FramesSettings& s) {
   const bool with_code = submission.code.has_value();

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/expected.h"
+#include "course/code_question.h"
 #include "course/course.h"
 #include "grade/report.h"
 #include "road/repair_search.h"
@@ -28,9 +29,7 @@
 
 namespace shadelab::road {
 
-struct ShaderPair {
-  shader::ShaderFile vertex, fragment;
-};
+using ShaderPair = course::Program;
 
 // Code to grade: what to draw (the course's job with the student's shaders, or a render a client
 // shaped: its size, uniforms, mesh) and what it is graded against (`spec`, its options included).
@@ -78,23 +77,6 @@ Expected<CodeGrade> grade_misread(const Error& field_error, const std::optional<
 // A deliverable not handed in at all (no shader pair in a student's folder): 0, saying what was
 // looked for.
 grade::Report not_handed_in(const std::string& looked_for, const std::string& checkpoint, double max_score);
-
-// The reference's locals that are `checkpoint`'s formula's vectors, with their words ("V": "the
-// direction to the eye"); none where the checkpoint has no formula or names none.
-grade::VectorWords vector_words(const course::Checkpoint& checkpoint);
-
-// How the course draws a checkpoint's code: one of its meshes (empty: its default), its canvas and
-// frames unless a run sets others.
-struct CourseRender {
-  std::string mesh;
-  std::optional<int> width, height, frames;
-  render::RenderLimits limits;  // the caller's (the server's over HTTP)
-};
-
-// The course's submission for a pair of shaders: its job (canvas, frames, page setup), its mesh,
-// the checkpoint's spec with `options`. An Error for a mesh or a size the course cannot draw.
-Expected<CodeSubmission> course_code(const course::Course& course, const course::Checkpoint& checkpoint, const grade::GradeOptions& options,
-                                     const CourseRender& render, shader::ShaderFile vertex, shader::ShaderFile fragment);
 
 // A deliverable's saved frames, and the code handed in beside them.
 struct FramesSubmission {

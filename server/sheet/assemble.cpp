@@ -15,6 +15,7 @@
 #include "sheet/notebook_reading.h"
 #include "sheet/saved_grid.h"
 #include "scene/scene_description.h"
+#include "road/code_request.h"
 #include "road/submission.h"
 #include "worker/client.h"
 
@@ -39,12 +40,14 @@ road::GridJob render_job_for(const course::Course& course, const SheetInput& inp
 // The code's grade by the grading road, as Gradescope's: the checkpoint's points, the course's mesh.
 Expected<grade::Report> graded(worker::WorkerPool& pool, const course::Course& course, const course::Checkpoint& checkpoint, const SheetInput& input,
                                const std::pair<fs::path, fs::path>& pair, const grade::ReferenceStorePlaces& reference_store) {
-  auto submission = road::course_code(course, checkpoint, course.grade_options(checkpoint), {},
-                                       {pair.first.filename().string(), text_of(input, pair.first)},
-                                       {pair.second.filename().string(), text_of(input, pair.second)});
-  if (!submission) return submission.take_error();
-  submission->spec.reference_store = reference_store;
-  auto answered = road::grade_code(pool, std::move(*submission));
+  road::CodeRequest request;
+  request.code = road::ShaderPair{{pair.first.filename().string(), text_of(input, pair.first)},
+                                  {pair.second.filename().string(), text_of(input, pair.second)}};
+  request.reference = checkpoint.name;
+  auto built = road::code_submission(course, std::move(request), course::Viewer{}, {});
+  if (!built) return built.take_error();
+  built->submission.spec.reference_store = reference_store;
+  auto answered = road::grade_code(pool, std::move(built->submission));
   if (!answered) return answered.take_error();
   return std::move(answered->result.report);
 }

@@ -11,17 +11,17 @@ Job course_job(const course::Course& c, JobKind kind, shader::ShaderFile vertex,
 }
 
 Status attach_course_mesh(const course::Course& c, const std::string& name, Job& job, std::string& payload) {
-  const course::CourseMesh* m = c.mesh(name);
-  if (!m) {
-    std::string names;
-    for (const auto& n : c.mesh_names()) names += (names.empty() ? "" : ", ") + n;
-    return make_error(ErrorCode::mesh_not_found, "no mesh '" + name + "' in " + c.id + " (its meshes: " + names + ")");
-  }
-  job.mesh = m->id;
-  job.mesh_embedded = m->embedded ? m->id : "";
-  job.mesh_format = m->format;
-  payload = m->embedded ? std::string() : m->bytes;
+  auto m = c.find_mesh(name);
+  if (!m) return m.take_error();
+  attach_mesh(**m, job, payload);
   return Ok{};
+}
+
+void attach_mesh(const course::CourseMesh& m, Job& job, std::string& payload) {
+  job.mesh = m.id;
+  job.mesh_embedded = m.embedded ? m.id : "";
+  job.mesh_format = m.format;
+  payload = m.embedded ? std::string() : m.bytes;
 }
 
 }  // namespace shadelab::worker

@@ -17,5 +17,6 @@ Job course_job(const course::Course& course, JobKind kind, shader::ShaderFile ve
 // Sets the job's mesh to the course's mesh `name` and puts its bytes, if they travel, in
 // `payload`; mesh_not_found naming the course's meshes for another name.
 Status attach_course_mesh(const course::Course& course, const std::string& name, Job& job, std::string& payload);
+void attach_mesh(const course::CourseMesh& mesh, Job& job, std::string& payload);
 
 }  // namespace shadelab::worker
