@@ -19,17 +19,6 @@ bool class_may_offer(const RepairProgram& p, const CandidateCounts& counts) {
   return !p.classmates.empty() && counts.from_class > 0 && !p.reference_fragment.empty();
 }
 
-// The edits the class offers beyond `reference_edits` (the reference's), read beside the
-// student's and the reference's programs, each tokenised once by the caller.
-std::vector<RepairEdit> class_edits(const RepairProgram& p, const ProgramTokens& student, const ProgramTokens& reference,
-                                    const std::vector<RepairEdit>& reference_edits, const CandidateCounts& counts) {
-  if (!class_may_offer(p, counts)) return {};
-  std::vector<StagePair> class_programs;
-  for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
-  const auto nearest = nearest_classmates(p.student(), class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
-  return classmate_edits(student, reference, reference_edits, nearest);
-}
-
 size_t token_count(std::string_view glsl) { return shader::tokens_of(glsl).size(); }
 
 // A classmate's stage the search may read: unwrapped, and within the budget a student's stage has.
@@ -44,8 +33,11 @@ bool overlapping(const RepairEdit& a, const RepairEdit& b) {
 Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
                                        const shader::ShaderFile& reference_vertex, const shader::ShaderFile& reference_fragment,
                                        const std::vector<PassingProgram>& classmates) {
+  // Every stage unwrapped first, then the student's counted: each read once.
   auto v = shader::unwrap(vertex, shader::Stage::vertex);
   auto f = shader::unwrap(fragment, shader::Stage::fragment);
+  auto rv = shader::unwrap(reference_vertex, shader::Stage::vertex);
+  auto rf = shader::unwrap(reference_fragment, shader::Stage::fragment);
   if (!v || !f) return Error{ErrorCode::invalid_argument, "a stage of the program cannot be unwrapped"};
   for (const auto* stage : {&*v, &*f})
     if (const size_t n = token_count(stage->glsl); n > kRepairTokensAStage)
@@ -54,13 +46,15 @@ Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const s
                                                      std::to_string(kRepairTokensAStage) + " a stage"};
   RepairProgram p{{&vertex, std::move(*v)},
                   {&fragment, std::move(*f)},
-                  glsl_or_empty(reference_vertex, shader::Stage::vertex),
-                  glsl_or_empty(reference_fragment, shader::Stage::fragment),
+                  rv ? std::move(rv->glsl) : std::string(),
+                  rf ? std::move(rf->glsl) : std::string(),
+                  {},
                   {}};
   for (const auto& c : classmates) {
     auto cv = glsl_or_empty(c.vertex, shader::Stage::vertex), cf = glsl_or_empty(c.fragment, shader::Stage::fragment);
     if (readable(cv) && readable(cf)) p.classmates.emplace_back(std::move(cv), std::move(cf));
   }
+  p.edits = program_edits(ProgramTokens(p.student()), ProgramTokens(p.reference()));
   return p;
 }
 
@@ -84,22 +78,22 @@ RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edi
 
 std::vector<RepairEdit> class_edits(const RepairProgram& p, const CandidateCounts& counts) {
   if (!class_may_offer(p, counts)) return {};
-  const ProgramTokens student(p.student()), reference(p.reference());
-  return class_edits(p, student, reference, program_repair_edits(student, reference), counts);
+  std::vector<StagePair> class_programs;
+  for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
+  const auto nearest = nearest_classmates(p.student(), class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
+  return classmate_edits(ProgramTokens(p.student()), ProgramTokens(p.reference()), p.edits.live, nearest);
 }
 
 std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const CandidateCounts& counts) {
   int own_left = std::max(0, counts.own), reference_left = std::max(0, counts.reference), class_left = std::max(0, counts.from_class);
-  const ProgramTokens student(p.student()), reference(p.reference());
-  std::vector<RepairEdit> own_and_reference = program_repair_edits(student, reference);
   std::vector<RepairCandidate> out;
-  for (auto& e : class_edits(p, student, reference, own_and_reference, counts))
+  for (auto& e : class_edits(p, counts))
     if (class_left-- > 0) {
       out.push_back(candidate_of(p, {std::move(e)}));
       out.back().from_class = true;
     }
-  for (auto& e : own_and_reference)
-    if ((reads_reference(e.kind) ? reference_left : own_left)-- > 0) out.push_back(candidate_of(p, {std::move(e)}));
+  for (const auto& e : p.edits.live)
+    if ((reads_reference(e.kind) ? reference_left : own_left)-- > 0) out.push_back(candidate_of(p, {e}));
   return out;
 }
 
@@ -118,12 +112,10 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
   // A single that puts back a term, a statement or a power, with each edit of a line only that
   // could make live (V's line, where the deleted term was all that read V; the exponent's, where
   // the left-out `pow` was all that read it): a mistake the missing part hid.
-  std::vector<RepairEdit> dead;
-  for (size_t i = 0; i < singles.size(); ++i) {
+  for (size_t i = 0; i < singles.size() && !p.reference_fragment.empty(); ++i) {
     const RepairEdit& a = singles[i].edits.front();
     if (!makes_live(a.kind)) continue;
-    if (dead.empty() && !p.reference_fragment.empty()) dead = program_repair_edits(ProgramTokens(p.student()), ProgramTokens(p.reference()), Liveness::dead);
-    for (const RepairEdit& b : dead) {
+    for (const RepairEdit& b : p.edits.dead) {
       if (out.size() >= static_cast<size_t>(std::max(0, counts.pairs))) break;
       if (!overlapping(a, b)) out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
     }

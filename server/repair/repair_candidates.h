@@ -31,6 +31,9 @@ struct RepairProgram {
   StudentStage vertex, fragment;
   std::string reference_vertex, reference_fragment;              // the GLSL the grade's reference draws with, or empty
   std::vector<std::pair<std::string, std::string>> classmates;  // each passing classmate's GLSL: vertex, fragment
+  // The student's program's edits, found once as it is read: the live ones are its singles, the
+  // dead ones wait for the pairs that make their line live again.
+  ProgramEdits edits;
   const StudentStage& operator[](shader::Stage s) const { return s == shader::Stage::vertex ? vertex : fragment; }
   StagePair student() const { return {vertex.source.glsl, fragment.source.glsl}; }
   StagePair reference() const { return {reference_vertex, reference_fragment}; }

@@ -268,11 +268,11 @@ std::string_view line_of(const std::vector<std::string_view>& lines, const Repai
 
 }  // namespace
 
-std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference, Liveness which) {
+ProgramEdits program_edits(const ProgramTokens& student, const ProgramTokens& reference) {
   const StageLiveness fragment_live = fragment_liveness(student.fragment);
   const StageLiveness vertex_live = vertex_liveness(student.vertex, fragment_live.live_names);
   const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
-  std::vector<RepairEdit> out;
+  ProgramEdits out;
   const auto add = [&](const Stage& s, const Stage& theirs, const StageLiveness& live, const AlignedLines& lines) {
     std::vector<RepairEdit> edits = repair_edits(s);
     if (!theirs.glsl.empty()) {
@@ -281,27 +281,32 @@ std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const
     }
     const auto student_lines = shader::lines_of(s.glsl);
     for (auto& e : edits) {
-      if (live.dead(e.begin) != (which == Liveness::dead)) continue;
       // A line the student wrote as the reference writes it (their names for its locals aside) is
       // right as it is: an edit there that makes up for a mistake elsewhere would name a change
       // the student never made.
       if (!inserts_statement(e.kind) && !e.edits_aligned_line && lines.reads_as_reference(line_of(student_lines, e))) continue;
       e.reads_as_reference = inserts_statement(e.kind) || lines.reads_as_reference(edited_line(s.glsl, e));
-      out.push_back(std::move(e));
+      (live.dead(e.begin) ? out.dead : out.live).push_back(std::move(e));
     }
   };
   add(student.vertex, reference.vertex, vertex_live, vertex_lines);
   add(student.fragment, reference.fragment, fragment_live, fragment_lines);
   std::vector<RepairEdit> flat;
-  if (which == Liveness::live) flat_removals(student.vertex, student.fragment, flat);
+  flat_removals(student.vertex, student.fragment, flat);
   for (auto& e : flat) {
     const RepairEdit in{shader::Stage::fragment, e.kind, e.other_stage->begin, e.other_stage->end, e.other_stage->with};
     e.reads_as_reference = vertex_lines.reads_as_reference(edited_line(student.vertex.glsl, e)) &&
                            fragment_lines.reads_as_reference(edited_line(student.fragment.glsl, in));
-    out.push_back(std::move(e));
+    out.live.push_back(std::move(e));
   }
-  std::stable_sort(out.begin(), out.end(), smaller);
+  std::stable_sort(out.live.begin(), out.live.end(), smaller);
+  std::stable_sort(out.dead.begin(), out.dead.end(), smaller);
   return out;
+}
+
+std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference, Liveness which) {
+  ProgramEdits edits = program_edits(student, reference);
+  return std::move(which == Liveness::live ? edits.live : edits.dead);
 }
 
 bool smaller(const RepairEdit& a, const RepairEdit& b) {

@@ -24,6 +24,12 @@ std::vector<RepairEdit> repair_edits(const StageTokens& stage);
 // a pair's second edit where its first puts back what makes that statement live again (a
 // deleted term that read V and R).
 enum class Liveness { live, dead };
+// Both at once, each smallest first: a search reads the live for its singles and keeps the dead
+// for its pairs, finding the edits once.
+struct ProgramEdits {
+  std::vector<RepairEdit> live, dead;
+};
+ProgramEdits program_edits(const ProgramTokens& student, const ProgramTokens& reference = {});
 std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference = {},
                                              Liveness which = Liveness::live);
 
