@@ -10,6 +10,7 @@
 
 #include "grade/diagnosis.h"
 #include "grade/repair_statement.h"
+#include "repair/said_repair.h"
 #include "worker/result.h"
 
 namespace shadelab::road {
@@ -226,7 +227,9 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   if (pass == Pass::trouble) return;
   search.spent.budget_spent = pass != Pass::confirmed;
   report.repair_search = std::move(search.spent);
-  if (winner) grade::state_repair(*program, winner->edits, shown, vectors, failed.grade.starter_constants, report);
+  if (winner)
+    grade::state_repair(repair::said_repair(*program, winner->edits, shown, vectors), failed.grade.starter_constants,
+                        program->fragment.file->text, report);
 }
 
 }  // namespace shadelab::road
