@@ -10,6 +10,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "model/least_squares.h"
 #include "model/simplex.h"
 
 namespace shadelab::model {
@@ -19,12 +20,6 @@ namespace {
 // A variant whose sample is off on more than this many times the share the frames allow is off on
 // some frame (4,096 pixels: the share's standard error is a fifth of a percent).
 constexpr double kSampleMargin = 1.5;
-
-// A pixel of the sample: which frame, which point, and what the student drew there.
-struct Sampled {
-  std::size_t frame, point;
-  glm::vec3 drawn;
-};
 
 glm::vec3 drawn_colour(const image::Image& image, std::uint32_t pixel) {
   const std::uint8_t* p = image.bytes.data() + static_cast<std::size_t>(pixel) * 4;
@@ -45,100 +40,12 @@ std::vector<Sampled> sample_of(const std::vector<DrawnFrame>& frames, std::size_
   return out;
 }
 
-// A colour the canvas clamped tells only a bound: left out of the least squares.
-bool clamped(float c) { return c <= 0.5f / 255 || c >= 254.5f / 255; }
-
 // The light's alpha is taken as 1, as the page sets it.
 float alpha_of(const Factors& f, const Parameters& p, Terms terms) {
   if (terms == Terms::normal_colour) return 1;
   float a = p.colours.alpha[0] + p.colours.alpha[1] * f.d;
   if (terms == Terms::phong) a += p.colours.alpha[2] * specular_factor(f, p.exponent);
   return a;
-}
-
-// The sample as the least squares see it, for one variant: what each colour multiplies at each
-// pixel but the exponent, the specular cosine's logarithm (pow(c, α) = exp(α ln c)), and whether
-// each channel takes part (a colour the canvas clamped, or divided by an alpha under 1, tells only
-// a bound).
-struct Design {
-  struct Row {
-    glm::vec3 diffuse;     // diffuse light x d
-    glm::vec3 specular;    // specular light
-    // ln c at each sample the specular term is averaged over; -inf where c = 0 or the term is not added
-    std::array<float, kMaxSamples> log_cosine;
-    int samples;
-    glm::vec3 drawn;
-    glm::bvec3 used;
-  };
-  std::vector<Row> rows;
-};
-
-Design design_of(const std::vector<Sampled>& sample, const std::vector<Factors>& f, const FitOptions& o) {
-  Design d;
-  d.rows.reserve(sample.size());
-  for (std::size_t i = 0; i < sample.size(); ++i) {
-    const Factors& x = f[i];
-    // The alpha before the specular term (which only adds to it): under 1, the canvas divides.
-    const bool divided = o.course.colours.alpha[0] + o.course.colours.alpha[1] * x.d < 1;
-    Design::Row r{x.diffuse_light * x.d, x.specular_light, {}, x.samples, sample[i].drawn, {}};
-    for (std::size_t k = 0; k < static_cast<std::size_t>(x.samples); ++k) {
-      const SpecularSample& at = x.specular[k];
-      r.log_cosine[k] = at.on && at.c > 0 ? std::log(at.c) : -std::numeric_limits<float>::infinity();
-    }
-    for (int ch = 0; ch < 3; ++ch) r.used[ch] = !divided && !clamped(sample[i].drawn[ch]);
-    d.rows.push_back(r);
-  }
-  return d;
-}
-
-struct Trial {
-  Parameters parameters;
-  double rms;  // of the least squares, on the pixels they use
-};
-
-// The colours that best reproduce the sample at exponent `alpha`, channel by channel: least
-// squares on (ambient, diffuse, specular), pulled weakly towards the course's values so that a
-// colour the frames do not show (no highlight in view) stays the course's. The residual comes from
-// the normal equations, with no second pass over the sample.
-Trial least_squares(const Design& design, float alpha, const FitOptions& o) {
-  const bool phong = o.terms == Terms::phong;
-  Trial t{o.course, 0};
-  t.parameters.exponent = alpha;
-  std::vector<float> s(design.rows.size(), 0.0f);
-  if (phong)
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      const auto& r = design.rows[i];
-      for (std::size_t k = 0; k < static_cast<std::size_t>(r.samples); ++k) s[i] += std::exp(alpha * r.log_cosine[k]);
-      if (r.samples > 1) s[i] /= static_cast<float>(r.samples);
-    }
-  const double ridge = 1e-4 * static_cast<double>(design.rows.size());
-  double residual = 0, used = 0;
-  for (int ch = 0; ch < 3; ++ch) {
-    glm::dmat3 ata(0.0);
-    glm::dvec3 atb(0.0);
-    double ctc = 0, n = 0;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      const auto& r = design.rows[i];
-      if (!r.used[ch]) continue;
-      const glm::dvec3 row(1.0, r.diffuse[ch], phong ? r.specular[ch] * s[i] : 0.0f);
-      const double c = r.drawn[ch];
-      ata += glm::outerProduct(row, row);
-      atb += row * c;
-      ctc += c * c, n += 1;
-    }
-    const auto& k = o.course.colours;
-    const glm::dvec3 prior(k.ambient[ch], k.diffuse[ch], k.specular[ch]);
-    glm::dmat3 regular = ata;
-    for (int r = 0; r < 3; ++r) regular[r][r] += ridge;
-    const glm::dvec3 x = glm::inverse(regular) * (atb + ridge * prior);
-    residual += std::max(0.0, ctc - 2 * glm::dot(x, atb) + glm::dot(x, ata * x));
-    used += n;
-    t.parameters.colours.ambient[ch] = static_cast<float>(x[0]);
-    t.parameters.colours.diffuse[ch] = static_cast<float>(x[1]);
-    if (phong) t.parameters.colours.specular[ch] = static_cast<float>(x[2]);
-  }
-  t.rms = used > 0 ? std::sqrt(residual / used) : 0;
-  return t;
 }
 
 glm::vec4 shaded(const Factors& f, const Parameters& p, Terms terms) {
@@ -166,41 +73,6 @@ double rms_of(const std::vector<Sampled>& sample, const std::vector<Factors>& f,
     sum += static_cast<double>(glm::dot(d, d)) / 3;
   }
   return sample.empty() ? 0 : std::sqrt(sum / static_cast<double>(sample.size()));
-}
-
-// The exponent that `trial` finds best: the best of a grid from 0.5 to 256 (ratio 2^(1/3)), then
-// a golden-section search between its neighbours; the course's own where none is better.
-using ExponentTrial = std::function<Trial(float)>;
-Trial best_exponent(const ExponentTrial& trial, const FitOptions& o) {
-  Trial best = trial(o.course.exponent);
-  if (o.terms != Terms::phong) return best;
-  std::vector<float> grid;
-  for (float a = 0.5f; a <= 256.0f; a *= std::cbrt(2.0f)) grid.push_back(a);
-  std::size_t at = grid.size();
-  for (std::size_t i = 0; i < grid.size(); ++i)
-    if (Trial t = trial(grid[i]); t.rms < best.rms) best = t, at = i;
-  if (at == grid.size()) return best;  // the course's own exponent is best
-  double lo = std::log(grid[at > 0 ? at - 1 : 0]), hi = std::log(grid[std::min(at + 1, grid.size() - 1)]);
-  const double g = (std::sqrt(5.0) - 1) / 2;
-  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-  Trial ta = trial(static_cast<float>(std::exp(a))), tb = trial(static_cast<float>(std::exp(b)));
-  for (int step = 0; step < 20; ++step) {
-    if (ta.rms < tb.rms) {
-      hi = b, b = a, tb = ta, a = hi - g * (hi - lo);
-      ta = trial(static_cast<float>(std::exp(a)));
-    } else {
-      lo = a, a = b, ta = tb, b = lo + g * (hi - lo);
-      tb = trial(static_cast<float>(std::exp(b)));
-    }
-    if (ta.rms < best.rms) best = ta;
-    if (tb.rms < best.rms) best = tb;
-  }
-  return best;
-}
-
-// The colours refitted at every exponent tried.
-Trial fitted_values(const Design& design, const FitOptions& o) {
-  return best_exponent([&](float alpha) { return least_squares(design, alpha, o); }, o);
 }
 
 // The course's colours, at the exponent that draws the sample closest with them. A fit's colours
