@@ -6,7 +6,6 @@
 #include <set>
 
 #include "core/words.h"
-#include "repair/repair_edits.h"
 #include "repair/stage_names.h"
 #include "repair/stage_tokens.h"
 #include "repair/student_names.h"

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tuple>
 
 #include "core/enum_names.h"
 #include "repair/repair_kind.h"
@@ -62,6 +63,14 @@ struct RepairEdit {
   // through its locals alone.
   bool constant_value = false;
 };
+
+// "Smaller": an edit whose line then reads as the reference's first, then fewer nodes, then the
+// kind's order (repair/repair_kind.h), then the vertex stage before the fragment, then the place
+// in the stage.
+inline bool smaller(const RepairEdit& a, const RepairEdit& b) {
+  return std::tuple(!a.reads_as_reference, a.nodes, a.kind, a.stage, a.begin) <
+         std::tuple(!b.reads_as_reference, b.nodes, b.kind, b.stage, b.begin);
+}
 
 // A program's two stages as the driver gets them.
 struct StagePair {

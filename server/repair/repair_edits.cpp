@@ -309,10 +309,6 @@ std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const
   return std::move(which == Liveness::live ? edits.live : edits.dead);
 }
 
-bool smaller(const RepairEdit& a, const RepairEdit& b) {
-  return std::tuple(!a.reads_as_reference, a.nodes, a.kind, a.stage, a.begin) <
-         std::tuple(!b.reads_as_reference, b.nodes, b.kind, b.stage, b.begin);
-}
 
 std::string with_edit(std::string_view glsl, const RepairEdit& edit) {
   std::string out(glsl.substr(0, edit.begin));

@@ -33,9 +33,6 @@ ProgramEdits program_edits(const ProgramTokens& student, const ProgramTokens& re
 std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference = {},
                                              Liveness which = Liveness::live);
 
-// "Smaller": an edit whose line then reads as the reference's first, then fewer nodes, then the
-// kind's order above, then the vertex stage before the fragment, then the place in the stage.
-bool smaller(const RepairEdit& a, const RepairEdit& b);
 
 // `glsl` with `edit` made.
 std::string with_edit(std::string_view glsl, const RepairEdit& edit);

@@ -3,7 +3,6 @@
 #include <array>
 #include <cstddef>
 
-#include "repair/repair_edit.h"
 
 namespace shadelab::repair {
 
@@ -13,7 +12,7 @@ using F = Found;
 
 // A value the same everywhere where the homework's varies: at every point of the fragment stage,
 // for every vertex of the vertex stage.
-std::string same_everywhere(const RepairEdit& e) {
+std::string same_everywhere(const Said& e) {
   const bool vertex = e.stage == shader::Stage::vertex;
   const std::string same = vertex ? " is the same for every vertex, where the homework" : " is the same at every point, where the homework";
   if (e.other.empty()) return same + (vertex ? "'s changes from vertex to vertex" : "'s changes from point to point");
@@ -21,15 +20,14 @@ std::string same_everywhere(const RepairEdit& e) {
 }
 
 std::string direction_w_words(const Said& s) {
-  const RepairEdit& e = s.edit;
-  const std::string by = e.homework_matrix.empty() ? "" : " (the homework transforms it by `" + e.homework_matrix + "`)";
-  return e.other == "0.0" ? s.named + " is a direction, so its w must be 0: with w = 1 the matrix's translation moves it" + by
+  const std::string by = s.homework_matrix.empty() ? "" : " (the homework transforms it by `" + std::string(s.homework_matrix) + "`)";
+  return s.other == "0.0" ? s.named + " is a direction, so its w must be 0: with w = 1 the matrix's translation moves it" + by
                           : s.named + " is a point, so its w must be 1: with w = 0 the matrix's translation is lost" + by;
 }
 
 std::string statement_restored_words(const Said& s) {
-  if (s.edit.stage == shader::Stage::fragment) return s.named + " is never written: the colour the fragment stage draws is what it writes there";
-  if (s.edit.subject == "gl_Position") return s.named + " is never written: the vertex stage must say where each vertex lands";
+  if (s.stage == shader::Stage::fragment) return s.named + " is never written: the colour the fragment stage draws is what it writes there";
+  if (s.subject == "gl_Position") return s.named + " is never written: the vertex stage must say where each vertex lands";
   return s.named + " is never written: the fragment stage reads what the vertex stage writes there";
 }
 
@@ -48,49 +46,49 @@ constexpr RepairKindInfo kKinds[] = {
      [](const Said& s) { return s.named + " is not clamped at 0: a cosine below 0 must count as 0, max(0.0, ...)"; },
      [](const Said& s) { return s.symbol + " not clamped at 0"; }},
     {RepairKind::factor_added, "factor_added", F::formula, false, false,
-     [](const Said& s) { return s.named + " is not multiplied by `" + s.edit.other + "`, as the homework's formula multiplies it"; },
-     [](const Said& s) { return s.symbol + " not multiplied by `" + s.edit.other + "`"; }},
+     [](const Said& s) { return s.named + " is not multiplied by `" + s.other + "`, as the homework's formula multiplies it"; },
+     [](const Said& s) { return s.symbol + " not multiplied by `" + s.other + "`"; }},
     {RepairKind::term_added, "term_added", F::formula, false, false,
      [](const Said& s) { return s.named + " is never added: the homework's colour adds it to the other terms"; },
      [](const Said& s) { return s.symbol + " never added"; }},
     {RepairKind::exponent_added, "exponent_added", F::formula, false, true,
-     [](const Said& s) { return s.named + " is not raised to the exponent `" + s.edit.other + "`: the highlight is this cosine to the power alpha"; },
+     [](const Said& s) { return s.named + " is not raised to the exponent `" + s.other + "`: the highlight is this cosine to the power alpha"; },
      [](const Said&) { return std::string("the cosine not raised to the exponent"); }},
     {RepairKind::guard_added, "guard_added", F::formula, false, false,
      [](const Said& s) {
        return s.named + " gets the highlight where the surface faces away from the light too: the homework adds it only where `" +
-              s.edit.other + "`";
+              s.other + "`";
      },
      [](const Said&) { return std::string("the highlight not guarded by N.L > 0"); }},
     {RepairKind::value_added, "value_added", F::formula, false, true,
-     [](const Said& s) { return s.named + " is computed and never used: the homework adds `" + s.edit.other + "` to the colour"; },
+     [](const Said& s) { return s.named + " is computed and never used: the homework adds `" + s.other + "` to the colour"; },
      [](const Said&) { return std::string("a term computed and never added to the colour"); }},
     {RepairKind::swizzle_removed, "swizzle_removed", F::in_student_text, false, false,
      [](const Said& s) { return s.named + " reorders the colour's channels: the homework uses them in order, red, green, blue"; },
      [](const Said&) { return std::string("the colour's channels reordered"); }},
     {RepairKind::direction_w, "direction_w", F::in_student_text, false, false, direction_w_words,
-     [](const Said& s) { return s.symbol + (s.edit.other == "0.0" ? " transformed as a point (w = 1)" : " transformed as a direction (w = 0)"); }},
+     [](const Said& s) { return s.symbol + (s.other == "0.0" ? " transformed as a point (w = 1)" : " transformed as a direction (w = 0)"); }},
     {RepairKind::negation_removed, "negation_removed", F::in_student_text, false, false,
      [](const Said& s) { return s.named + " has the wrong sign"; }, [](const Said& s) { return s.symbol + " with the wrong sign"; }},
     {RepairKind::negation_added, "negation_added", F::in_student_text, false, false,
      [](const Said& s) { return s.named + " has the wrong sign"; }, [](const Said& s) { return s.symbol + " with the wrong sign"; }},
     {RepairKind::operator_swapped, "operator_swapped", F::in_student_text, false, false,
      [](const Said& s) {
-       return s.edit.other == "-" ? s.named + " is added where the homework subtracts it" : s.named + " is subtracted where the homework adds it";
+       return s.other == "-" ? s.named + " is added where the homework subtracts it" : s.named + " is subtracted where the homework adds it";
      },
-     [](const Said& s) { return s.symbol + (s.edit.other == "-" ? " added where the homework subtracts it" : " subtracted where the homework adds it"); }},
+     [](const Said& s) { return s.symbol + (s.other == "-" ? " added where the homework subtracts it" : " subtracted where the homework adds it"); }},
     {RepairKind::factor_removed, "factor_removed", F::in_student_text, false, false,
      [](const Said& s) {
-       if (!s.edit.other.empty()) return "`" + s.edit.other + "` is multiplied by " + s.name + " here: the homework uses `" + s.edit.other + "` as it is";
+       if (!s.other.empty()) return "`" + s.other + "` is multiplied by " + s.name + " here: the homework uses `" + s.other + "` as it is";
        return s.named + " should not multiply here: the homework uses the value as it is";
      },
-     [](const Said& s) { return s.edit.other.empty() ? s.symbol + " multiplies where it should not" : "`" + s.edit.other + "` scaled by a number"; }},
+     [](const Said& s) { return s.other.empty() ? s.symbol + " multiplies where it should not" : "`" + s.other + "` scaled by a number"; }},
     {RepairKind::term_removed, "term_removed", F::in_student_text, false, false,
      [](const Said& s) { return s.named + " should not be there: it moves the value away from the homework's"; },
      [](const Said& s) { return s.symbol + " added where it should not be"; }},
     {RepairKind::matrix_added, "matrix_added", F::in_student_text, false, false,
-     [](const Said& s) { return s.named + " is not transformed by `" + s.edit.other + "`"; },
-     [](const Said& s) { return s.symbol + " not transformed by `" + s.edit.other + "`"; }},
+     [](const Said& s) { return s.named + " is not transformed by `" + s.other + "`"; },
+     [](const Said& s) { return s.symbol + " not transformed by `" + s.other + "`"; }},
     {RepairKind::literal_refit, "literal_refit", F::reference_number, false, false,
      [](const Said& s) { return s.named + " is not the number the homework uses here"; },
      [](const Said& s) { return s.symbol + " not the homework's number"; }},
@@ -112,10 +110,10 @@ constexpr RepairKindInfo kKinds[] = {
      [](const Said& s) { return s.named + " misses a statement the homework has here: it writes " + s.name + " once more than yours does"; },
      [](const Said& s) { return s.symbol + " written once less than the homework writes it"; }},
     {RepairKind::value_restored, "value_restored", F::reference_text, false, false,
-     [](const Said& s) { return s.named + (s.edit.constant_value ? same_everywhere(s.edit) : " is not computed as the homework computes it"); },
+     [](const Said& s) { return s.named + (s.constant_value ? same_everywhere(s) : " is not computed as the homework computes it"); },
      [](const Said& s) {
-       if (!s.edit.constant_value) return s.symbol + " computed otherwise";
-       return s.symbol + (s.edit.stage == shader::Stage::vertex ? " the same for every vertex" : " the same at every point");
+       if (!s.constant_value) return s.symbol + " computed otherwise";
+       return s.symbol + (s.stage == shader::Stage::vertex ? " the same for every vertex" : " the same at every point");
      }},
     {RepairKind::condition_restored, "condition_restored", F::reference_text, false, false,
      [](const Said& s) { return "the condition " + s.named + " is not the one the homework tests here"; },

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "shader/shader_source.h"
+
 namespace shadelab::repair {
 
 // What an edit does, in the order "smallest" breaks its ties (docs/grading.md, "Repairs"); the
@@ -46,16 +48,17 @@ enum class Found {
   reference_text,    // the reference's own text written in (repair/reference_edits.cpp): named, never shown as a line
 };
 
-struct RepairEdit;
-
-// What an edit's words are made of: the edit, its subject as written ("`L`"), that with what the
-// course names it where it does ("`L`, the direction to the light,"), the course's name alone, and
-// the symbol a class is counted by ("L", else the subject as written).
+// What an edit's words are made of: its subject as written ("`L`"), that with what the course
+// names it where it does ("`L`, the direction to the light,"), the course's name alone, the symbol
+// a class is counted by ("L", else the subject as written), and what the edit says beside its
+// subject (repair/repair_edit.h's fields of the same names).
 struct Said {
-  const RepairEdit& edit;
   std::string name, named;
   std::string_view meaning;
   std::string symbol;
+  shader::Stage stage;
+  std::string subject, other, homework_matrix;
+  bool constant_value;
 };
 
 struct RepairKindInfo {

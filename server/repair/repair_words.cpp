@@ -7,8 +7,8 @@ namespace {
 // The subject, and where the course names what it is, that too: "`toEye`, the direction to the eye,".
 Said said_of(const RepairEdit& e, std::string_view meaning, std::string_view symbol) {
   const std::string name = "`" + e.subject + "`";
-  return Said{e, name, meaning.empty() ? name : name + ", " + std::string(meaning) + ",", meaning,
-              symbol.empty() ? name : std::string(symbol)};
+  return Said{name, meaning.empty() ? name : name + ", " + std::string(meaning) + ",", meaning, symbol.empty() ? name : std::string(symbol),
+              e.stage, e.subject, e.other, e.homework_matrix, e.constant_value};
 }
 
 // A value restored that amounts to an edit of the student's own is said as that edit.
