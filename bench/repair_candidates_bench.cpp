@@ -34,7 +34,7 @@ repair::RepairProgram tutorial_class(int classmates) {
   for (int k = 0; k < classmates; ++k)
     class_programs.push_back({specular.vertex, {"classmate.glsl", typed(tutorial, "    fragColor", std::string(k + 1, ' ') + "    fragColor")}});
   static const shader::ShaderFile student{"phong_frag.glsl", typed(tutorial, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)")};
-  return *repair::repair_program(specular.vertex, student, specular.vertex, specular.fragment, class_programs);
+  return repair::repair_program(specular.vertex, student, specular.vertex, specular.fragment, class_programs).value();
 }
 
 void BM_SingleCandidates(benchmark::State& state) {

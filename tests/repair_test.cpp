@@ -14,7 +14,7 @@
 #include "repair/reference_edits.h"
 #include "repair/repair_candidates.h"
 #include "repair/repair_edits.h"
-#include "repair/repair_words.h"
+#include "repair/said_repair.h"
 #include "repair/stage_tokens.h"
 #include "repair/value_variation.h"
 #include "road/repair_search.h"
@@ -518,11 +518,12 @@ TEST(ClassmateEditsTest, AClassmateWhoNamesAValueAsTheStudentDoesOffersTheirValu
     ADD_FAILURE() << "offered an edit naming a local the student never declares: " << e.with;
 
   // Nearest: the classmate whose lines are the student's, before the reference; a copy counts once.
-  const auto nearest = repair::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}, {vertex, classmate}}, 3);
+  const repair::ProgramReading read({vertex, student});
+  const auto nearest = repair::nearest_classmates(read, {{vertex, reference}, {vertex, classmate}, {vertex, classmate}}, 3);
   ASSERT_EQ(nearest.size(), 2u);
   EXPECT_EQ(nearest[0].fragment, classmate);
   EXPECT_EQ(nearest[1].fragment, reference);
-  EXPECT_EQ(repair::nearest_classmates({vertex, student}, {{vertex, reference}, {vertex, classmate}}, 1).front().fragment, classmate);
+  EXPECT_EQ(repair::nearest_classmates(read, {{vertex, reference}, {vertex, classmate}}, 1).front().fragment, classmate);
 }
 
 // What a search tries, in its order, decided without a worker (repair/repair_candidates.h): the

@@ -5,7 +5,6 @@
 #include <string>
 #include <tuple>
 
-#include "repair/aligned_lines.h"
 #include "repair/stage_tokens.h"
 #include "shader/glsl_lines.h"
 
@@ -13,17 +12,17 @@ namespace shadelab::repair {
 
 namespace {
 
-// The stage's lines, unspaced, less the empty ones: what "written alike" compares.
-std::set<std::string> line_set(std::string_view glsl) {
+// A stage's lines, unspaced, less the empty ones: what "written alike" compares.
+std::set<std::string> line_set(const std::vector<std::string_view>& lines) {
   std::set<std::string> out;
-  for (const auto line : shader::lines_of(glsl))
+  for (const auto line : lines)
     if (auto u = unspaced(line); !u.empty()) out.insert(std::move(u));
   return out;
 }
 
 size_t lines_alike(const std::set<std::string>& student, std::string_view classmate_glsl) {
   size_t n = 0;
-  for (const auto& line : line_set(classmate_glsl)) n += student.contains(line);
+  for (const auto& line : line_set(shader::lines_of(classmate_glsl))) n += student.contains(line);
   return n;
 }
 
@@ -52,8 +51,8 @@ EditKey key_of(const RepairEdit& e) { return {e.stage, e.begin, e.end, e.with}; 
 
 }  // namespace
 
-std::vector<StagePair> nearest_classmates(const StagePair& student, const std::vector<StagePair>& classmates, size_t count) {
-  const auto vertex = line_set(student.vertex), fragment = line_set(student.fragment);
+std::vector<StagePair> nearest_classmates(const ProgramReading& student, const std::vector<StagePair>& classmates, size_t count) {
+  const auto vertex = line_set(student.vertex.lines), fragment = line_set(student.fragment.lines);
   std::vector<std::pair<size_t, size_t>> alike;  // (lines alike, index), for the distinct programs
   std::set<std::pair<std::string_view, std::string_view>> seen;
   for (size_t i = 0; i < classmates.size(); ++i)
@@ -65,35 +64,29 @@ std::vector<StagePair> nearest_classmates(const StagePair& student, const std::v
   return out;
 }
 
-std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
-                                        const std::vector<StagePair>& classmates) {
-  return classmate_edits(student, reference, program_repair_edits(student, reference), classmates);
+std::vector<RepairEdit> classmate_edits(const StagePair& student, const StagePair& reference, const std::vector<StagePair>& classmates) {
+  const ProgramReading read(student, reference);
+  return classmate_edits(read, program_edits(read).live, classmates);
 }
 
-std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
-                                        const std::vector<RepairEdit>& reference_edits, const std::vector<StagePair>& classmates) {
-  // program_repair_edits keeps what could be the student's line (live, and not written as the
-  // program beside it writes it); the course's reference's own offers are made already.
+std::vector<RepairEdit> classmate_edits(const ProgramReading& student, const std::vector<RepairEdit>& reference_edits,
+                                        const std::vector<StagePair>& classmates) {
+  // program_edits keeps what could be the student's line (live, and not written as the program
+  // beside it writes it); the course's reference's own offers are made already.
   std::set<EditKey> offered;
   for (const auto& e : reference_edits) offered.insert(key_of(e));
-  const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
-  const auto vertex_student = shader::lines_of(student.vertex.glsl), fragment_student = shader::lines_of(student.fragment.glsl);
   std::vector<RepairEdit> out;
   for (const auto& glsl : classmates) {
-    const ProgramTokens classmate(glsl);
-    const auto vertex_locals = declared_locals(classmate.vertex), fragment_locals = declared_locals(classmate.fragment);
-    for (auto& e : program_repair_edits(student, classmate)) {
-      if (!reads_reference(e.kind) || !offered.insert(key_of(e)).second) continue;
-      const bool vertex = e.stage == shader::Stage::vertex;
-      if (names_a_local_missing(e, vertex ? vertex_locals : fragment_locals, student[e.stage])) continue;
-      const AlignedLines& lines = vertex ? vertex_lines : fragment_lines;
-      const auto& student_lines = vertex ? vertex_student : fragment_student;
-      const bool inserts = inserts_statement(e.kind);
-      const std::string_view own_line =
-          e.line >= 1 && static_cast<size_t>(e.line) <= student_lines.size() ? student_lines[e.line - 1] : std::string_view();
+    const ProgramReading beside(student.student(), glsl);
+    const auto vertex_locals = declared_locals(beside.vertex.theirs), fragment_locals = declared_locals(beside.fragment.theirs);
+    for (auto& e : program_edits(beside).live) {
+      const bool reads = reads_reference(e.kind), inserts = inserts_statement(e.kind);
+      if (!reads || !offered.insert(key_of(e)).second) continue;
+      const StageReading& s = student[e.stage];
+      if (names_a_local_missing(e, e.stage == shader::Stage::vertex ? vertex_locals : fragment_locals, s.student)) continue;
       // As with the reference's offers: a line the student wrote as the reference writes it is right.
-      if (!inserts && lines.reads_as_reference(own_line)) continue;
-      e.reads_as_reference = inserts || lines.reads_as_reference(edited_line(student[e.stage].glsl, e));
+      if (!inserts && s.written_as_theirs(e)) continue;
+      e.reads_as_reference = inserts || s.reads_as_theirs_after(e);
       out.push_back(std::move(e));
     }
   }

@@ -19,17 +19,17 @@ namespace shadelab::repair {
 // The `count` programs of `classmates` nearest the student's: most of the student's lines written
 // alike (spaces aside), ties in the order given (a batch gives them by student name).
 // Programs alike to the byte count once.
-std::vector<StagePair> nearest_classmates(const StagePair& student, const std::vector<StagePair>& classmates, size_t count);
+std::vector<StagePair> nearest_classmates(const ProgramReading& student, const std::vector<StagePair>& classmates, size_t count);
 
-// The edits `classmates` offer that the course's `reference` does not, each where the student's
+// The edits `classmates` offer that the course's reference does not, each where the student's
 // program could be its line (not a dead statement, not a line the student wrote as the reference
 // writes it) and could compile (it names no local of the classmate's the student's stage never
-// mentions), marked `reads_as_reference` by the course's reference, smallest first.
-// `reference_edits` are what the reference offers already (program_repair_edits(student,
-// reference)): a caller that tries those too reads them once.
-std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
-                                        const std::vector<RepairEdit>& reference_edits, const std::vector<StagePair>& classmates);
-std::vector<RepairEdit> classmate_edits(const ProgramTokens& student, const ProgramTokens& reference,
+// mentions), marked `reads_as_reference` by the course's reference, smallest first. `student` is
+// the student's program read beside the course's reference; `reference_edits` are what the
+// reference offers already (program_edits(student).live): a caller that tries those too reads
+// them once.
+std::vector<RepairEdit> classmate_edits(const ProgramReading& student, const std::vector<RepairEdit>& reference_edits,
                                         const std::vector<StagePair>& classmates);
+std::vector<RepairEdit> classmate_edits(const StagePair& student, const StagePair& reference, const std::vector<StagePair>& classmates);
 
 }  // namespace shadelab::repair

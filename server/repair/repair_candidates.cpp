@@ -16,13 +16,11 @@ std::string glsl_or_empty(const shader::ShaderFile& file, shader::Stage stage) {
 }
 
 bool class_may_offer(const RepairProgram& p, const CandidateCounts& counts) {
-  return !p.classmates.empty() && counts.from_class > 0 && !p.reference_fragment.empty();
+  return !p.classmates.empty() && counts.from_class > 0 && !p.read.beside_nothing();
 }
 
-size_t token_count(std::string_view glsl) { return shader::tokens_of(glsl).size(); }
-
 // A classmate's stage the search may read: unwrapped, and within the budget a student's stage has.
-bool readable(const std::string& glsl) { return !glsl.empty() && token_count(glsl) <= kRepairTokensAStage; }
+bool readable(const std::string& glsl) { return !glsl.empty() && shader::tokens_of(glsl).size() <= kRepairTokensAStage; }
 
 bool overlapping(const RepairEdit& a, const RepairEdit& b) {
   return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end;  // touching spans count: one token's edits
@@ -33,32 +31,26 @@ bool overlapping(const RepairEdit& a, const RepairEdit& b) {
 Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const shader::ShaderFile& fragment,
                                        const shader::ShaderFile& reference_vertex, const shader::ShaderFile& reference_fragment,
                                        const std::vector<PassingProgram>& classmates) {
-  // Every stage unwrapped first, then the student's counted: each read once.
+  // Every stage unwrapped first, then the student's read beside the reference within the budget.
   auto v = shader::unwrap(vertex, shader::Stage::vertex);
   auto f = shader::unwrap(fragment, shader::Stage::fragment);
   auto rv = shader::unwrap(reference_vertex, shader::Stage::vertex);
   auto rf = shader::unwrap(reference_fragment, shader::Stage::fragment);
   if (!v || !f) return Error{ErrorCode::invalid_argument, "a stage of the program cannot be unwrapped"};
-  for (const auto* stage : {&*v, &*f})
-    if (const size_t n = token_count(stage->glsl); n > kRepairTokensAStage)
-      return Error{ErrorCode::payload_too_large, "the " + std::string(stage == &*v ? "vertex" : "fragment") + " stage holds " +
-                                                     std::to_string(n) + " tokens, and the repair search reads at most " +
-                                                     std::to_string(kRepairTokensAStage) + " a stage"};
-  RepairProgram p{{&vertex, std::move(*v)},
-                  {&fragment, std::move(*f)},
-                  rv ? std::move(rv->glsl) : std::string(),
-                  rf ? std::move(rf->glsl) : std::string(),
-                  {},
-                  {}};
+  const auto glsl = [](const auto& unwrapped) { return unwrapped ? std::string_view(unwrapped->glsl) : std::string_view(); };
+  auto read = ProgramReading::within({v->glsl, f->glsl}, {glsl(rv), glsl(rf)}, kRepairTokensAStage);
+  if (!read) return read.take_error();
+  RepairProgram p{{&vertex, std::move(*v)}, {&fragment, std::move(*f)}, std::move(*read), {}, {}};
   for (const auto& c : classmates) {
     auto cv = glsl_or_empty(c.vertex, shader::Stage::vertex), cf = glsl_or_empty(c.fragment, shader::Stage::fragment);
     if (readable(cv) && readable(cf)) p.classmates.emplace_back(std::move(cv), std::move(cf));
   }
-  p.edits = program_edits(ProgramTokens(p.student()), ProgramTokens(p.reference()));
+  p.edits = program_edits(p.read);
   return p;
 }
 
 RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edits) {
+  std::stable_sort(edits.begin(), edits.end(), smaller);  // a pair is said in this order
   RepairCandidate c{std::move(edits), *p.vertex.file, *p.fragment.file};
   for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment}) {
     std::vector<OtherStageSpan> here;  // each span this stage's text changes
@@ -80,8 +72,8 @@ std::vector<RepairEdit> class_edits(const RepairProgram& p, const CandidateCount
   if (!class_may_offer(p, counts)) return {};
   std::vector<StagePair> class_programs;
   for (const auto& [vertex, fragment] : p.classmates) class_programs.push_back({vertex, fragment});
-  const auto nearest = nearest_classmates(p.student(), class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
-  return classmate_edits(ProgramTokens(p.student()), ProgramTokens(p.reference()), p.edits.live, nearest);
+  const auto nearest = nearest_classmates(p.read, class_programs, static_cast<size_t>(std::max(0, counts.classmates)));
+  return classmate_edits(p.read, p.edits.live, nearest);
 }
 
 std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const CandidateCounts& counts) {
@@ -105,19 +97,19 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
     const RepairEdit &a = singles[i].edits.front(), &b = singles[j].edits.front();
     if (i == j || overlapping(a, b) || out.size() >= static_cast<size_t>(std::max(0, counts.pairs))) return;
     if (!paired.insert(std::minmax(i, j)).second) return;
-    out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
+    out.push_back(candidate_of(p, {a, b}));
   };
   for (size_t i = 0; i < singles.size() && singles[i].from_class; ++i)
     for (size_t j = i + 1; j < singles.size() && singles[j].from_class; ++j) add(i, j);
   // A single that puts back a term, a statement or a power, with each edit of a line only that
   // could make live (V's line, where the deleted term was all that read V; the exponent's, where
   // the left-out `pow` was all that read it): a mistake the missing part hid.
-  for (size_t i = 0; i < singles.size() && !p.reference_fragment.empty(); ++i) {
+  for (size_t i = 0; i < singles.size() && !p.read.beside_nothing(); ++i) {
     const RepairEdit& a = singles[i].edits.front();
     if (!makes_live(a.kind)) continue;
     for (const RepairEdit& b : p.edits.dead) {
       if (out.size() >= static_cast<size_t>(std::max(0, counts.pairs))) break;
-      if (!overlapping(a, b)) out.push_back(candidate_of(p, smaller(b, a) ? std::vector{b, a} : std::vector{a, b}));
+      if (!overlapping(a, b)) out.push_back(candidate_of(p, {a, b}));
     }
   }
   // Aligned: a line that then reads as the reference's, or one aligned by what it lacks (a factor,

@@ -29,14 +29,14 @@ struct StudentStage {
 // The program a search edits, and what it is read beside.
 struct RepairProgram {
   StudentStage vertex, fragment;
-  std::string reference_vertex, reference_fragment;              // the GLSL the grade's reference draws with, or empty
+  // The student's program read once beside the grade's reference (beside nothing where the grade
+  // has none): every finder and the words read it, none reads the text again.
+  ProgramReading read;
   std::vector<std::pair<std::string, std::string>> classmates;  // each passing classmate's GLSL: vertex, fragment
   // The student's program's edits, found once as it is read: the live ones are its singles, the
   // dead ones wait for the pairs that make their line live again.
   ProgramEdits edits;
   const StudentStage& operator[](shader::Stage s) const { return s == shader::Stage::vertex ? vertex : fragment; }
-  StagePair student() const { return {vertex.source.glsl, fragment.source.glsl}; }
-  StagePair reference() const { return {reference_vertex, reference_fragment}; }
 };
 
 // The tokens a stage may hold for the search to read it (each of the student's stages, each
@@ -69,8 +69,9 @@ struct RepairCandidate {
   bool from_class = false;              // a single a classmate's program offers (repair/classmate_edits.h)
 };
 
-// The program with `edits` made: an edited stage given as the GLSL the edits made (the same
-// program the driver compiles), the other as the student's file. No edits: the student's own.
+// The program with `edits` made, they in turn smallest first: an edited stage given as the GLSL the
+// edits made (the same program the driver compiles), the other as the student's file. No edits:
+// the student's own.
 RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edits);
 
 // The edits the class's programs nearest the student's offer beyond the reference's: none without

@@ -4,13 +4,10 @@
 #include <map>
 #include <tuple>
 
-#include "repair/aligned_lines.h"
 #include "repair/left_out_edits.h"
-#include "repair/live_statements.h"
 #include "repair/reference_edits.h"
 #include "repair/stage_names.h"
 #include "repair/stage_tokens.h"
-#include "shader/glsl_lines.h"
 
 namespace shadelab::repair {
 
@@ -259,44 +256,29 @@ std::vector<RepairEdit> repair_edits(const Stage& s) {
   return out;
 }
 
-namespace {
-
-// The student's line `edit` changes, as they wrote it (`lines`: their stage's, split once).
-std::string_view line_of(const std::vector<std::string_view>& lines, const RepairEdit& edit) {
-  return edit.line >= 1 && static_cast<size_t>(edit.line) <= lines.size() ? lines[edit.line - 1] : std::string_view();
-}
-
-}  // namespace
-
-ProgramEdits program_edits(const ProgramTokens& student, const ProgramTokens& reference) {
-  const StageLiveness fragment_live = fragment_liveness(student.fragment);
-  const StageLiveness vertex_live = vertex_liveness(student.vertex, fragment_live.live_names);
-  const AlignedLines vertex_lines(student.vertex, reference.vertex), fragment_lines(student.fragment, reference.fragment);
+ProgramEdits program_edits(const ProgramReading& student) {
   ProgramEdits out;
-  const auto add = [&](const Stage& s, const Stage& theirs, const StageLiveness& live, const AlignedLines& lines) {
-    std::vector<RepairEdit> edits = repair_edits(s);
-    if (!theirs.glsl.empty()) {
-      for (auto& e : reference_edits(s, theirs)) edits.push_back(std::move(e));
-      for (auto& e : left_out_edits(s, theirs)) edits.push_back(std::move(e));
+  for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment}) {
+    const StageReading& s = student[stage];
+    std::vector<RepairEdit> edits = repair_edits(s.student);
+    if (!s.theirs.glsl.empty()) {
+      for (auto& e : reference_edits(s.student, s.theirs)) edits.push_back(std::move(e));
+      for (auto& e : left_out_edits(s.student, s.theirs)) edits.push_back(std::move(e));
     }
-    const auto student_lines = shader::lines_of(s.glsl);
     for (auto& e : edits) {
       // A line the student wrote as the reference writes it (their names for its locals aside) is
       // right as it is: an edit there that makes up for a mistake elsewhere would name a change
       // the student never made.
-      if (!inserts_statement(e.kind) && !e.edits_aligned_line && lines.reads_as_reference(line_of(student_lines, e))) continue;
-      e.reads_as_reference = inserts_statement(e.kind) || lines.reads_as_reference(edited_line(s.glsl, e));
-      (live.dead(e.begin) ? out.dead : out.live).push_back(std::move(e));
+      if (!inserts_statement(e.kind) && !e.edits_aligned_line && s.written_as_theirs(e)) continue;
+      e.reads_as_reference = inserts_statement(e.kind) || s.reads_as_theirs_after(e);
+      (s.liveness.dead(e.begin) ? out.dead : out.live).push_back(std::move(e));
     }
-  };
-  add(student.vertex, reference.vertex, vertex_live, vertex_lines);
-  add(student.fragment, reference.fragment, fragment_live, fragment_lines);
+  }
   std::vector<RepairEdit> flat;
-  flat_removals(student.vertex, student.fragment, flat);
+  flat_removals(student.vertex.student, student.fragment.student, flat);
   for (auto& e : flat) {
     const RepairEdit in{shader::Stage::fragment, e.kind, e.other_stage->begin, e.other_stage->end, e.other_stage->with};
-    e.reads_as_reference = vertex_lines.reads_as_reference(edited_line(student.vertex.glsl, e)) &&
-                           fragment_lines.reads_as_reference(edited_line(student.fragment.glsl, in));
+    e.reads_as_reference = student.vertex.reads_as_theirs_after(e) && student.fragment.reads_as_theirs_after(in);
     out.live.push_back(std::move(e));
   }
   std::stable_sort(out.live.begin(), out.live.end(), smaller);
@@ -304,27 +286,9 @@ ProgramEdits program_edits(const ProgramTokens& student, const ProgramTokens& re
   return out;
 }
 
-std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference, Liveness which) {
-  ProgramEdits edits = program_edits(student, reference);
+std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference, Liveness which) {
+  ProgramEdits edits = program_edits(ProgramReading(student, reference));
   return std::move(which == Liveness::live ? edits.live : edits.dead);
-}
-
-
-std::string with_edit(std::string_view glsl, const RepairEdit& edit) {
-  std::string out(glsl.substr(0, edit.begin));
-  out += edit.with;
-  out += glsl.substr(edit.end);
-  return out;
-}
-
-std::string edited_line(std::string_view glsl, const RepairEdit& edit) {
-  const std::string edited = with_edit(glsl, edit);
-  const size_t start = edited.rfind('\n', edit.begin == 0 ? 0 : edit.begin - 1);
-  const size_t from = start == std::string::npos || edit.begin == 0 ? 0 : start + 1;
-  const size_t to = edited.find('\n', edit.begin + edit.with.size());
-  std::string line = edited.substr(from, to == std::string::npos ? std::string::npos : to - from);
-  const size_t indent = line.find_first_not_of(" \t");
-  return indent == std::string::npos ? std::string() : line.substr(indent);
 }
 
 }  // namespace shadelab::repair

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "repair/repair_edit.h"
-#include "repair/stage_tokens.h"
+#include "repair/program_reading.h"
 
 namespace shadelab::repair {
 
@@ -17,27 +17,19 @@ namespace shadelab::repair {
 // driver gets it), smallest first.
 std::vector<RepairEdit> repair_edits(const StageTokens& stage);
 
-// Both stages' edits, smallest first, less those in an assignment that cannot reach what the
-// program draws (repair/live_statements.h): the candidates a repair search tries, in its order.
-// With the reference's stages (empty: none), the reference's edits too.
-// With `Liveness::dead`, only the edits that list leaves out for their statement's being dead:
-// a pair's second edit where its first puts back what makes that statement live again (a
-// deleted term that read V and R).
-enum class Liveness { live, dead };
-// Both at once, each smallest first: a search reads the live for its singles and keeps the dead
-// for its pairs, finding the edits once.
+// Both stages' edits, smallest first, less those at a line the student wrote as the program beside
+// theirs writes it: the candidates a repair search tries, in its order. With the reference beside
+// the student's program (not beside nothing), the reference's edits too (repair/reference_edits.h,
+// repair/left_out_edits.h). The live ones are a search's singles; the dead, those in an assignment
+// that cannot reach what the program draws (repair/live_statements.h), wait for a pair whose first
+// edit puts back what makes that statement live again (a deleted term that read V and R).
 struct ProgramEdits {
   std::vector<RepairEdit> live, dead;
 };
-ProgramEdits program_edits(const ProgramTokens& student, const ProgramTokens& reference = {});
-std::vector<RepairEdit> program_repair_edits(const ProgramTokens& student, const ProgramTokens& reference = {},
-                                             Liveness which = Liveness::live);
+ProgramEdits program_edits(const ProgramReading& student);
 
-
-// `glsl` with `edit` made.
-std::string with_edit(std::string_view glsl, const RepairEdit& edit);
-
-// The line `edit` is on, as it reads after the edit.
-std::string edited_line(std::string_view glsl, const RepairEdit& edit);
+// The same, read here from two programs' text: one of the lists.
+enum class Liveness { live, dead };
+std::vector<RepairEdit> program_repair_edits(const StagePair& student, const StagePair& reference = {}, Liveness which = Liveness::live);
 
 }  // namespace shadelab::repair

@@ -1,40 +1,51 @@
 #include "repair/said_repair.h"
 
-#include "repair/aligned_lines.h"
-#include "repair/repair_words.h"
-#include "shader/glsl_lines.h"
-
 namespace shadelab::repair {
 
 namespace {
+
+// The subject, and where the course names what it is, that too: "`toEye`, the direction to the eye,".
+Said said_of(const RepairEdit& e, std::string_view meaning, std::string_view symbol) {
+  const std::string name = "`" + e.subject + "`";
+  return Said{name, meaning.empty() ? name : name + ", " + std::string(meaning) + ",", meaning, symbol.empty() ? name : std::string(symbol),
+              e.stage, e.subject, e.other, e.homework_matrix, e.constant_value};
+}
+
+// A value restored that amounts to an edit of the student's own is said as that edit.
+const RepairKindInfo& said_as(const RepairEdit& e) { return info(e.said_as.value_or(e.kind)); }
 
 // Which of the homework formula's `vectors` the edit's subject is, where it is a local of the
 // student's fragment stage that stands for one of the reference fragment stage's (by the student's
 // own name or the one aligned with it): the formula's name for it ("L") and its words; none else.
 const VectorWords::value_type* vector_of(const RepairProgram& p, const RepairEdit& e, const VectorWords& vectors) {
-  if (vectors.empty() || e.stage != shader::Stage::fragment || p.reference_fragment.empty()) return nullptr;
-  const std::string& glsl = p.fragment.source.glsl;
-  const std::string name = AlignedLines(glsl, p.reference_fragment).reference_name(e.subject, edited_line(glsl, e));
+  if (vectors.empty() || e.stage != shader::Stage::fragment || p.read.beside_nothing()) return nullptr;
+  const StageReading& fragment = p.read.fragment;
+  const std::string name = fragment.aligned.reference_name(e.subject, fragment.edited_line(e));
   const auto found = vectors.find(name);
   return found == vectors.end() ? nullptr : &*found;
 }
 
 SaidEdit said_edit(const RepairProgram& p, const RepairEdit& e, RepairShown shown, const VectorWords& vectors) {
   const StudentStage& stage = p[e.stage];
+  const StageReading& read = p.read[e.stage];
   const auto* vector = vector_of(p, e, vectors);
   SaidEdit out{e.kind, e.stage, std::nullopt, std::nullopt, repair_words(e, vector ? std::string_view(vector->second) : ""),
                std::nullopt, repair_label(e, vector ? std::string_view(vector->first) : ""),
-               std::string(shader::line_of(stage.source.glsl, e.line))};
+               std::string(read.line_of(e))};
   if (shown != RepairShown::what) {
     out.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
     out.line = stage.source.locate(e.line, 0).file_line;
   }
   // A restored statement or value is the reference's text, not the student's line: named, never shown.
-  if (shown == RepairShown::repaired_line && !writes_reference_text(e.kind)) out.repaired_line = edited_line(stage.source.glsl, e);
+  if (shown == RepairShown::repaired_line && !writes_reference_text(e.kind)) out.repaired_line = read.edited_line(e);
   return out;
 }
 
 }  // namespace
+
+std::string repair_words(const RepairEdit& e, std::string_view meaning) { return said_as(e).words(said_of(e, meaning, {})); }
+
+std::string repair_label(const RepairEdit& e, std::string_view symbol) { return said_as(e).label(said_of(e, {}, symbol)); }
 
 std::vector<SaidEdit> said_repair(const RepairProgram& p, const std::vector<RepairEdit>& edits, RepairShown shown, const VectorWords& vectors) {
   std::vector<SaidEdit> out;
