@@ -50,7 +50,7 @@ Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const s
 }
 
 RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edits) {
-  std::stable_sort(edits.begin(), edits.end(), smaller);  // a pair is said in this order
+  if (edits.size() > 1) std::stable_sort(edits.begin(), edits.end(), smaller);  // a pair is said in this order
   RepairCandidate c{std::move(edits), *p.vertex.file, *p.fragment.file};
   for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment}) {
     std::vector<OtherStageSpan> here;  // each span this stage's text changes
