@@ -51,11 +51,9 @@ Expected<BuiltCode> code_submission(const course::Course& c, CodeRequest request
   if (!request.mesh.upload) question.mesh = request.mesh.name;
   auto asked = course::answer(c, std::move(question), viewer);
   if (!asked) return asked.take_error();
-  BuiltCode out{{worker::Job{}, {}, std::move(asked->spec), limits}, std::move(asked->notes)};
+  BuiltCode out{{worker::course_job(c, worker::JobKind::grade, std::move(asked->request)), {}, std::move(asked->spec), limits},
+                std::move(asked->notes)};
   CodeSubmission& s = out.submission;
-  s.render.kind = worker::JobKind::grade;
-  s.render.request = std::move(asked->request);
-  s.render.frame_name = c.frame_name;
   s.vector_words = std::move(asked->vectors);
   if (auto shaped = shape_render(c, request.render, s.render); !shaped) return shaped.take_error();
   attach_mesh(asked->mesh, std::move(request.mesh), s);

@@ -3,9 +3,13 @@
 namespace shadelab::worker {
 
 Job course_job(const course::Course& c, JobKind kind, shader::ShaderFile vertex, shader::ShaderFile fragment) {
+  return course_job(c, kind, c.render_request(std::move(vertex), std::move(fragment)));
+}
+
+Job course_job(const course::Course& c, JobKind kind, render::RenderRequest request) {
   Job job;
   job.kind = kind;
-  job.request = c.render_request(std::move(vertex), std::move(fragment));
+  job.request = std::move(request);
   job.frame_name = c.frame_name;
   return job;
 }

@@ -13,6 +13,8 @@ namespace shadelab::worker {
 // A job of `kind` drawing `vertex` and `fragment` as the course draws them (its canvas, frames,
 // samples and page setup), with its frame names; no mesh yet.
 Job course_job(const course::Course& course, JobKind kind, shader::ShaderFile vertex = {}, shader::ShaderFile fragment = {});
+// A job of `kind` drawing `request`, one the course made already (course::answer's), with its frame names.
+Job course_job(const course::Course& course, JobKind kind, render::RenderRequest request);
 
 // Sets the job's mesh to the course's mesh `name` and puts its bytes, if they travel, in
 // `payload`; mesh_not_found naming the course's meshes for another name.
