@@ -16,33 +16,6 @@ namespace {
 
 using Stage = StageTokens;
 
-bool statement_start(const Stage& s, size_t i) { return i > 0 && one_of(s.t[i - 1].text, {";", "{", "}"}); }
-
-// The `;` that ends the statement token `i` is in, or size().
-size_t statement_end(const Stage& s, size_t i) {
-  while (i < s.size() && !s.is(i, ";")) ++i;
-  return i;
-}
-
-bool has_token(const Stage& s, std::string_view text, size_t first, size_t last) {
-  for (size_t k = first; k <= last && k < s.size(); ++k)
-    if (s.is(k, text)) return true;
-  return false;
-}
-
-size_t calls_of(const Stage& s, std::string_view name) {
-  size_t n = 0;
-  for (size_t i = 0; i + 1 < s.size(); ++i) n += s.is(i, name) && s.is(i + 1, "(");
-  return n;
-}
-
-// Whether the stage reads `name` anywhere.
-bool reads(const Stage& s, std::string_view name) {
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.is(i, name) && read_at(s, i)) return true;
-  return false;
-}
-
 // The first token of the operand whose last token is `last`: `max(...)`, `(a + b)`, `color.rgb`.
 size_t operand_first(const Stage& s, size_t last) {
   size_t i = last;
@@ -211,15 +184,6 @@ void exponents_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& ou
   }
 }
 
-// Whether token `i` is inside main's body.
-bool main_of(const Stage& s, size_t i) {
-  const size_t open = main_start(s);
-  if (open >= s.size() || i <= open) return false;
-  int depth = 0;
-  for (size_t k = open; k < i; ++k) depth += s.is(k, "{") - s.is(k, "}");
-  return depth > 0;
-}
-
 // What a guard added around the block at `open` guards: the first name the block adds to
 // (`color += ...`), else the first it writes.
 std::string guarded_name(const Stage& s, size_t open) {
@@ -234,30 +198,6 @@ std::string guarded_name(const Stage& s, size_t open) {
     if (first.empty() && s.is(name + 1, "=")) first = std::string(s.t[name].text);
   }
   return first;
-}
-
-// A helper function of the student's (not main): its return type, the first and last token of
-// its parameters' list and of its body.
-struct Helper {
-  std::string_view type;
-  size_t params_first = 0, params_last = 0, open = 0, close = 0;
-};
-
-std::vector<Helper> helpers_of(const Stage& s) {
-  std::vector<Helper> out;
-  for (size_t i = 0; i + 3 < s.size(); ++i) {
-    if (!one_of(s.t[i].text, {"float", "vec2", "vec3", "vec4"}) || !s.identifier(i + 1) || !s.is(i + 2, "(")) continue;
-    if (i > 0 && !one_of(s.t[i - 1].text, {";", "}"})) continue;  // a call or a constructor, not a definition
-    const size_t close_params = s.close_of(i + 2);
-    if (!s.is(close_params + 1, "{")) continue;
-    size_t depth = 0, end = close_params + 1;
-    for (; end < s.size(); ++end) {
-      depth += s.is(end, "{");
-      if (s.is(end, "}") && --depth == 0) break;
-    }
-    if (end < s.size()) out.push_back({s.t[i].text, i + 3, close_params - 1, close_params + 1, end});
-  }
-  return out;
 }
 
 // In a helper whose value is a power (`return ... pow(...);`): `if (!(dot(n, l) > 0.0)) { return
