@@ -756,19 +756,21 @@ TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
                               "    fragColor += coeffDiffuse * uDiffuseColor * uLightColor;\n"
                               "    fragColor += coeffSpecular * uSpecularColor;\n"
                               "}\n";
-  const auto program = repair::repair_program(specular->vertex, {"phong_frag.glsl", student}, specular->vertex, specular->fragment, {});
-  ASSERT_TRUE(program.ok()) << program.error().message;
   const repair::CandidateCounts counts{128, 16, 0, 0, 128};
-  const auto singles = repair::single_candidates(*program, counts);
-  const std::vector<double> distances(singles.size(), 0.5);  // none nearer than the student's own: aligned pairs alone
-  bool paired = false;
-  for (const auto& pair : repair::pair_candidates(*program, singles, distances, 0.5, counts)) {
-    std::set<std::string> lines;
-    for (const auto& e : pair.edits) lines.insert(repair::edited_line(program->fragment.source.glsl, e));
-    paired = paired || (lines.contains("float coeffDiffuse = max(0.0, dot(N, L));") &&
-                        lines.contains("fragColor += coeffSpecular * uSpecularColor * uLightColor;"));
-  }
-  EXPECT_TRUE(paired);
+  // Whether `fragment` gets a pair editing its lines into `a` and `b`, with no single nearer than
+  // the student's own (aligned pairs alone).
+  const auto paired = [&](const std::string& fragment, const std::string& a, const std::string& b) {
+    const auto program = repair::repair_program(specular->vertex, {"phong_frag.glsl", fragment}, specular->vertex, specular->fragment, {});
+    if (!program) return false;
+    const auto singles = repair::single_candidates(*program, counts);
+    for (const auto& pair : repair::pair_candidates(*program, singles, std::vector<double>(singles.size(), 0.5), 0.5, counts)) {
+      std::set<std::string> lines;
+      for (const auto& e : pair.edits) lines.insert(repair::edited_line(program->fragment.source.glsl, e));
+      if (lines.contains(a) && lines.contains(b)) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(paired(student, "float coeffDiffuse = max(0.0, dot(N, L));", "fragColor += coeffSpecular * uSpecularColor * uLightColor;"));
 
   // The exponent left out and its number changed: the changed line is dead until the power reads
   // it again, so the power put back is paired with the edits of dead lines.
@@ -778,17 +780,20 @@ TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
   swap("float coeffDiffuse = dot(N, L);", "float coeffDiffuse = max(dot(N, L), 0.0);");
   swap("pow(max(dot(R, V), 0.0), 6.0)", "max(dot(R, V), 0.0)");
   swap("coeffSpecular * uSpecularColor;", "coeffSpecular * uSpecularColor * uLightColor;");
-  const auto without = repair::repair_program(specular->vertex, {"phong_frag.glsl", no_power}, specular->vertex, specular->fragment, {});
-  ASSERT_TRUE(without.ok()) << without.error().message;
-  const auto its_singles = repair::single_candidates(*without, counts);
-  bool power_and_number = false;
-  for (const auto& pair : repair::pair_candidates(*without, its_singles, std::vector<double>(its_singles.size(), 0.5), 0.5, counts)) {
-    std::set<std::string> lines;
-    for (const auto& e : pair.edits) lines.insert(repair::edited_line(without->fragment.source.glsl, e));
-    power_and_number = power_and_number || (lines.contains("float specularAlpha = 6.0;") &&
-                                            lines.contains("coeffSpecular = pow(max(dot(R, V), 0.0), specularAlpha);"));
-  }
-  EXPECT_TRUE(power_and_number);
+  const std::string powered = "coeffSpecular = pow(max(dot(R, V), 0.0), specularAlpha);";
+  EXPECT_TRUE(paired(no_power, "float specularAlpha = 6.0;", powered));
+
+  // The exponent and the whole specular term left out: the unread `max(dot(R, V), 0.0)` is the
+  // specular term's `max` (it reads R and V), not the diffuse term's, so the term added is the
+  // specular colour's, and it is paired with the power put back.
+  std::string no_term = typed(no_power, "    float specularAlpha = 16.0;\n", "    float specularAlpha = 6.0;\n");
+  no_term = typed(no_term, "    fragColor += coeffSpecular * uSpecularColor * uLightColor;\n", "");
+  const std::string diffuse = "fragColor += coeffDiffuse * uDiffuseColor * uLightColor;";
+  const std::string added = diffuse + " fragColor += uSpecularColor * uLightColor * coeffSpecular;";
+  const auto value_lines = lines_of_kind(no_term, repair::RepairKind::value_added);
+  EXPECT_TRUE(has(value_lines, added));
+  EXPECT_FALSE(has(value_lines, diffuse + " fragColor += uDiffuseColor * uLightColor * coeffSpecular;"));
+  EXPECT_TRUE(paired(no_term, added, powered));
 }
 
 // A local each program leaves unaligned, one of a type on each side, is aligned: the half vector

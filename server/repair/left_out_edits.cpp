@@ -319,21 +319,62 @@ void clamps_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) 
   }
 }
 
-// The reference's term that calls `call` (`uSpecularColor * uLightColor * pow(...)`), with `name`
-// in place of the call: the names multiplied before and after it, each a uniform `uniforms` has.
-std::optional<std::string> term_with(const Stage& r, std::string_view call, const std::string& name, const TypedNames& uniforms) {
-  for (size_t k = 2; k + 1 < r.size(); ++k) {
-    if (!r.is(k, call) || !r.is(k + 1, "(")) continue;
-    size_t first = k, last = r.close_of(k + 1);
-    while (first >= 2 && r.is(first - 1, "*") && r.identifier(first - 2) && uniforms.contains(r.t[first - 2].text)) first -= 2;
-    while (last + 2 < r.size() && r.is(last + 1, "*") && r.identifier(last + 2) && uniforms.contains(r.t[last + 2].text) && !r.is(last + 3, "("))
-      last += 2;
-    if (first == k && last == r.close_of(k + 1)) continue;  // a bare call: no term of its own
-    std::string term = first < k ? std::string(r.text(first, k - 1)) + " " : std::string();
-    term += name;
-    if (last > r.close_of(k + 1)) term += " " + std::string(r.text(r.close_of(k + 1) + 1, last));
-    return term;
+// The names tokens `first`..`last` read (calls among them), a reference's each written in the
+// student's name for it where `names` has one.
+std::set<std::string> names_read(const Stage& st, size_t first, size_t last, const NameMap& names = {}) {
+  std::set<std::string> out;
+  for (size_t k = first; k <= last && k < st.size(); ++k) {
+    if (!st.identifier(k)) continue;
+    const auto own = names.find(st.t[k].text);
+    out.insert(own != names.end() ? own->second : std::string(st.t[k].text));
   }
+  return out;
+}
+
+// The call whose argument token `i` is (`pow` for the `max` in `pow(max(...), a)`): its name's
+// token, or size().
+size_t enclosing_call_at(const Stage& st, size_t i) {
+  int depth = 0;
+  for (size_t k = i; k-- > 0;) {
+    if (st.is(k, ")")) ++depth;
+    if (st.is(k, "(") && depth-- == 0) return k > 0 && st.identifier(k - 1) ? k - 1 : st.size();
+  }
+  return st.size();
+}
+
+// The term the reference's call at `k` is in (`uSpecularColor * uLightColor * pow(...)`), with
+// `name` in place of the call: the uniforms multiplied before and after it; none for a bare call.
+std::optional<std::string> term_at(const Stage& r, size_t k, const std::string& name, const TypedNames& uniforms) {
+  size_t first = k, last = r.close_of(k + 1);
+  while (first >= 2 && r.is(first - 1, "*") && r.identifier(first - 2) && uniforms.contains(r.t[first - 2].text)) first -= 2;
+  while (last + 2 < r.size() && r.is(last + 1, "*") && r.identifier(last + 2) && uniforms.contains(r.t[last + 2].text) && !r.is(last + 3, "("))
+    last += 2;
+  if (first == k && last == r.close_of(k + 1)) return std::nullopt;  // a bare call: no term of its own
+  std::string term = first < k ? std::string(r.text(first, k - 1)) + " " : std::string();
+  term += name;
+  if (last > r.close_of(k + 1)) term += " " + std::string(r.text(r.close_of(k + 1) + 1, last));
+  return term;
+}
+
+// The reference's term that calls `call` (`uSpecularColor * uLightColor * pow(...)`), with `name`
+// in place of the call. Of the reference's calls of that name, first the one that reads what the
+// student's call reads (`reads`, in the student's names): the student's `max(dot(R, V), 0.0)` is
+// the specular term's `max(0.0, dot(V, R))`, not the diffuse term's `max(0.0, NdotL)`; where that
+// one is an argument of another call (the `max` inside `pow`), the term of the call it is inside,
+// with `name` in that call's place: the student left the outer call out too. Else the first call
+// of that name that is a term.
+std::optional<std::string> term_with(const Stage& r, std::string_view call, const std::string& name, const TypedNames& uniforms,
+                                     const std::set<std::string>& reads = {}, const NameMap& names = {}) {
+  for (size_t k = 2; k + 1 < r.size() && !reads.empty(); ++k) {
+    if (!r.is(k, call) || !r.is(k + 1, "(") || names_read(r, k, r.close_of(k + 1), names) != reads) continue;
+    if (auto term = term_at(r, k, name, uniforms)) return term;
+    const size_t outer = enclosing_call_at(r, k);
+    if (outer < r.size())
+      if (auto term = term_at(r, outer, name, uniforms)) return term;
+  }
+  for (size_t k = 2; k + 1 < r.size(); ++k)
+    if (r.is(k, call) && r.is(k + 1, "("))
+      if (auto term = term_at(r, k, name, uniforms)) return term;
   return std::nullopt;
 }
 
@@ -344,6 +385,7 @@ std::optional<std::string> term_with(const Stage& r, std::string_view call, cons
 // added as it is.
 void values_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) {
   const TypedNames uniforms = read_only_names(s);
+  const NameMap names = student_names(s, r);
   TypedNames targets = output_types(s);
   for (const auto& [theirs, own] : shared_locals(s, r))
     if (declared_types(r).at(theirs) == "vec4") targets.emplace(own, "vec4");
@@ -356,7 +398,7 @@ void values_added(const Stage& s, const Stage& r, std::vector<RepairEdit>& out) 
     std::optional<std::string> term;
     if (colour) term = name;
     for (size_t k = written + 2; k + 1 < statement_end(s, written) && !term; ++k)
-      if (s.identifier(k) && s.is(k + 1, "(")) term = term_with(r, s.t[k].text, name, uniforms);
+      if (s.identifier(k) && s.is(k + 1, "(")) term = term_with(r, s.t[k].text, name, uniforms, names_read(s, k, s.close_of(k + 1)), names);
     if (!term) continue;
     for (const auto& [target, type] : targets) {
       const size_t target_written = last_write(s, target, true);
