@@ -650,6 +650,22 @@ std::string helpers_program(const std::string& v_value) {
          "}\n";
 }
 
+// Whether `fragment` (beside the course's specular reference) gets a pair editing its lines into
+// `a` and `b`, with no single nearer than the student's own (aligned pairs alone).
+bool paired(const std::string& fragment, const std::string& a, const std::string& b) {
+  const course::Preset& specular = *course::builtin_course().preset("specular");
+  const repair::CandidateCounts counts{128, 16, 0, 0, 128};
+  const auto program = repair::repair_program(specular.vertex, {"phong_frag.glsl", fragment}, specular.vertex, specular.fragment, {});
+  if (!program) return false;
+  const auto singles = repair::single_candidates(*program, counts);
+  for (const auto& pair : repair::pair_candidates(*program, singles, std::vector<double>(singles.size(), 0.5), 0.5, counts)) {
+    std::set<std::string> lines;
+    for (const auto& e : pair.edits) lines.insert(repair::edited_line(program->fragment.source.glsl, e));
+    if (lines.contains(a) && lines.contains(b)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 // What a student written in their own shape left out is put back at the line they left it out of,
@@ -729,6 +745,9 @@ TEST(LeftOutEditsTest, TermsInLocalsOfTheirOwnGetWhatWasLeftOutBack) {
   EXPECT_TRUE(has(lines_of_kind(typed(step, "fragColor = ambient + ", "fragColor = "), K::value_added),
                   "fragColor = diffuse + specular; fragColor += ambient;"));
   EXPECT_TRUE(has(lines_of_kind(typed(step, " + specular;", ";"), K::value_added), "fragColor = ambient + diffuse; fragColor += specular;"));
+  // Both left out of the sum: each added after the same write, paired.
+  EXPECT_TRUE(paired(typed(step, "fragColor = ambient + diffuse + specular;", "fragColor = diffuse;"), "fragColor = diffuse; fragColor += ambient;",
+                     "fragColor = diffuse; fragColor += specular;"));
   for (const K kind : {K::clamped, K::value_added}) EXPECT_TRUE(lines_of_kind(step, kind).empty()) << "nothing is left out of it";
 }
 
@@ -737,9 +756,6 @@ TEST(LeftOutEditsTest, TermsInLocalsOfTheirOwnGetWhatWasLeftOutBack) {
 // student reads it where the reference reads it clamped) and the light's colour left out of the
 // specular term, in the coefficients shape (`coeffDiffuse`, += accumulation).
 TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
-  const course::Course& c = course::builtin_course();
-  const course::Preset* specular = c.preset("specular");
-  ASSERT_NE(specular, nullptr);
   const std::string reference = glsl_of("specular", shader::Stage::fragment);
   const std::string student = reference.substr(0, reference.find("void main(void) {")) +
                               "void main(void) {\n"
@@ -756,20 +772,6 @@ TEST(LeftOutEditsTest, TwoThingsLeftOutArePairedAsAlignedEdits) {
                               "    fragColor += coeffDiffuse * uDiffuseColor * uLightColor;\n"
                               "    fragColor += coeffSpecular * uSpecularColor;\n"
                               "}\n";
-  const repair::CandidateCounts counts{128, 16, 0, 0, 128};
-  // Whether `fragment` gets a pair editing its lines into `a` and `b`, with no single nearer than
-  // the student's own (aligned pairs alone).
-  const auto paired = [&](const std::string& fragment, const std::string& a, const std::string& b) {
-    const auto program = repair::repair_program(specular->vertex, {"phong_frag.glsl", fragment}, specular->vertex, specular->fragment, {});
-    if (!program) return false;
-    const auto singles = repair::single_candidates(*program, counts);
-    for (const auto& pair : repair::pair_candidates(*program, singles, std::vector<double>(singles.size(), 0.5), 0.5, counts)) {
-      std::set<std::string> lines;
-      for (const auto& e : pair.edits) lines.insert(repair::edited_line(program->fragment.source.glsl, e));
-      if (lines.contains(a) && lines.contains(b)) return true;
-    }
-    return false;
-  };
   EXPECT_TRUE(paired(student, "float coeffDiffuse = max(0.0, dot(N, L));", "fragColor += coeffSpecular * uSpecularColor * uLightColor;"));
 
   // The exponent left out and its number changed: the changed line is dead until the power reads

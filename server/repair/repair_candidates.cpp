@@ -22,8 +22,13 @@ bool class_may_offer(const RepairProgram& p, const CandidateCounts& counts) {
 // A classmate's stage the search may read: unwrapped, and within the budget a student's stage has.
 bool readable(const std::string& glsl) { return !glsl.empty() && shader::tokens_of(glsl).size() <= kRepairTokensAStage; }
 
+// Touching spans count (one token's edits), but for two values added after the same write: two
+// unread terms both added (`fragColor += ambient; fragColor += specular;` where a sum left out both).
 bool overlapping(const RepairEdit& a, const RepairEdit& b) {
-  return a.stage == b.stage && a.begin <= b.end && b.begin <= a.end;  // touching spans count: one token's edits
+  if (a.stage != b.stage) return false;
+  const bool both_added = a.kind == RepairKind::value_added && b.kind == RepairKind::value_added && a.begin == a.end && b.begin == b.end;
+  if (both_added && a.begin == b.begin) return a.with == b.with;
+  return a.begin <= b.end && b.begin <= a.end;
 }
 
 }  // namespace
@@ -59,8 +64,9 @@ RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edi
       else if (e.other_stage) here.push_back(*e.other_stage);
     }
     if (here.empty()) continue;
-    // The later span first, so the earlier one's bytes are still where it says.
-    std::sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.begin > b.begin; });
+    // The later span first, so the earlier one's bytes are still where it says (two at one point:
+    // in the pair's order).
+    if (here.size() > 1) std::stable_sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.begin > b.begin; });
     std::string glsl = p[stage].source.glsl;
     for (const auto& span : here) glsl = glsl.substr(0, span.begin) + span.with + glsl.substr(span.end);
     (stage == shader::Stage::vertex ? c.vertex : c.fragment).text = std::move(glsl);
