@@ -623,14 +623,30 @@ TEST_F(FormulaGradeTest, UnrelatedDrawingsAreNotExplained) {
 }
 
 // The page's only grade is the frames a student saves, drawn a little behind each frame's angle:
-// they are read as code is, on the geometry at the angles their outlines fit.
+// they are read as code is, on the geometry at the angles their outlines fit. Each set is a grade
+// of its own (a few seconds on llvmpipe), so the cases are three tests, not one long one.
+void expect_saved_read_as_code(const std::vector<std::pair<std::string, Expected>>& cases) {
+  for (const auto& [checkpoint, c] : cases) {
+    const json r = FormulaGradeTest::grade_saved(checkpoint, c.edits);
+    expect_explained(r, c);
+    EXPECT_GT(r["graderWork"]["rendered"].get<int>(), 0);  // the geometry at the frames' own angles
+    // Described at the angles their outlines fit, not where the reference's shading fits best.
+    FormulaGradeTest::expect_lags(r, 0.02);
+  }
+}
+
 TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
-  const std::vector<std::pair<std::string, Expected>> cases = {
+  expect_saved_read_as_code({
       {"specular", {"the light's position used as a direction", {{"normalize(uLightPosition - vPosition)", "normalize(uLightPosition)"}}, "light_as_direction"}},
       {"specular", {"an exponent of 12", {{"float specularAlpha = 6.0;", "float specularAlpha = 12.0;"}}, "formula", "exponent", {12.0}}},
       {"specular", {"a specular term halved", {{"uSpecularColor * uLightColor * pow", "0.5 * uSpecularColor * uLightColor * pow"}}, "formula", "specular", {0.05, 0.2, 0.4}}},
       {"diffuse", {"the normal negated", {{"vec3 N = normalize(vNormal);", "vec3 N = -normalize(vNormal);"}}, "negated_normal"}},
       {"diffuse", {"an ambient colour doubled", {{"fragColor = uAmbientColor + diffuse;", "fragColor = 2.0 * uAmbientColor + diffuse;"}}, "formula", "ambient", {0.4, 0.2, 0.2}}},
+  });
+}
+
+TEST_F(FormulaGradeTest, SavedFramesOfSharpOrFlatShadingAreReadAtTheirOwnAngles) {
+  expect_saved_read_as_code({
       // Shading that changes sharply with the angle: read only on the geometry at the frames' own
       // angles, between the grid's steps.
       {"specular", {"an exponent under 1", {{"float specularAlpha = 6.0;", "float specularAlpha = 0.6;"}}, "formula", "exponent", {0.6}}},
@@ -639,14 +655,10 @@ TEST_F(FormulaGradeTest, SavedFramesAtThePagesLagAreExplainedAsCodeIs) {
       {"specular", {"flat normals", {{"out vec3 vNormal;", "flat out vec3 vNormal;", true}, {"in vec3 vNormal;", "flat in vec3 vNormal;"}}, "flat_normal"}},
       {"normals", {"abs() missing", {{"normalize(abs(normal.xyz))", "normalize(normal.xyz)", true}}, "missing_abs"}},
       {"normals", {"red and blue swapped", {{"normalize(abs(normal.xyz))", "normalize(abs(normal.zyx))", true}}, "swapped_red_blue"}},
-  };
-  for (const auto& [checkpoint, c] : cases) {
-    const json r = grade_saved(checkpoint, c.edits);
-    expect_explained(r, c);
-    EXPECT_GT(r["graderWork"]["rendered"].get<int>(), 0);  // the geometry at the frames' own angles
-    // Described at the angles their outlines fit, not where the reference's shading fits best.
-    expect_lags(r, 0.02);
-  }
+  });
+}
+
+TEST_F(FormulaGradeTest, SavedFramesOfNoiseOneColourOrAFlatColourAreSaidAsTheyAre) {
   // Noise is not explained, and frames that are right have nothing to explain.
   const json noise = grade_saved("specular", {{"fragColor = color;", "fragColor = vec4(fract(sin(dot(gl_FragCoord.xy, vec2(12.9898, 78.233))) * 43758.5453), 0.5, 0.5, 1.0);"}});
   ASSERT_TRUE(noise.contains("explanation")) << noise.dump().substr(0, 600);
