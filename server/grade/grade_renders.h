@@ -70,6 +70,8 @@ class GradeRenders {
   };
   // The submission under every light, drawn together, with the census of its colours.
   Expected<SubmissionFrames> submission_under_lights(const GradeSpec& spec, const render::RenderRequest& base, const scene::Mesh& mesh);
+  // `base` under the homework's light, then under each probe light.
+  Expected<std::vector<render::RenderRequest>> under_lights(const GradeSpec& spec, const render::RenderRequest& base);
   // `which` of the known mistakes, under every light, for a submission that failed.
   std::vector<RenderedMistake> rendered_mistakes(const GradeSpec& spec, const std::vector<const Mistake*>& which,
                                                  const render::RenderRequest& reference, const scene::Mesh& mesh, const std::string& mesh_key);
@@ -94,8 +96,6 @@ class GradeRenders {
   const std::string& mesh_address(const std::string& mesh_key, const scene::Mesh& mesh);
   // The cluster's store, connected once and kept for the next grade; null for none.
   store::SharedStore* shared_store(const store::SharedStoreConfig& config);
-  // `base` under the homework's light, then under each probe light.
-  Expected<std::vector<render::RenderRequest>> under_lights(const GradeSpec& spec, const render::RenderRequest& base);
   Expected<render::RenderRequest> with_light(const GradeSpec& spec, const render::RenderRequest& base, const Probe& probe);
 
   render::Renderer& renderer_;

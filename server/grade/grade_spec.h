@@ -153,6 +153,9 @@ struct GradeSpec {
   // sample's, and every known mistake under every light), so that a store warmed once serves
   // every student, whichever reading their frames take.
   bool warm = false;
+  // A failing grade a repair search follows: the student's fragment values are read against the
+  // reference's (grade/value_reading.h), for the search alone.
+  bool read_values = false;
 
   bool wants_heatmap(bool passed) const {
     return picture != DifferencePicture::none && (heatmap == HeatMap::always || (heatmap == HeatMap::when_failing && !passed));

@@ -70,6 +70,25 @@ void warm_the_store(GradeRenders& renders, const GradeSpec& spec, const render::
   renders.rendered_mistakes(spec, every, reference, mesh, mesh_key);
 }
 
+// The student's fragment values against the reference's (GradeSpec::read_values), under the
+// page's light and each probe light the student's frames fail under: a value right under the
+// page's white light may leave its colour out.
+repair::ValueAgreement values_read(GradeRenders& renders, const GradeSpec& spec, const render::RenderRequest& submission,
+                                   const render::RenderRequest& reference, const scene::Mesh& mesh, const Report& report) {
+  auto student = renders.under_lights(spec, submission);
+  auto theirs = renders.under_lights(spec, reference);
+  if (!student || !theirs || student->size() != theirs->size() || student->size() != spec.probes.size() + 1) return {};
+  std::vector<render::RenderRequest> s, t;
+  for (size_t i = 0; i < student->size(); ++i) {
+    const std::string light = i == 0 ? "homework" : spec.probes[i - 1].name;
+    const bool fails = std::any_of(report.frames.begin(), report.frames.end(), [&](const FrameReport& f) { return f.light == light && !f.grade.pass; });
+    if (i > 0 && !fails) continue;
+    s.push_back(std::move((*student)[i]));
+    t.push_back(std::move((*theirs)[i]));
+  }
+  return read_values(renders.renderer(), s, t, mesh);
+}
+
 }  // namespace
 
 Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, const render::RenderRequest& submission, const MeshSource& mesh_source,
@@ -134,6 +153,7 @@ Expected<GradeOutput> judge_code(GradeRenders& renders, const GradeSpec& spec, c
       if (out.report.diagnosis.empty()) out.report.diagnosis = changed_constant_diagnosis(found.variable);
       out.report.messages.insert(out.report.messages.begin(), found.message);
     }
+  if (spec.read_values && !out.report.pass) out.values = values_read(renders, spec, r, ref, **mesh, out.report);
   out.report.explanation = std::move(explanation);
   say_explanation(out.report);
   if (spec.wants_heatmap(out.report.pass)) out.heatmap_png = heatmap_png(student->frames, *reference, r, spec);  // the homework light's

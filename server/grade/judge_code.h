@@ -12,6 +12,7 @@
 #include "grade/grade_renders.h"
 #include "grade/grade_spec.h"
 #include "grade/report.h"
+#include "grade/value_reading.h"
 #include "render/render_request.h"
 
 namespace shadelab::grade {
@@ -19,6 +20,7 @@ namespace shadelab::grade {
 struct GradeOutput {
   Report report;
   std::string heatmap_png;  // the homework light's frames against the reference; empty when none rendered
+  repair::ValueAgreement values;  // where the spec asks and the grade fails (GradeSpec::read_values)
 };
 
 // What the submission causes (it does not compile, renders NaN, ...) is in the report; an Error is

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <set>
 #include <optional>
 #include <thread>
 #include <vector>
@@ -122,6 +123,46 @@ Expected<std::vector<Graded>> grade_candidates(worker::WorkerPool& pool, const s
 // What one pass of the search came to.
 enum class Pass { confirmed, budget_spent, none_passed, trouble };
 
+// Whether the search goes on after a pass: nothing confirmed, and the service could run it.
+bool open(Pass p) { return p == Pass::none_passed || p == Pass::budget_spent; }
+
+// The singles, those with an edit at a line where the values say a value first departs from the
+// reference's (repair/value_probes.h) first, the rest after, each in the singles' order.
+struct Singles {
+  std::vector<repair::RepairCandidate> at_departure, elsewhere;
+  std::vector<repair::RepairCandidate> all() const {
+    std::vector<repair::RepairCandidate> out = at_departure;
+    out.insert(out.end(), elsewhere.begin(), elsewhere.end());
+    return out;
+  }
+};
+
+bool at(const repair::RepairEdit& e, const std::set<int>& departing) { return e.stage == shader::Stage::fragment && departing.count(e.line) > 0; }
+
+Singles split_at(std::vector<repair::RepairCandidate> singles, const std::set<int>& departing) {
+  Singles out;
+  for (auto& c : singles)
+    (std::any_of(c.edits.begin(), c.edits.end(), [&](const auto& e) { return at(e, departing); }) ? out.at_departure : out.elsewhere)
+        .push_back(std::move(c));
+  return out;
+}
+
+// The pairs of singles at two lines where a value departs, in repair::pair_candidates' order:
+// two mistakes whose values do not depend on each other, each found at its own line.
+std::vector<repair::RepairCandidate> departure_pairs(const repair::RepairProgram& p, const std::vector<repair::RepairCandidate>& at_departure,
+                                                     const std::vector<double>& distances, double own, const std::set<int>& departing,
+                                                     const repair::CandidateCounts& counts) {
+  auto pairs = repair::pair_candidates(p, at_departure, distances, own, counts);
+  std::erase_if(pairs, [&](const repair::RepairCandidate& c) {
+    return c.edits.size() != 2 || !at(c.edits[0], departing) || !at(c.edits[1], departing) || c.edits[0].line == c.edits[1].line;
+  });
+  return pairs;
+}
+
+bool same_program(const repair::RepairCandidate& a, const repair::RepairCandidate& b) {
+  return a.vertex.text == b.vertex.text && a.fragment.text == b.fragment.text;
+}
+
 // The search's state: what it was given and what it has spent.
 struct Search {
   worker::WorkerPool& pool;
@@ -165,6 +206,16 @@ struct Search {
     return Pass::none_passed;
   }
 
+  // try_in_order within what is `left` of a budget of confirmations, which it spends.
+  Pass try_within(const std::vector<repair::RepairCandidate>& candidates, int& left, std::vector<double>* distances,
+                  const repair::RepairCandidate** winner) {
+    if (left < 1) return Pass::budget_spent;
+    const int before = spent.confirmations;
+    const Pass p = try_in_order(candidates, left, distances, winner);
+    left -= spent.confirmations - before;
+    return p;
+  }
+
   Pass could_not_run(const Error& e) {
     report.warnings.push_back("the repair search could not run (" + e.message + ")");
     return Pass::trouble;
@@ -200,7 +251,7 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, repair::RepairShown shown,
                    const grade::VectorWords& vectors, grade::Report& report, const RepairBudget& budget,
-                   const std::vector<repair::PassingProgram>& classmates) {
+                   const std::vector<repair::PassingProgram>& classmates, const repair::ValueAgreement& values) {
   const auto program = program_of(failed, classmates);
   if (!program) {
     // A program the search cannot read gets no search: a stage beyond its budget says why.
@@ -210,19 +261,32 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   if (budget.confirmations < 1) return;  // nothing screened could be stated
   Search search{pool, failed, mesh_bytes, budget, report};
   const repair::CandidateCounts counts = budget.candidate_counts();
-  const std::vector<repair::RepairCandidate> singles = repair::single_candidates(*program, counts);
-  std::vector<double> distances;
-  std::vector<repair::RepairCandidate> pairs;
-  const repair::RepairCandidate* winner = nullptr;  // in `singles` or `pairs`
-  Pass pass = search.try_in_order(singles, budget.confirmations, &distances, &winner);
+  const std::set<int> departing = repair::departing_lines(program->read, values);
+  const Singles singles = split_at(repair::single_candidates(*program, counts), departing);
+  std::vector<double> distances;  // each screened single's, those at a departure first
+  std::vector<repair::RepairCandidate> early, pairs;
+  const repair::RepairCandidate* winner = nullptr;  // in `singles`, `early` or `pairs`
+  int singles_left = budget.confirmations, pairs_left = budget.pair_confirmations;
+  const bool pairing = budget.pairs > 0;
+  std::optional<double> own;
+  const Pass at_departure = search.try_within(singles.at_departure, singles_left, &distances, &winner);
+  Pass pass = at_departure;
+  // Two lines where a value departs: a mistake at each, paired before any other single is screened.
+  if (open(pass) && pairing && pairs_left > 0 && departing.size() >= 2) {
+    if (!(own = search.own_distance(*program))) return;
+    early = departure_pairs(*program, singles.at_departure, distances, *own, departing, counts);
+    pass = search.try_within(early, pairs_left, nullptr, &winner);
+    if (open(pass)) pass = at_departure;
+  }
+  if (pass == Pass::none_passed) pass = search.try_within(singles.elsewhere, singles_left, &distances, &winner);
   // A single whose screen passed and whose full render did not is a mistake half mended: the
   // pairs still get confirmations of their own.
-  if (pass != Pass::confirmed && pass != Pass::trouble && budget.pairs > 0 && budget.pair_confirmations > 0) {
+  if (open(pass) && pairing && pairs_left > 0) {
     // No one edit repairs it: two edits (repair::pair_candidates says which, in what order).
-    const auto own = search.own_distance(*program);
-    if (!own) return;
-    pairs = repair::pair_candidates(*program, singles, distances, *own, counts);
-    pass = search.try_in_order(pairs, budget.pair_confirmations, nullptr, &winner);
+    if (!own && !(own = search.own_distance(*program))) return;
+    pairs = repair::pair_candidates(*program, singles.all(), distances, *own, counts);
+    std::erase_if(pairs, [&](const repair::RepairCandidate& c) { return std::any_of(early.begin(), early.end(), [&](const auto& e) { return same_program(c, e); }); });
+    pass = search.try_within(pairs, pairs_left, nullptr, &winner);
   }
   if (pass == Pass::trouble) return;
   search.spent.budget_spent = pass != Pass::confirmed;

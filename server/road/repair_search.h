@@ -16,6 +16,7 @@
 
 #include "grade/formula_vectors.h"
 #include "repair/repair_candidates.h"
+#include "repair/value_probes.h"
 #include "grade/report.h"
 #include "worker/job.h"
 #include "worker/pool.h"
@@ -61,9 +62,11 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 // batch gives them, offer edits of their own after the reference's. When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
+// `values`, where the failing grade read them (grade/value_reading.h): no edit that would change a
+// value the reference computes alike is screened (repair/value_probes.h).
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, repair::RepairShown shown,
                    const grade::VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {},
-                   const std::vector<repair::PassingProgram>& classmates = {});
+                   const std::vector<repair::PassingProgram>& classmates = {}, const repair::ValueAgreement& values = {});
 
 // Whether `classmates` offer any edit of the program `failed` drew (a grade job) that its first
 // search, beside the reference alone, did not try: where none, a second search would screen again

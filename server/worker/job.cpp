@@ -71,7 +71,8 @@ SHADELAB_JSON_FIELDS(GradeSpec, field("referenceName", &GradeSpec::reference_nam
                      at("savedFramesCloserThanReference", [](auto& g) -> auto& { return g.options.saved_frames_closer_than_reference; }),
                      field("heatmap", &GradeSpec::heatmap, kHeatMaps),
                      field("picture", &GradeSpec::picture, kDifferencePictures), field("framesFromPage", &GradeSpec::frames_from_page),
-                     field("formula", &GradeSpec::formula, When::omitted_when_empty), field("warm", &GradeSpec::warm, When::omitted_when_default))
+                     field("formula", &GradeSpec::formula, When::omitted_when_empty), field("warm", &GradeSpec::warm, When::omitted_when_default),
+                     field("readValues", &GradeSpec::read_values, When::omitted_when_default))
 
 // A handed-in image's bytes travel in the payload, beside the JSON (worker/job.cpp's to_message).
 SHADELAB_JSON_FIELDS(HandInImage, field("file", &HandInImage::file), field("scene", &HandInImage::scene, When::null_when_empty),

@@ -38,6 +38,14 @@ SHADELAB_JSON_FIELDS(ImageVerdict, field("pass", &ImageVerdict::pass), field("me
 
 }  // namespace shadelab::grade
 
+namespace shadelab::repair {
+
+SHADELAB_JSON_FIELDS(ValueAgreement, field("read", &ValueAgreement::read), field("agreesWith", &ValueAgreement::agrees_with),
+                     field("differsVisibly", &ValueAgreement::differs_visibly),
+                     field("compared", &ValueAgreement::compared))
+
+}  // namespace shadelab::repair
+
 namespace shadelab::render {
 
 SHADELAB_JSON_FIELDS(VariableInfo, field("name", &VariableInfo::name), field("type", &VariableInfo::type),
@@ -149,7 +157,7 @@ SHADELAB_JSON_FIELDS(MeshCheckResult, field("triangles", &MeshCheckResult::trian
                      at("bounds", [](auto& r) -> auto& { return r; }, When::required, MinMax{}))
 
 SHADELAB_JSON_FIELDS(SceneResult, field("report", &SceneResult::report), field("encodeMs", &SceneResult::encode_ms))
-SHADELAB_JSON_FIELDS(GradeResult, field("report", &GradeResult::report))
+SHADELAB_JSON_FIELDS(GradeResult, field("report", &GradeResult::report), field("values", &GradeResult::values, When::omitted_when_default))
 SHADELAB_JSON_FIELDS(FramesGradeResult, field("frames", &FramesGradeResult::frames),
                      field("code", &FramesGradeResult::code, When::null_when_empty))
 SHADELAB_JSON_FIELDS(ImagesResult, field("verdicts", &ImagesResult::verdicts))

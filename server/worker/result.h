@@ -24,6 +24,7 @@
 #include "grade/image_check.h"
 #include "grade/report.h"
 #include "render/render_request.h"
+#include "repair/value_probes.h"
 #include "scene_render/scene_report.h"
 #include "worker/protocol.h"
 
@@ -78,6 +79,7 @@ struct SceneResult {
 struct GradeResult {
   grade::Report report;
   std::string heatmap_png;  // empty when the submission did not render
+  repair::ValueAgreement values;  // for the repair search (GradeSpec::read_values); never sent to a client
 };
 
 // Saved frames graded (grade/judge_saved_frames.h): against the reference, and against
@@ -131,6 +133,10 @@ SHADELAB_JSON_DECLARE(Error);
 namespace shadelab::grade {
 SHADELAB_JSON_DECLARE(ImageVerdict);
 }  // namespace shadelab::grade
+
+namespace shadelab::repair {
+SHADELAB_JSON_DECLARE(ValueAgreement);
+}  // namespace shadelab::repair
 
 namespace shadelab::render {
 SHADELAB_JSON_DECLARE(VariableInfo);

@@ -254,7 +254,7 @@ class Worker {
       return entered;
     });
     if (!graded) return graded.take_error();
-    return GradeResult{std::move(graded->report), std::move(graded->heatmap_png)};
+    return GradeResult{std::move(graded->report), std::move(graded->heatmap_png), std::move(graded->values)};
   }
 
   Expected<FramesGradeResult> grade_frames(const Job& job, const Message& in) {

@@ -1,0 +1,179 @@
+// The values a student's fragment stage computes, read at the grade's pixels beside the
+// reference's (issue 79): probing keeps every line where it is, each probe draws the value of its
+// own write on the real driver, and the lines where a value first departs from its counterpart's
+// are the lines each mistake was made at, in the real student's shape of program (`coeffDiffuse`,
+// `R = -reflect(L, N)`, `+=` accumulation), written here.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "course/course_reader.h"
+#include "grade/value_reading.h"
+#include "repair/repair_candidates.h"
+#include "repair/value_probes.h"
+#include "shader/glsl_lines.h"
+#include "support/run_command.h"
+#include "support/test_support.h"
+
+namespace shadelab {
+namespace {
+
+const course::Preset& specular() { return *course::builtin_course().preset("specular"); }
+
+std::string reference_glsl() { return shader::unwrap(specular().fragment, shader::Stage::fragment)->glsl; }
+
+// The reference's declarations with `body` as main.
+std::string student_with(const std::string& body) {
+  const std::string reference = reference_glsl();
+  return reference.substr(0, reference.find("void main(void) {")) + body;
+}
+
+const char* kStudentShape =
+    "void main(void) {\n"
+    "    float specularAlpha = 6.0;\n"
+    "    vec3 N = normalize(vNormal);\n"
+    "    vec3 L = normalize(uLightPosition - vPosition);\n"
+    "    vec3 V = normalize(-vPosition);\n"
+    "    vec3 R = -reflect(L, N);\n"
+    "    float coeffDiffuse = max(dot(N, L), 0.0);\n"
+    "    float coeffSpecular = 0.0;\n"
+    "    if (coeffDiffuse > 0.0) {\n"
+    "        coeffSpecular = pow(max(dot(R, V), 0.0), specularAlpha);\n"
+    "    }\n"
+    "    fragColor = uAmbientColor;\n"
+    "    fragColor += coeffDiffuse * uDiffuseColor * uLightColor;\n"
+    "    fragColor += coeffSpecular * uSpecularColor * uLightColor;\n"
+    "}\n";
+
+std::string typed(std::string text, const std::string& find, const std::string& with) {
+  const auto at = text.find(find);
+  EXPECT_NE(at, std::string::npos) << find;
+  if (at != std::string::npos) text.replace(at, find.size(), with);
+  return text;
+}
+
+int line_of(const std::string& glsl, const std::string& text) {
+  const auto lines = shader::lines_of(glsl);
+  for (size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].find(text) != std::string_view::npos) return static_cast<int>(i) + 1;
+  ADD_FAILURE() << text;
+  return 0;
+}
+
+const repair::ValueProbe* probe(const repair::ProbedStage& s, const std::string& name, int ordinal) {
+  for (const auto& p : s.probes)
+    if (!p.input && p.name == name && p.ordinal == ordinal) return &p;
+  return nullptr;
+}
+
+TEST(ValueProbesTest, EachWriteOfMainIsProbedOnItsOwnLine) {
+  const std::string glsl = student_with(kStudentShape);
+  const auto probed = repair::probed_fragment(glsl);
+  ASSERT_TRUE(probed);
+  EXPECT_EQ(shader::lines_of(probed->glsl).size(), shader::lines_of(glsl).size()) << "no line moves";
+  ASSERT_GE(probed->probes.size(), 2u);
+  EXPECT_TRUE(probed->probes[0].input && probed->probes[1].input) << "the inputs first, as main receives them";
+
+  const auto* diffuse = probe(*probed, "coeffDiffuse", 0);
+  ASSERT_NE(diffuse, nullptr);
+  EXPECT_EQ(diffuse->line, line_of(glsl, "float coeffDiffuse"));
+  EXPECT_EQ(diffuse->reads, (std::vector<std::string>{"N", "L"}));
+  const auto* guarded = probe(*probed, "coeffSpecular", 1);
+  ASSERT_NE(guarded, nullptr) << "a write inside braces is probed";
+  EXPECT_TRUE(guarded->last);
+  EXPECT_FALSE(probe(*probed, "coeffSpecular", 0)->last);
+  // The output's writes: the first `=`, then two `+=` that read what it held.
+  const auto* third = probe(*probed, "fragColor", 2);
+  ASSERT_NE(third, nullptr);
+  EXPECT_TRUE(third->last);
+  EXPECT_EQ(third->reads, (std::vector<std::string>{"fragColor", "coeffSpecular"}));
+  EXPECT_TRUE(probe(*probed, "fragColor", 0)->reads.empty()) << "a uniform is the page's, not a value to align";
+
+  // An `if` without braces: its write is not probed (a probe after it would run unguarded).
+  const auto unbraced = repair::probed_fragment(typed(glsl, "if (coeffDiffuse > 0.0) {\n        coeffSpecular = pow(max(dot(R, V), 0.0), specularAlpha);\n    }",
+                                                      "if (coeffDiffuse > 0.0) coeffSpecular = pow(max(dot(R, V), 0.0), specularAlpha);"));
+  ASSERT_TRUE(unbraced);
+  EXPECT_EQ(probe(*unbraced, "coeffSpecular", 1), nullptr);
+
+  // What cannot be probed is not: GLSL ES 1.00, two outputs.
+  EXPECT_FALSE(repair::probed_fragment(typed(glsl, "#version 300 es", "")));
+  EXPECT_FALSE(repair::probed_fragment(typed(glsl, "out vec4 fragColor;", "out vec4 fragColor;\nout vec4 other;")));
+}
+
+// The probes draw what main computes: the reference's values each agree with themselves, and the
+// student's with their counterparts up to the line a mistake is made at.
+grade::ValueCanvas small() { return {32, 2}; }
+
+repair::ValueAgreement values_of(const std::string& fragment) {
+  render::RenderRequest student = testkit::preset_request("specular"), reference = student;
+  student.fragment = {"student.frag", fragment};
+  return grade::read_values(testkit::shared_renderer(), {student}, {reference}, testkit::builtin("bunny"), small());
+}
+
+TEST(ValueProbesTest, EachProbeDrawsItsOwnValue) {
+  const auto same = values_of(reference_glsl());
+  ASSERT_TRUE(same.read);
+  for (size_t i = 0; i < same.agrees_with.size(); ++i) {
+    EXPECT_TRUE(same.compared[i]) << i;
+    EXPECT_NE(std::find(same.agrees_with[i].begin(), same.agrees_with[i].end(), static_cast<int>(i)), same.agrees_with[i].end()) << i;
+  }
+  // A value the reference never computes agrees with nothing.
+  const auto doubled = values_of(typed(reference_glsl(), "fragColor = color;", "fragColor = 2.0 * color;"));
+  ASSERT_TRUE(doubled.read);
+  EXPECT_TRUE(doubled.agrees_with.back().empty());
+}
+
+std::set<int> departing(const std::string& fragment) {
+  const shader::ShaderFile file{"student.frag", fragment};
+  const auto program = repair::repair_program(specular().vertex, file, specular().vertex, specular().fragment, {});
+  EXPECT_TRUE(program.ok());
+  return program ? repair::departing_lines(program->read, values_of(fragment)) : std::set<int>{};
+}
+
+TEST(ValueProbesTest, AValueDepartsAtTheLineItsMistakeIsMadeAt) {
+  const std::string right = student_with(kStudentShape);
+  EXPECT_TRUE(departing(right).empty()) << "nothing departs in a right program";
+
+  // L not normalised: L departs (what it reads is right), and R, N.L and the colour do not, as
+  // they read the wrong L.
+  const std::string unnormalised = typed(right, "normalize(uLightPosition - vPosition)", "uLightPosition - vPosition");
+  EXPECT_EQ(departing(unnormalised), (std::set<int>{line_of(right, "vec3 L =")}));
+
+  // Two mistakes whose values do not depend on each other: each departs at its own line.
+  const std::string pair = typed(unnormalised, "float specularAlpha = 6.0;", "float specularAlpha = 16.0;");
+  EXPECT_EQ(departing(pair), (std::set<int>{line_of(right, "float specularAlpha"), line_of(right, "vec3 L =")}));
+
+  // A wrong normal departs at N's line, whatever reads it after.
+  EXPECT_EQ(departing(typed(right, "normalize(vNormal)", "normalize(vNormal + vec3(0.5))")), (std::set<int>{line_of(right, "vec3 N =")}));
+}
+
+// Through the grade: the pair above is repaired at both lines, its two lines' singles screened
+// before any other single (there are 81).
+TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
+  const std::string right = student_with(kStudentShape);
+  const std::string pair = typed(typed(right, "normalize(uLightPosition - vPosition)", "uLightPosition - vPosition"), "float specularAlpha = 6.0;",
+                                 "float specularAlpha = 16.0;");
+  const auto dir = std::filesystem::temp_directory_path() / ("value_probes_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "phong.vert") << shader::unwrap(specular().vertex, shader::Stage::vertex)->glsl;
+  std::ofstream(dir / "phong.frag") << pair;
+  const auto run = testkit::run_shadelab("grade --vert " + (dir / "phong.vert").string() + " --frag " + (dir / "phong.frag").string() +
+                                         " --reference specular --cache-dir " + (dir / "store").string());
+  std::filesystem::remove_all(dir);
+  const auto json = nlohmann::json::parse(run.output.substr(run.output.find('{'), run.output.rfind('}') - run.output.find('{') + 1));
+  const auto& search = json.at("repairSearch");
+  ASSERT_TRUE(search.contains("found") && search.contains("also")) << search.dump();
+  const std::set<int> lines = {search["found"]["line"].get<int>(), search["also"]["line"].get<int>()};
+  EXPECT_EQ(lines, (std::set<int>{line_of(right, "float specularAlpha"), line_of(right, "vec3 L =")}));
+  EXPECT_LE(search["candidates"].get<int>(), 20) << "the two lines' singles, then their pairs: not every single first";
+}
+
+}  // namespace
+}  // namespace shadelab
