@@ -54,6 +54,8 @@ Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const s
   return p;
 }
 
+bool aligns(const RepairEdit& e) { return e.reads_as_reference || puts_back(e.kind) || e.edits_aligned_line; }
+
 RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edits) {
   if (edits.size() > 1) std::stable_sort(edits.begin(), edits.end(), smaller);  // a pair is said in this order
   RepairCandidate c{std::move(edits), *p.vertex.file, *p.fragment.file};
@@ -118,12 +120,7 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
       if (!overlapping(a, b)) out.push_back(candidate_of(p, {a, b}));
     }
   }
-  // Aligned: a line that then reads as the reference's, or one aligned by what it lacks (a factor,
-  // a term, a clamp the reference's counterpart reads: repair/left_out_edits.h).
-  const auto aligned = [&](size_t i) {
-    const RepairEdit& e = singles[i].edits.front();
-    return e.reads_as_reference || puts_back(e.kind) || e.edits_aligned_line;
-  };
+  const auto aligned = [&](size_t i) { return aligns(singles[i].edits.front()); };
   for (size_t i = 0; i < singles.size(); ++i)
     for (size_t j = i + 1; j < singles.size(); ++j)
       if (aligned(i) && aligned(j)) add(i, j);

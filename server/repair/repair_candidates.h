@@ -69,6 +69,11 @@ struct RepairCandidate {
   bool from_class = false;              // a single a classmate's program offers (repair/classmate_edits.h)
 };
 
+// Whether `e` aligns the student's line with the reference: the line then reads as the
+// reference's, or is aligned by what it lacks (a factor, a term, a clamp the reference's
+// counterpart reads: repair/left_out_edits.h).
+bool aligns(const RepairEdit& e);
+
 // The program with `edits` made, they in turn smallest first: an edited stage given as the GLSL the
 // edits made (the same program the driver compiles), the other as the student's file. No edits:
 // the student's own.

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <future>
-#include <set>
 #include <optional>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -126,13 +126,16 @@ enum class Pass { confirmed, budget_spent, none_passed, trouble };
 // Whether the search goes on after a pass: nothing confirmed, and the service could run it.
 bool open(Pass p) { return p == Pass::none_passed || p == Pass::budget_spent; }
 
-// The singles, those with an edit at a line where the values say a value first departs from the
-// reference's (repair/value_probes.h) first, the rest after, each in the singles' order.
+// The singles in two groups, each in the singles' order: first those that align the student's line
+// with the reference (repair::aligns) or edit a line where the values say a value first departs
+// from the reference's (repair/value_probes.h), then the others. A departure alone does not put an
+// edit first: where the student clamps at the write and the reference at the use (`float diff =
+// dot(N, L)` against `max(0.0, NdotL)`), the value departs at the use, a line after the mistake.
 struct Singles {
-  std::vector<repair::RepairCandidate> at_departure, elsewhere;
+  std::vector<repair::RepairCandidate> first, rest;
   std::vector<repair::RepairCandidate> all() const {
-    std::vector<repair::RepairCandidate> out = at_departure;
-    out.insert(out.end(), elsewhere.begin(), elsewhere.end());
+    std::vector<repair::RepairCandidate> out = first;
+    out.insert(out.end(), rest.begin(), rest.end());
     return out;
   }
 };
@@ -141,18 +144,20 @@ bool at(const repair::RepairEdit& e, const std::set<int>& departing) { return e.
 
 Singles split_at(std::vector<repair::RepairCandidate> singles, const std::set<int>& departing) {
   Singles out;
-  for (auto& c : singles)
-    (std::any_of(c.edits.begin(), c.edits.end(), [&](const auto& e) { return at(e, departing); }) ? out.at_departure : out.elsewhere)
-        .push_back(std::move(c));
+  for (auto& c : singles) {
+    const bool first = std::any_of(c.edits.begin(), c.edits.end(), [&](const auto& e) { return repair::aligns(e) || at(e, departing); });
+    (first ? out.first : out.rest).push_back(std::move(c));
+  }
   return out;
 }
 
-// The pairs of singles at two lines where a value departs, in repair::pair_candidates' order:
-// two mistakes whose values do not depend on each other, each found at its own line.
-std::vector<repair::RepairCandidate> departure_pairs(const repair::RepairProgram& p, const std::vector<repair::RepairCandidate>& at_departure,
+// The pairs of two of `first` (screened: `distances`) at two lines where a value departs, in
+// repair::pair_candidates' order: two mistakes whose values do not depend on each other, each
+// found at its own line.
+std::vector<repair::RepairCandidate> departure_pairs(const repair::RepairProgram& p, const std::vector<repair::RepairCandidate>& first,
                                                      const std::vector<double>& distances, double own, const std::set<int>& departing,
                                                      const repair::CandidateCounts& counts) {
-  auto pairs = repair::pair_candidates(p, at_departure, distances, own, counts);
+  auto pairs = repair::pair_candidates(p, first, distances, own, counts);
   std::erase_if(pairs, [&](const repair::RepairCandidate& c) {
     return c.edits.size() != 2 || !at(c.edits[0], departing) || !at(c.edits[1], departing) || c.edits[0].line == c.edits[1].line;
   });
@@ -263,22 +268,22 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   const repair::CandidateCounts counts = budget.candidate_counts();
   const std::set<int> departing = repair::departing_lines(program->read, values);
   const Singles singles = split_at(repair::single_candidates(*program, counts), departing);
-  std::vector<double> distances;  // each screened single's, those at a departure first
+  std::vector<double> distances;  // each screened single's, `singles.first`'s first
   std::vector<repair::RepairCandidate> early, pairs;
   const repair::RepairCandidate* winner = nullptr;  // in `singles`, `early` or `pairs`
   int singles_left = budget.confirmations, pairs_left = budget.pair_confirmations;
   const bool pairing = budget.pairs > 0;
   std::optional<double> own;
-  const Pass at_departure = search.try_within(singles.at_departure, singles_left, &distances, &winner);
-  Pass pass = at_departure;
+  const Pass first = search.try_within(singles.first, singles_left, &distances, &winner);
+  Pass pass = first;
   // Two lines where a value departs: a mistake at each, paired before any other single is screened.
   if (open(pass) && pairing && pairs_left > 0 && departing.size() >= 2) {
     if (!(own = search.own_distance(*program))) return;
-    early = departure_pairs(*program, singles.at_departure, distances, *own, departing, counts);
+    early = departure_pairs(*program, singles.first, distances, *own, departing, counts);
     pass = search.try_within(early, pairs_left, nullptr, &winner);
-    if (open(pass)) pass = at_departure;
+    if (open(pass)) pass = first;
   }
-  if (pass == Pass::none_passed) pass = search.try_within(singles.elsewhere, singles_left, &distances, &winner);
+  if (pass == Pass::none_passed) pass = search.try_within(singles.rest, singles_left, &distances, &winner);
   // A single whose screen passed and whose full render did not is a mistake half mended: the
   // pairs still get confirmations of their own.
   if (open(pass) && pairing && pairs_left > 0) {
@@ -286,6 +291,7 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
     if (!own && !(own = search.own_distance(*program))) return;
     pairs = repair::pair_candidates(*program, singles.all(), distances, *own, counts);
     std::erase_if(pairs, [&](const repair::RepairCandidate& c) { return std::any_of(early.begin(), early.end(), [&](const auto& e) { return same_program(c, e); }); });
+    pairs.resize(std::min(pairs.size(), static_cast<size_t>(std::max(0, budget.pairs - static_cast<int>(early.size())))));  // `pairs` in all
     pass = search.try_within(pairs, pairs_left, nullptr, &winner);
   }
   if (pass == Pass::trouble) return;
