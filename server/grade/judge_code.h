@@ -6,6 +6,7 @@
 // way with the submission's uniform values, and grade() decides. Only a failing submission is
 // explained: by the formula (grade/formula_explanation.h) where it can read the frames, and by the
 // catalogue's mistakes it does not read, each rendered the same way.
+#include <optional>
 #include <string>
 
 #include "core/expected.h"
@@ -20,7 +21,7 @@ namespace shadelab::grade {
 struct GradeOutput {
   Report report;
   std::string heatmap_png;  // the homework light's frames against the reference; empty when none rendered
-  repair::ValueAgreement values;  // where the spec asks and the grade fails (GradeSpec::read_values)
+  std::optional<repair::ValueAgreement> values;  // where the spec asks and the grade fails (GradeSpec::read_values)
 };
 
 // What the submission causes (it does not compile, renders NaN, ...) is in the report; an Error is

@@ -56,7 +56,6 @@ struct ValueAgreement {
   bool read = false;  // both stages were probed and drawn
   std::vector<std::vector<int>> agrees_with, differs_visibly;
   std::vector<bool> compared;
-  bool operator==(const ValueAgreement&) const = default;
 };
 
 // How a student's value reads beside the reference's: the same as its counterpart's (the

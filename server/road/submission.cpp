@@ -144,7 +144,7 @@ Expected<CodeGrade> grade_code(worker::WorkerPool& pool, CodeSubmission submissi
   if (!repairable) return CodeGrade{std::move(a.answered->result), seconds_of(a.answered->queue_ms, a.answered->worker_ms)};
   const size_t warned = report.warnings.size();
   search_repair(pool, job, submission.mesh_bytes, submission.repair_shown, submission.vector_words, report, submission.repair,
-                submission.classmates, a.answered->result.values);
+                submission.classmates, a.answered->result.values.value_or(repair::ValueAgreement{}));
   if (report.repair_search && report.repair_search->found) return CodeGrade{std::move(a.answered->result), seconds_since(start)};
   const Searched searched{report.repair_search, {report.warnings.begin() + static_cast<std::ptrdiff_t>(warned), report.warnings.end()}};
   return explained_after_search(pool, job, submission, searched, a, start);

@@ -157,7 +157,7 @@ SHADELAB_JSON_FIELDS(MeshCheckResult, field("triangles", &MeshCheckResult::trian
                      at("bounds", [](auto& r) -> auto& { return r; }, When::required, MinMax{}))
 
 SHADELAB_JSON_FIELDS(SceneResult, field("report", &SceneResult::report), field("encodeMs", &SceneResult::encode_ms))
-SHADELAB_JSON_FIELDS(GradeResult, field("report", &GradeResult::report), field("values", &GradeResult::values, When::omitted_when_default))
+SHADELAB_JSON_FIELDS(GradeResult, field("report", &GradeResult::report), field("values", &GradeResult::values, When::omitted_when_empty))
 SHADELAB_JSON_FIELDS(FramesGradeResult, field("frames", &FramesGradeResult::frames),
                      field("code", &FramesGradeResult::code, When::null_when_empty))
 SHADELAB_JSON_FIELDS(ImagesResult, field("verdicts", &ImagesResult::verdicts))

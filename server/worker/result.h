@@ -79,7 +79,7 @@ struct SceneResult {
 struct GradeResult {
   grade::Report report;
   std::string heatmap_png;  // empty when the submission did not render
-  repair::ValueAgreement values;  // for the repair search (GradeSpec::read_values); never sent to a client
+  std::optional<repair::ValueAgreement> values;  // for the repair search (GradeSpec::read_values); never sent to a client
 };
 
 // Saved frames graded (grade/judge_saved_frames.h): against the reference, and against
