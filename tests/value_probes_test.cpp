@@ -105,6 +105,8 @@ TEST(ValueProbesTest, EachWriteOfMainIsProbedOnItsOwnLine) {
   // What cannot be probed is not: GLSL ES 1.00, two outputs.
   EXPECT_FALSE(repair::probed_fragment(typed(glsl, "#version 300 es", "")));
   EXPECT_FALSE(repair::probed_fragment(typed(glsl, "out vec4 fragColor;", "out vec4 fragColor;\nout vec4 other;")));
+  // A hostile name: a local of the probes' own prefix would shadow their output; the stage is not probed.
+  EXPECT_FALSE(repair::probed_fragment(typed(glsl, "float coeffSpecular = 0.0;", "vec4 valueprobe_out = vec4(1.0); float coeffSpecular = 0.0;")));
 }
 
 // The probes draw what main computes: the reference's values each agree with themselves, and the
@@ -124,6 +126,11 @@ TEST(ValueProbesTest, EachProbeDrawsItsOwnValue) {
     EXPECT_TRUE(same.compared[i]) << i;
     EXPECT_NE(std::find(same.agrees_with[i].begin(), same.agrees_with[i].end(), static_cast<int>(i)), same.agrees_with[i].end()) << i;
   }
+  // A stage of more writes than the budget of probes is not drawn at all (each probe is a run of main).
+  std::string many = "void main(void) {\n    float x = 0.0;\n";
+  for (int k = 0; k < 70; ++k) many += "    x += 0.001;\n";
+  many += "    fragColor = vec4(x);\n}\n";
+  EXPECT_FALSE(values_of(student_with(many)).read);
   // A value the reference never computes agrees with nothing.
   const auto doubled = values_of(typed(reference_glsl(), "fragColor = color;", "fragColor = 2.0 * color;"));
   ASSERT_TRUE(doubled.read);

@@ -115,6 +115,35 @@ std::string with_insertions(std::string_view glsl, std::vector<Insertion> at) {
   return out;
 }
 
+// How each of `student`'s values reads beside the reference's: the same as its counterpart's,
+// another, or without a counterpart to tell.
+enum class ValueVerdict { same, differs, unknown };
+
+std::vector<ValueVerdict> value_verdicts(const StageReading& stage, const ProbedStage& student, const ValueAgreement& agreement) {
+  const auto reference = probed_fragment(stage.theirs.glsl);
+  const size_t n = student.probes.size();
+  if (!agreement.read || !reference || n == 0 || agreement.agrees_with.size() != n || agreement.differs_visibly.size() != n ||
+      agreement.compared.size() != n)
+    return {};
+  std::vector<ValueVerdict> out;
+  for (size_t i = 0; i < student.probes.size(); ++i) {
+    const ValueProbe& p = student.probes[i];
+    // An input's counterpart is the reference's input of its name; a write's, the write of its
+    // role at the same place in that variable's writes.
+    const std::string role = p.input ? p.name : stage.aligned.reference_name(p.name, shader::line_of(stage.student.glsl, p.line));
+    std::optional<size_t> counterpart;
+    for (size_t r = 0; r < reference->probes.size() && !role.empty(); ++r) {
+      const ValueProbe& q = reference->probes[r];
+      if (!q.end && q.input == p.input && q.name == role && (p.input || (q.ordinal == p.ordinal && q.last == p.last))) counterpart = r;
+    }
+    const auto holds = [&](const std::vector<int>& list) { return std::find(list.begin(), list.end(), static_cast<int>(*counterpart)) != list.end(); };
+    if (p.end || !counterpart || !agreement.compared[i]) out.push_back(ValueVerdict::unknown);
+    else if (holds(agreement.agrees_with[i])) out.push_back(ValueVerdict::same);
+    else out.push_back(holds(agreement.differs_visibly[i]) ? ValueVerdict::differs : ValueVerdict::unknown);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<ProbedStage> probed_fragment(std::string_view glsl) {
@@ -178,38 +207,13 @@ std::optional<ProbedStage> probed_fragment(std::string_view glsl) {
   return probed;
 }
 
-std::vector<ValueVerdict> value_verdicts(const ProgramReading& read, const ValueAgreement& agreement) {
+std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement) {
+  std::set<int> out;
   const StageReading& stage = read[shader::Stage::fragment];
   const auto student = probed_fragment(stage.student.glsl);
-  const auto reference = probed_fragment(stage.theirs.glsl);
-  const size_t n = student ? student->probes.size() : 0;
-  if (!agreement.read || !reference || n == 0 || agreement.agrees_with.size() != n || agreement.differs_visibly.size() != n ||
-      agreement.compared.size() != n)
-    return {};
-  std::vector<ValueVerdict> out;
-  for (size_t i = 0; i < student->probes.size(); ++i) {
-    const ValueProbe& p = student->probes[i];
-    // An input's counterpart is the reference's input of its name; a write's, the write of its
-    // role at the same place in that variable's writes.
-    const std::string role = p.input ? p.name : stage.aligned.reference_name(p.name, shader::line_of(stage.student.glsl, p.line));
-    std::optional<size_t> counterpart;
-    for (size_t r = 0; r < reference->probes.size() && !role.empty(); ++r) {
-      const ValueProbe& q = reference->probes[r];
-      if (!q.end && q.input == p.input && q.name == role && (p.input || (q.ordinal == p.ordinal && q.last == p.last))) counterpart = r;
-    }
-    const auto holds = [&](const std::vector<int>& list) { return std::find(list.begin(), list.end(), static_cast<int>(*counterpart)) != list.end(); };
-    if (p.end || !counterpart || !agreement.compared[i]) out.push_back(ValueVerdict::unknown);
-    else if (holds(agreement.agrees_with[i])) out.push_back(ValueVerdict::same);
-    else out.push_back(holds(agreement.differs_visibly[i]) ? ValueVerdict::differs : ValueVerdict::unknown);
-  }
-  return out;
-}
-
-std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement) {
-  const auto verdicts = value_verdicts(read, agreement);
-  const auto student = probed_fragment(read[shader::Stage::fragment].student.glsl);
-  std::set<int> out;
-  if (verdicts.empty() || !student) return out;
+  if (!student) return out;
+  const auto verdicts = value_verdicts(stage, *student, agreement);
+  if (verdicts.empty()) return out;
   std::map<std::string, ValueVerdict, std::less<>> holds;  // each local's and input's value as it stands
   for (size_t i = 0; i < student->probes.size(); ++i) {
     const ValueProbe& p = student->probes[i];

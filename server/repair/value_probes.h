@@ -58,15 +58,11 @@ struct ValueAgreement {
   std::vector<bool> compared;
 };
 
-// How a student's value reads beside the reference's: the same as its counterpart's (the
-// reference's variable of the same role: the same local, or the one it aligns with; the k-th write
-// with the k-th, a last with a last), another, or without a counterpart to tell.
-enum class ValueVerdict { same, differs, unknown };
-std::vector<ValueVerdict> value_verdicts(const ProgramReading& read, const ValueAgreement& agreement);
-
 // The lines of the student's fragment stage where a value first goes wrong: a write whose value
 // differs from its counterpart's while every local and input it reads holds its counterpart's
-// value (issue 79: "a write departs where its inputs are aligned and its value is not"). Empty
+// value (issue 79: "a write departs where its inputs are aligned and its value is not"): the
+// counterpart is the reference's variable of the same role (the same local, or the one it aligns
+// with; the k-th write with the k-th, a last with a last). Empty
 // where the values were not read or say nothing.
 std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement);
 
