@@ -113,10 +113,14 @@ TEST(ValueProbesTest, EachWriteOfMainIsProbedOnItsOwnLine) {
 // student's with their counterparts up to the line a mistake is made at.
 grade::ValueCanvas small() { return {32, 2}; }
 
+// Read under the page's light and, as the grade reads a program its orange probe light fails,
+// under an orange one: a value that leaves out the light's colour differs only there.
 repair::ValueAgreement values_of(const std::string& fragment) {
-  render::RenderRequest student = testkit::preset_request("specular"), reference = student;
-  student.fragment = {"student.frag", fragment};
-  return grade::read_values(testkit::shared_renderer(), {student}, {reference}, testkit::builtin("bunny"), small());
+  render::RenderRequest reference = testkit::preset_request("specular"), orange = reference;
+  orange.uniforms.push_back({"uLightColor", {1.0, 0.5, 0.2, 1.0}});
+  std::vector<render::RenderRequest> student = {reference, orange};
+  for (auto& r : student) r.fragment = {"student.frag", fragment};
+  return grade::read_values(testkit::shared_renderer(), student, {reference, orange}, testkit::builtin("bunny"), small());
 }
 
 TEST(ValueProbesTest, EachProbeDrawsItsOwnValue) {
@@ -161,25 +165,89 @@ TEST(ValueProbesTest, AValueDepartsAtTheLineItsMistakeIsMadeAt) {
   EXPECT_EQ(departing(typed(right, "normalize(vNormal)", "normalize(vNormal + vec3(0.5))")), (std::set<int>{line_of(right, "vec3 N =")}));
 }
 
-// Through the grade: the pair above is repaired at both lines, its two lines' singles screened
-// before any other single (there are 81).
-TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
+// A mistake whose value every later value reads hides a second one from the values: with L not
+// normalised, R with the wrong sign reads a wrong L and departs nowhere. Once L is normalised (the
+// single that draws nearest), R departs at its own line, and a line an edit puts in moves the
+// student's lines after it by one.
+TEST(ValueProbesTest, ASecondMistakeDepartsOnceTheFirstIsMended) {
   const std::string right = student_with(kStudentShape);
-  const std::string pair = typed(typed(right, "normalize(uLightPosition - vPosition)", "uLightPosition - vPosition"), "float specularAlpha = 6.0;",
-                                 "float specularAlpha = 16.0;");
+  const std::string sign = typed(right, "vec3 R = -reflect(L, N);", "vec3 R = reflect(L, N);");
+  const std::string pair = typed(sign, "normalize(uLightPosition - vPosition)", "uLightPosition - vPosition");
+  const int l_line = line_of(right, "vec3 L ="), r_line = line_of(right, "vec3 R =");
+  EXPECT_EQ(departing(pair), (std::set<int>{l_line})) << "the second mistake is hidden";
+  const shader::ShaderFile file{"student.frag", pair};
+  const auto program = repair::repair_program(specular().vertex, file, specular().vertex, specular().fragment, {});
+  ASSERT_TRUE(program.ok());
+  const auto singles = repair::single_candidates(*program, {.own = 200, .reference = 200});
+  const auto normalised = std::find_if(singles.begin(), singles.end(), [&](const auto& c) { return c.fragment.text == sign; });
+  ASSERT_NE(normalised, singles.end()) << "a single normalises L";
+  EXPECT_EQ(repair::departing_after(*program, *normalised, values_of(sign)), (std::set<int>{r_line}));
+  // An edit that puts in a line of its own before the second mistake's (of the program with L
+  // right): the lines it says are the student's.
+  const shader::ShaderFile sign_file{"student.frag", sign};  // the reading keeps its address
+  const auto alone = repair::repair_program(specular().vertex, sign_file, specular().vertex, specular().fragment, {});
+  ASSERT_TRUE(alone.ok());
+  repair::RepairEdit e = normalised->edits.front();
+  e.begin = e.end = sign.find("    vec3 V =");
+  e.line = line_of(sign, "vec3 V =");
+  e.with = "    float unread = 1.0;\n";
+  const auto inserted = repair::candidate_of(*alone, {e});
+  ASSERT_EQ(inserted.fragment.text, sign.substr(0, e.begin) + e.with + sign.substr(e.begin));
+  EXPECT_EQ(repair::departing_after(*alone, inserted, values_of(inserted.fragment.text)), (std::set<int>{r_line}));
+}
+
+// The colour summed into the output term by term: a term that leaves out the light's colour
+// departs at its own line (the output before it holds the reference's ambient and diffuse sum,
+// after it what the reference outputs), under the orange light only.
+TEST(ValueProbesTest, ATermSummedIntoTheOutputDepartsAtItsLine) {
+  const std::string right = student_with(
+      "void main(void) {\n"
+      "    vec3 N = normalize(vNormal);\n"
+      "    vec3 L = normalize(uLightPosition - vPosition);\n"
+      "    vec3 V = normalize(-vPosition);\n"
+      "    vec3 R = reflect(-L, N);\n"
+      "    float lambert = max(dot(N, L), 0.0);\n"
+      "    fragColor = uAmbientColor;\n"
+      "    fragColor += uDiffuseColor * uLightColor * lambert;\n"
+      "    if (lambert > 0.0) {\n"
+      "        fragColor += uSpecularColor * uLightColor * pow(max(dot(R, V), 0.0), 6.0);\n"
+      "    }\n"
+      "}\n");
+  EXPECT_TRUE(departing(right).empty());
+  const std::string colour = typed(right, "uSpecularColor * uLightColor * pow", "uSpecularColor * pow");
+  EXPECT_EQ(departing(colour), (std::set<int>{line_of(right, "uSpecularColor * uLightColor")}));
+}
+
+// Through the grade (`shadelab grade`, the CLI a TA runs): the repair search's report.
+nlohmann::json searched(const std::string& fragment) {
   const auto dir = std::filesystem::temp_directory_path() / ("value_probes_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "phong.vert") << shader::unwrap(specular().vertex, shader::Stage::vertex)->glsl;
-  std::ofstream(dir / "phong.frag") << pair;
+  std::ofstream(dir / "phong.frag") << fragment;
   const auto run = testkit::run_shadelab("grade --vert " + (dir / "phong.vert").string() + " --frag " + (dir / "phong.frag").string() +
                                          " --reference specular --cache-dir " + (dir / "store").string());
   std::filesystem::remove_all(dir);
   const auto json = nlohmann::json::parse(run.output.substr(run.output.find('{'), run.output.rfind('}') - run.output.find('{') + 1));
-  const auto& search = json.at("repairSearch");
-  ASSERT_TRUE(search.contains("found") && search.contains("also")) << search.dump();
-  const std::set<int> lines = {search["found"]["line"].get<int>(), search["also"]["line"].get<int>()};
-  EXPECT_EQ(lines, (std::set<int>{line_of(right, "float specularAlpha"), line_of(right, "vec3 L =")}));
-  EXPECT_LE(search["candidates"].get<int>(), 20) << "the two lines' singles, then their pairs: not every single first";
+  return json.at("repairSearch");
+}
+
+std::set<int> lines_of(const nlohmann::json& search) {
+  if (!search.contains("found") || !search.contains("also")) return {};
+  return {search["found"]["line"].get<int>(), search["also"]["line"].get<int>()};
+}
+
+// A pair whose values depart at both lines is repaired at both, its two lines' singles screened
+// before any other single (there are 81); a pair whose second mistake the first hides is repaired
+// from the nearest single's values (79 candidates before they were read).
+TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
+  const std::string right = student_with(kStudentShape);
+  const std::string unnormalised = typed(right, "normalize(uLightPosition - vPosition)", "uLightPosition - vPosition");
+  const auto both = searched(typed(unnormalised, "float specularAlpha = 6.0;", "float specularAlpha = 16.0;"));
+  EXPECT_EQ(lines_of(both), (std::set<int>{line_of(right, "float specularAlpha"), line_of(right, "vec3 L =")})) << both.dump();
+  EXPECT_LE(both["candidates"].get<int>(), 20) << "the two lines' singles, then their pairs: not every single first";
+  const auto hidden = searched(typed(unnormalised, "vec3 R = -reflect(L, N);", "vec3 R = reflect(L, N);"));
+  EXPECT_EQ(lines_of(hidden), (std::set<int>{line_of(right, "vec3 R ="), line_of(right, "vec3 L =")})) << hidden.dump();
+  EXPECT_LE(hidden["candidates"].get<int>(), 20) << "L's singles, then L normalised paired with R's line's";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "repair/repair_candidates.h"
 
 #include <algorithm>
+#include <optional>
 #include <set>
 
 #include "repair/classmate_edits.h"
@@ -56,23 +57,42 @@ Expected<RepairProgram> repair_program(const shader::ShaderFile& vertex, const s
 
 bool aligns(const RepairEdit& e) { return e.reads_as_reference || puts_back(e.kind) || e.edits_aligned_line; }
 
+namespace {
+
+// `p`'s stage `stage` with those of `edits` made that change it (a `flat` removed from both stages
+// is one edit): the later span first, so the earlier one's bytes are still where it says (two at
+// one point: in the edits' order). Empty where none changes it.
+std::optional<std::string> edited_glsl(const RepairProgram& p, const std::vector<RepairEdit>& edits, shader::Stage stage) {
+  std::vector<OtherStageSpan> here;  // each span this stage's text changes
+  for (const auto& e : edits) {
+    if (e.stage == stage) here.push_back({e.begin, e.end, e.with});
+    else if (e.other_stage) here.push_back(*e.other_stage);
+  }
+  if (here.empty()) return std::nullopt;
+  if (here.size() > 1) std::stable_sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.begin > b.begin; });
+  std::string glsl = p[stage].source.glsl;
+  for (const auto& span : here) glsl = glsl.substr(0, span.begin) + span.with + glsl.substr(span.end);
+  return glsl;
+}
+
+// The student's line that line `line` of the fragment stage with `e` made was: an edit that adds
+// lines (a statement put back on a line of its own) moves the lines after it; none for a line the
+// edit put in.
+std::optional<int> line_before(const RepairProgram& p, const RepairEdit& e, int line) {
+  if (e.stage != shader::Stage::fragment || line < e.line) return line;
+  const std::string_view glsl = p.fragment.source.glsl;
+  const auto added = std::count(e.with.begin(), e.with.end(), '\n') - std::count(glsl.begin() + e.begin, glsl.begin() + e.end, '\n');
+  if (added > 0 && line < e.line + added) return std::nullopt;
+  return line - static_cast<int>(added);
+}
+
+}  // namespace
+
 RepairCandidate candidate_of(const RepairProgram& p, std::vector<RepairEdit> edits) {
   if (edits.size() > 1) std::stable_sort(edits.begin(), edits.end(), smaller);  // a pair is said in this order
   RepairCandidate c{std::move(edits), *p.vertex.file, *p.fragment.file};
-  for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment}) {
-    std::vector<OtherStageSpan> here;  // each span this stage's text changes
-    for (const auto& e : c.edits) {
-      if (e.stage == stage) here.push_back({e.begin, e.end, e.with});
-      else if (e.other_stage) here.push_back(*e.other_stage);
-    }
-    if (here.empty()) continue;
-    // The later span first, so the earlier one's bytes are still where it says (two at one point:
-    // in the pair's order).
-    if (here.size() > 1) std::stable_sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.begin > b.begin; });
-    std::string glsl = p[stage].source.glsl;
-    for (const auto& span : here) glsl = glsl.substr(0, span.begin) + span.with + glsl.substr(span.end);
-    (stage == shader::Stage::vertex ? c.vertex : c.fragment).text = std::move(glsl);
-  }
+  for (const shader::Stage stage : {shader::Stage::vertex, shader::Stage::fragment})
+    if (auto glsl = edited_glsl(p, c.edits, stage)) (stage == shader::Stage::vertex ? c.vertex : c.fragment).text = std::move(*glsl);
   return c;
 }
 
@@ -129,6 +149,29 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
     if (distances[i] < own && (nearest == distances.size() || distances[i] < distances[nearest])) nearest = i;
   if (nearest < distances.size())
     for (size_t i = 0; i < singles.size(); ++i) add(nearest, i);
+  return out;
+}
+
+std::set<int> departing_after(const RepairProgram& p, const RepairCandidate& c, const ValueAgreement& values) {
+  if (c.edits.size() != 1 || p.read.beside_nothing() || !values.read) return {};
+  const auto stage = [&](shader::Stage s) { return edited_glsl(p, c.edits, s).value_or(p[s].source.glsl); };
+  const std::string vertex = stage(shader::Stage::vertex), fragment = stage(shader::Stage::fragment);
+  const ProgramReading edited({vertex, fragment}, {p.read.vertex.theirs.glsl, p.read.fragment.theirs.glsl});
+  std::set<int> out;
+  for (const int line : departing_lines(edited, values))
+    if (const auto before = line_before(p, c.edits.front(), line); before && *before != c.edits.front().line) out.insert(*before);
+  return out;
+}
+
+std::vector<RepairCandidate> pairs_with(const RepairProgram& p, const RepairEdit& nearest, const std::vector<RepairCandidate>& singles,
+                                        const std::set<int>& lines, const CandidateCounts& counts) {
+  std::vector<RepairCandidate> out;
+  for (const auto& single : singles) {
+    if (out.size() >= static_cast<size_t>(std::max(0, counts.pairs))) break;
+    const RepairEdit& e = single.edits.front();
+    if (single.edits.size() != 1 || e.stage != shader::Stage::fragment || lines.count(e.line) == 0 || overlapping(nearest, e)) continue;
+    out.push_back(candidate_of(p, {nearest, e}));
+  }
   return out;
 }
 

@@ -4,12 +4,14 @@
 // those that read the reference), then, where no single one repairs it, pairs of them. Decided
 // from tokens alone; whether a candidate repairs anything only a render says, and the road runs
 // those (road/repair_search.h).
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/expected.h"
 #include "repair/repair_edits.h"
+#include "repair/value_probes.h"
 #include "shader/shader_source.h"
 
 namespace shadelab::repair {
@@ -104,5 +106,18 @@ std::vector<RepairCandidate> single_candidates(const RepairProgram& p, const Can
 // No pair twice, and none of two edits that touch.
 std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::vector<RepairCandidate>& singles,
                                              const std::vector<double>& distances, double own, const CandidateCounts& counts);
+
+// The lines of the student's fragment stage where the values of `c`'s program (a single: the
+// student's with its edit made), read beside the reference's (`values`, grade/value_reading.h),
+// still depart from the reference's, less the edit's own line: where a second mistake is, once
+// the first one's error no longer hides it from the values (a wrong L makes every value that reads
+// it differ, and a specular term that leaves out the light's colour then departs nowhere). Empty
+// for a pair, a grade without a reference, or values not read.
+std::set<int> departing_after(const RepairProgram& p, const RepairCandidate& c, const ValueAgreement& values);
+
+// `nearest` (a single's edit) paired with each of `singles` that edits one of the fragment stage's
+// `lines`, in the singles' order, at most `counts.pairs`; none of two edits that touch.
+std::vector<RepairCandidate> pairs_with(const RepairProgram& p, const RepairEdit& nearest, const std::vector<RepairCandidate>& singles,
+                                        const std::set<int>& lines, const CandidateCounts& counts);
 
 }  // namespace shadelab::repair

@@ -136,6 +136,17 @@ std::vector<ValueVerdict> value_verdicts(const StageReading& stage, const Probed
       const ValueProbe& q = reference->probes[r];
       if (!q.end && q.input == p.input && q.name == role && (p.input || (q.ordinal == p.ordinal && q.last == p.last))) counterpart = r;
     }
+    // The output's writes (the student's colour summed term by term, `fragColor += ...`, where the
+    // reference sums into a local of its own): the last is what the stage outputs, the reference's
+    // last value of its own output; one before it stands for a value only where the reference
+    // computes that value too (ambient and diffuse summed, the reference's `color` before its
+    // specular term), and is unknown otherwise.
+    const bool output = !p.input && p.name == student.probes.back().name;
+    if (output && !counterpart && p.last) counterpart = reference->probes.size() - 1;
+    if (output && !counterpart && !p.end && agreement.compared[i] && !agreement.agrees_with[i].empty()) {
+      out.push_back(ValueVerdict::same);
+      continue;
+    }
     const auto holds = [&](const std::vector<int>& list) { return std::find(list.begin(), list.end(), static_cast<int>(*counterpart)) != list.end(); };
     if (p.end || !counterpart || !agreement.compared[i]) out.push_back(ValueVerdict::unknown);
     else if (holds(agreement.agrees_with[i])) out.push_back(ValueVerdict::same);

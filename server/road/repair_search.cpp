@@ -164,8 +164,18 @@ std::vector<repair::RepairCandidate> departure_pairs(const repair::RepairProgram
   return pairs;
 }
 
-bool same_program(const repair::RepairCandidate& a, const repair::RepairCandidate& b) {
-  return a.vertex.text == b.vertex.text && a.fragment.text == b.fragment.text;
+// The screened single that drew nearest the reference, nearer than the student's `own` program
+// (the first of equals); none where none did.
+std::optional<size_t> nearest(const std::vector<double>& distances, double own) {
+  std::optional<size_t> out;
+  for (size_t i = 0; i < distances.size(); ++i)
+    if (distances[i] < own && (!out || distances[i] < distances[*out])) out = i;
+  return out;
+}
+
+// Whether `c`'s program is one of `tried`'s.
+bool tried(const repair::RepairCandidate& c, const std::vector<repair::RepairCandidate>& tried) {
+  return std::any_of(tried.begin(), tried.end(), [&](const auto& t) { return t.vertex.text == c.vertex.text && t.fragment.text == c.fragment.text; });
 }
 
 // The search's state: what it was given and what it has spent.
@@ -226,6 +236,20 @@ struct Search {
     return Pass::trouble;
   }
 
+  // The values `c`'s program computes beside the reference's, read on the screening canvas
+  // (grade/value_reading.h); none where the service could not run it.
+  std::optional<repair::ValueAgreement> values_of(const repair::RepairCandidate& c) {
+    worker::Job job = candidate_job(failed, c, budget, &probes);
+    job.grade.read_values = true;
+    auto submitted = submit_when_room(pool, worker::to_message(job, mesh));
+    if (!submitted) return std::nullopt;
+    worker::JobResult done = submitted->get();
+    if (!done.answered) return std::nullopt;
+    auto result = worker::result_from<worker::GradeResult>(done.answer);
+    if (!result || !result->values) return std::nullopt;
+    return std::move(*result->values);
+  }
+
   // The student's own program's distance on the screening canvas: what a single edit must improve
   // on to be one of a pair.
   std::optional<double> own_distance(const repair::RepairProgram& p) {
@@ -269,8 +293,8 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   const std::set<int> departing = repair::departing_lines(program->read, values);
   const Singles singles = split_at(repair::single_candidates(*program, counts), departing);
   std::vector<double> distances;  // each screened single's, `singles.first`'s first
-  std::vector<repair::RepairCandidate> early, pairs;
-  const repair::RepairCandidate* winner = nullptr;  // in `singles`, `early` or `pairs`
+  std::vector<repair::RepairCandidate> early, next, pairs;
+  const repair::RepairCandidate* winner = nullptr;  // in `singles`, `early`, `next` or `pairs`
   int singles_left = budget.confirmations, pairs_left = budget.pair_confirmations;
   const bool pairing = budget.pairs > 0;
   std::optional<double> own;
@@ -283,6 +307,22 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
     pass = search.try_within(early, pairs_left, nullptr, &winner);
     if (open(pass)) pass = first;
   }
+  // The single of those screened that drew nearest: where its program's values still depart is
+  // where a second mistake is, which the first one's error hid from the student's values.
+  if (open(pass) && pairing && pairs_left > 0 && values.read) {
+    if (!own && !(own = search.own_distance(*program))) return;
+    if (const auto n = nearest(distances, *own)) {
+      const auto& single = singles.first[*n];
+      if (const auto read = search.values_of(single)) {
+        repair::CandidateCounts left = counts;
+        left.pairs -= static_cast<int>(early.size());  // `pairs` in all
+        next = repair::pairs_with(*program, single.edits.front(), singles.all(), repair::departing_after(*program, single, *read), left);
+        std::erase_if(next, [&](const auto& c) { return tried(c, early); });
+        const Pass after = search.try_within(next, pairs_left, nullptr, &winner);
+        pass = open(after) ? first : after;
+      }
+    }
+  }
   if (pass == Pass::none_passed) pass = search.try_within(singles.rest, singles_left, &distances, &winner);
   // A single whose screen passed and whose full render did not is a mistake half mended: the
   // pairs still get confirmations of their own.
@@ -290,8 +330,8 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
     // No one edit repairs it: two edits (repair::pair_candidates says which, in what order).
     if (!own && !(own = search.own_distance(*program))) return;
     pairs = repair::pair_candidates(*program, singles.all(), distances, *own, counts);
-    std::erase_if(pairs, [&](const repair::RepairCandidate& c) { return std::any_of(early.begin(), early.end(), [&](const auto& e) { return same_program(c, e); }); });
-    pairs.resize(std::min(pairs.size(), static_cast<size_t>(std::max(0, budget.pairs - static_cast<int>(early.size())))));  // `pairs` in all
+    std::erase_if(pairs, [&](const repair::RepairCandidate& c) { return tried(c, early) || tried(c, next); });
+    pairs.resize(std::min(pairs.size(), static_cast<size_t>(std::max(0, budget.pairs - static_cast<int>(early.size() + next.size())))));  // `pairs` in all
     pass = search.try_within(pairs, pairs_left, nullptr, &winner);
   }
   if (pass == Pass::trouble) return;
