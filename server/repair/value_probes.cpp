@@ -220,6 +220,7 @@ std::optional<ProbedStage> probed_fragment(std::string_view glsl) {
 
 std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement) {
   std::set<int> out;
+  if (!agreement.read) return out;
   const StageReading& stage = read[shader::Stage::fragment];
   const auto student = probed_fragment(stage.student.glsl);
   if (!student) return out;

@@ -12,6 +12,7 @@
 #include "grade/diagnosis.h"
 #include "grade/repair_statement.h"
 #include "repair/said_repair.h"
+#include "repair/search_order.h"
 #include "worker/result.h"
 
 namespace shadelab::road {
@@ -120,71 +121,20 @@ Expected<std::vector<Graded>> grade_candidates(worker::WorkerPool& pool, const s
   return out;
 }
 
-// What one pass of the search came to.
-enum class Pass { confirmed, budget_spent, none_passed, trouble };
+using repair::Pass;
 
-// Whether the search goes on after a pass: nothing confirmed, and the service could run it.
-bool open(Pass p) { return p == Pass::none_passed || p == Pass::budget_spent; }
+// The search's screens drawn on the service's workers: what it was given and what it has spent.
+struct WorkerScreens final : repair::Screens {
+  WorkerScreens(worker::WorkerPool& on, const worker::Job& job, const std::string& mesh_bytes, const RepairBudget& within,
+                grade::Report& into, const repair::RepairProgram& read)
+      : pool(on), failed(job), mesh(mesh_bytes), budget(within), report(into), program(read) {}
 
-// The singles in two groups, each in the singles' order: first those that align the student's line
-// with the reference (repair::aligns) or edit a line where the values say a value first departs
-// from the reference's (repair/value_probes.h), then the others. A departure alone does not put an
-// edit first: where the student clamps at the write and the reference at the use (`float diff =
-// dot(N, L)` against `max(0.0, NdotL)`), the value departs at the use, a line after the mistake.
-struct Singles {
-  std::vector<repair::RepairCandidate> first, rest;
-  std::vector<repair::RepairCandidate> all() const {
-    std::vector<repair::RepairCandidate> out = first;
-    out.insert(out.end(), rest.begin(), rest.end());
-    return out;
-  }
-};
-
-bool at(const repair::RepairEdit& e, const std::set<int>& departing) { return e.stage == shader::Stage::fragment && departing.count(e.line) > 0; }
-
-Singles split_at(std::vector<repair::RepairCandidate> singles, const std::set<int>& departing) {
-  Singles out;
-  for (auto& c : singles) {
-    const bool first = std::any_of(c.edits.begin(), c.edits.end(), [&](const auto& e) { return repair::aligns(e) || at(e, departing); });
-    (first ? out.first : out.rest).push_back(std::move(c));
-  }
-  return out;
-}
-
-// The pairs of two of `first` (screened: `distances`) at two lines where a value departs, in
-// repair::pair_candidates' order: two mistakes whose values do not depend on each other, each
-// found at its own line.
-std::vector<repair::RepairCandidate> departure_pairs(const repair::RepairProgram& p, const std::vector<repair::RepairCandidate>& first,
-                                                     const std::vector<double>& distances, double own, const std::set<int>& departing,
-                                                     const repair::CandidateCounts& counts) {
-  auto pairs = repair::pair_candidates(p, first, distances, own, counts);
-  std::erase_if(pairs, [&](const repair::RepairCandidate& c) {
-    return c.edits.size() != 2 || !at(c.edits[0], departing) || !at(c.edits[1], departing) || c.edits[0].line == c.edits[1].line;
-  });
-  return pairs;
-}
-
-// The screened single that drew nearest the reference, nearer than the student's `own` program
-// (the first of equals); none where none did.
-std::optional<size_t> nearest(const std::vector<double>& distances, double own) {
-  std::optional<size_t> out;
-  for (size_t i = 0; i < distances.size(); ++i)
-    if (distances[i] < own && (!out || distances[i] < distances[*out])) out = i;
-  return out;
-}
-
-// Whether `c`'s program is one of `tried`'s.
-bool tried(const repair::RepairCandidate& c, const std::vector<repair::RepairCandidate>& tried) {
-  return std::any_of(tried.begin(), tried.end(), [&](const auto& t) { return t.vertex.text == c.vertex.text && t.fragment.text == c.fragment.text; });
-}
-
-// The search's state: what it was given and what it has spent.
-struct Search {
   worker::WorkerPool& pool;
   const worker::Job& failed;
   const std::string& mesh;
   const RepairBudget& budget;
   grade::Report& report;
+  const repair::RepairProgram& program;
   const std::vector<std::string> probes = screen_probes(report);  // the screens'
   grade::RepairSearch spent;
 
@@ -221,9 +171,8 @@ struct Search {
     return Pass::none_passed;
   }
 
-  // try_in_order within what is `left` of a budget of confirmations, which it spends.
   Pass try_within(const std::vector<repair::RepairCandidate>& candidates, int& left, std::vector<double>* distances,
-                  const repair::RepairCandidate** winner) {
+                  const repair::RepairCandidate** winner) override {
     if (left < 1) return Pass::budget_spent;
     const int before = spent.confirmations;
     const Pass p = try_in_order(candidates, left, distances, winner);
@@ -236,9 +185,8 @@ struct Search {
     return Pass::trouble;
   }
 
-  // The values `c`'s program computes beside the reference's, read on the screening canvas
-  // (grade/value_reading.h); none where the service could not run it.
-  std::optional<repair::ValueAgreement> values_of(const repair::RepairCandidate& c) {
+  // Read on the screening canvas.
+  std::optional<repair::ValueAgreement> values_of(const repair::RepairCandidate& c) override {
     worker::Job job = candidate_job(failed, c, budget, &probes);
     job.grade.read_values = true;
     auto submitted = submit_when_room(pool, worker::to_message(job, mesh));
@@ -250,10 +198,9 @@ struct Search {
     return std::move(*result->values);
   }
 
-  // The student's own program's distance on the screening canvas: what a single edit must improve
-  // on to be one of a pair.
-  std::optional<double> own_distance(const repair::RepairProgram& p) {
-    auto own = grade_candidates(pool, {candidate_job(failed, repair::candidate_of(p, {}), budget, &probes)}, mesh);
+  // What a single edit must improve on to be one of a pair.
+  std::optional<double> own_distance() override {
+    auto own = grade_candidates(pool, {candidate_job(failed, repair::candidate_of(program, {}), budget, &probes)}, mesh);
     if (!own) {
       could_not_run(own.error());
       return std::nullopt;
@@ -288,57 +235,13 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
     return;
   }
   if (budget.confirmations < 1) return;  // nothing screened could be stated
-  Search search{pool, failed, mesh_bytes, budget, report};
-  const repair::CandidateCounts counts = budget.candidate_counts();
-  const std::set<int> departing = repair::departing_lines(program->read, values);
-  const Singles singles = split_at(repair::single_candidates(*program, counts), departing);
-  std::vector<double> distances;  // each screened single's, `singles.first`'s first
-  std::vector<repair::RepairCandidate> early, next, pairs;
-  const repair::RepairCandidate* winner = nullptr;  // in `singles`, `early`, `next` or `pairs`
-  int singles_left = budget.confirmations, pairs_left = budget.pair_confirmations;
-  const bool pairing = budget.pairs > 0;
-  std::optional<double> own;
-  const Pass first = search.try_within(singles.first, singles_left, &distances, &winner);
-  Pass pass = first;
-  // Two lines where a value departs: a mistake at each, paired before any other single is screened.
-  if (open(pass) && pairing && pairs_left > 0 && departing.size() >= 2) {
-    if (!(own = search.own_distance(*program))) return;
-    early = departure_pairs(*program, singles.first, distances, *own, departing, counts);
-    pass = search.try_within(early, pairs_left, nullptr, &winner);
-    if (open(pass)) pass = first;
-  }
-  // The single of those screened that drew nearest: where its program's values still depart is
-  // where a second mistake is, which the first one's error hid from the student's values.
-  if (open(pass) && pairing && pairs_left > 0 && values.read) {
-    if (!own && !(own = search.own_distance(*program))) return;
-    if (const auto n = nearest(distances, *own)) {
-      const auto& single = singles.first[*n];
-      if (const auto read = search.values_of(single)) {
-        repair::CandidateCounts left = counts;
-        left.pairs -= static_cast<int>(early.size());  // `pairs` in all
-        next = repair::pairs_with(*program, single.edits.front(), singles.all(), repair::departing_after(*program, single, *read), left);
-        std::erase_if(next, [&](const auto& c) { return tried(c, early); });
-        const Pass after = search.try_within(next, pairs_left, nullptr, &winner);
-        pass = open(after) ? first : after;
-      }
-    }
-  }
-  if (pass == Pass::none_passed) pass = search.try_within(singles.rest, singles_left, &distances, &winner);
-  // A single whose screen passed and whose full render did not is a mistake half mended: the
-  // pairs still get confirmations of their own.
-  if (open(pass) && pairing && pairs_left > 0) {
-    // No one edit repairs it: two edits (repair::pair_candidates says which, in what order).
-    if (!own && !(own = search.own_distance(*program))) return;
-    pairs = repair::pair_candidates(*program, singles.all(), distances, *own, counts);
-    std::erase_if(pairs, [&](const repair::RepairCandidate& c) { return tried(c, early) || tried(c, next); });
-    pairs.resize(std::min(pairs.size(), static_cast<size_t>(std::max(0, budget.pairs - static_cast<int>(early.size() + next.size())))));  // `pairs` in all
-    pass = search.try_within(pairs, pairs_left, nullptr, &winner);
-  }
-  if (pass == Pass::trouble) return;
-  search.spent.budget_spent = pass != Pass::confirmed;
-  report.repair_search = std::move(search.spent);
-  if (winner)
-    grade::state_repair(repair::said_repair(*program, winner->edits, shown, vectors), failed.grade.starter_constants,
+  WorkerScreens screens{pool, failed, mesh_bytes, budget, report, *program};
+  const auto outcome = repair::search_in_order(*program, budget.candidate_counts(), {budget.confirmations, budget.pair_confirmations}, values, screens);
+  if (outcome.pass == Pass::trouble) return;
+  screens.spent.budget_spent = outcome.pass != Pass::confirmed;
+  report.repair_search = std::move(screens.spent);
+  if (!outcome.edits.empty())
+    grade::state_repair(repair::said_repair(*program, outcome.edits, shown, vectors), failed.grade.starter_constants,
                         program->fragment.file->text, report);
 }
 

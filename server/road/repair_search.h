@@ -1,8 +1,8 @@
 #pragma once
 // The repair search of a failing code grade (docs/grading.md, "Repairs"): the smallest edit of
 // the student's own program (repair/repair_edits.h) that makes it draw what the reference draws,
-// under every light the grade uses and within its tolerance. What to try, in what order, is
-// repair/repair_candidates.h's; how a confirmed repair is said, grade/repair_statement.h's; this
+// under every light the grade uses and within its tolerance. What to try is
+// repair/repair_candidates.h's, in what order repair/search_order.h's; how a confirmed repair is said, grade/repair_statement.h's; this
 // file runs the candidates.
 //
 // Each candidate is a grade of its own in a worker, killable like any: one that does not pass
@@ -62,8 +62,8 @@ bool wants_repair(const grade::Report& report, const std::vector<grade::StarterC
 // batch gives them, offer edits of their own after the reference's. When the
 // service cannot run a candidate (the queue full, no worker) the search stops, says so in a
 // warning and writes no `repair_search`: the service's trouble is never a different answer.
-// `values`, where the failing grade read them (grade/value_reading.h): no edit that would change a
-// value the reference computes alike is screened (repair/value_probes.h).
+// `values`, where the failing grade read them (grade/value_reading.h): the edits at the lines where
+// a value first departs from the reference's are screened first (repair/search_order.h).
 void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const std::string& mesh_bytes, repair::RepairShown shown,
                    const grade::VectorWords& vectors, grade::Report& report, const RepairBudget& budget = {},
                    const std::vector<repair::PassingProgram>& classmates = {}, const repair::ValueAgreement& values = {});

@@ -1,0 +1,148 @@
+#include "repair/search_order.h"
+
+#include <algorithm>
+#include <set>
+
+namespace shadelab::repair {
+
+namespace {
+
+// Whether the search goes on after a phase: nothing confirmed, and the caller could draw it.
+bool open(Pass p) { return p == Pass::none_passed || p == Pass::budget_spent; }
+
+bool at(const RepairEdit& e, const std::set<int>& departing) { return e.stage == shader::Stage::fragment && departing.count(e.line) > 0; }
+
+// The singles in two groups, each in the singles' order: first those that align the student's line
+// with the reference (aligns) or edit a line where a value first departs, then the others. A
+// departure alone does not put an edit first: where the student clamps at the write and the
+// reference at the use (`float diff = dot(N, L)` against `max(0.0, NdotL)`), the value departs at
+// the use, a line after the mistake.
+struct Singles {
+  std::vector<RepairCandidate> first, rest;
+  std::vector<RepairCandidate> all() const {
+    std::vector<RepairCandidate> out = first;
+    out.insert(out.end(), rest.begin(), rest.end());
+    return out;
+  }
+};
+
+Singles split_at(std::vector<RepairCandidate> singles, const std::set<int>& departing) {
+  Singles out;
+  for (auto& c : singles) {
+    const bool first = std::any_of(c.edits.begin(), c.edits.end(), [&](const auto& e) { return aligns(e) || at(e, departing); });
+    (first ? out.first : out.rest).push_back(std::move(c));
+  }
+  return out;
+}
+
+// The pairs of two of `first` (screened: `distances`) at two lines where a value departs, in
+// pair_candidates' order: two mistakes whose values do not depend on each other, each found at
+// its own line.
+std::vector<RepairCandidate> departure_pairs(const RepairProgram& p, const std::vector<RepairCandidate>& first,
+                                             const std::vector<double>& distances, double own, const std::set<int>& departing,
+                                             const CandidateCounts& counts) {
+  auto pairs = pair_candidates(p, first, distances, own, counts);
+  std::erase_if(pairs, [&](const RepairCandidate& c) {
+    return c.edits.size() != 2 || !at(c.edits[0], departing) || !at(c.edits[1], departing) || c.edits[0].line == c.edits[1].line;
+  });
+  return pairs;
+}
+
+// The screened single that drew nearest the reference, nearer than the student's `own` program
+// (the first of equals); none where none did.
+std::optional<size_t> nearest(const std::vector<double>& distances, double own) {
+  std::optional<size_t> out;
+  for (size_t i = 0; i < distances.size(); ++i)
+    if (distances[i] < own && (!out || distances[i] < distances[*out])) out = i;
+  return out;
+}
+
+// Whether `c`'s program is one of `tried`'s.
+bool tried(const RepairCandidate& c, const std::vector<RepairCandidate>& tried) {
+  return std::any_of(tried.begin(), tried.end(), [&](const auto& t) { return t.vertex.text == c.vertex.text && t.fragment.text == c.fragment.text; });
+}
+
+// One search's state: what it was given, what it tried and what is left of its budget.
+struct Search {
+  const RepairProgram& p;
+  const CandidateCounts& counts;
+  Screens& screens;
+  Confirmations left;
+  const std::set<int> departing;
+  const Singles singles;
+  std::vector<double> distances;       // each screened single's, `singles.first`'s first
+  std::vector<RepairCandidate> early;  // the pairs phases 2 and 3 tried
+  std::optional<double> own;
+  std::vector<RepairEdit> found;       // the confirmed candidate's edits
+
+  bool pairing() const { return counts.pairs > 0 && left.pairs > 0; }
+  int pairs_left() const { return std::max(0, counts.pairs - static_cast<int>(early.size())); }
+
+  // The student's own distance, drawn once; false where it could not be.
+  bool know_own() { return own || (own = screens.own_distance()); }
+
+  Pass run(const std::vector<RepairCandidate>& candidates, int& budget, std::vector<double>* screened) {
+    const RepairCandidate* winner = nullptr;
+    const Pass pass = screens.try_within(candidates, budget, screened, &winner);
+    if (pass == Pass::confirmed && winner) found = winner->edits;
+    return pass;
+  }
+
+  // `pairs` not tried yet, at most what is left of `pairs` in all, tried within the pairs'
+  // confirmations and remembered as tried.
+  Pass try_pairs(std::vector<RepairCandidate> pairs) {
+    std::erase_if(pairs, [&](const RepairCandidate& c) { return tried(c, early); });
+    pairs.resize(std::min(pairs.size(), static_cast<size_t>(pairs_left())));
+    const Pass pass = run(pairs, left.pairs, nullptr);
+    early.insert(early.end(), std::make_move_iterator(pairs.begin()), std::make_move_iterator(pairs.end()));
+    return pass;
+  }
+
+  // Phase 2: two lines where a value departs, a mistake at each.
+  Pass departures() {
+    if (!know_own()) return Pass::trouble;
+    return try_pairs(departure_pairs(p, singles.first, distances, *own, departing, counts));
+  }
+
+  // Phase 3: the lines where the nearest single's program still departs.
+  Pass hidden_departures() {
+    if (!know_own()) return Pass::trouble;
+    const auto n = nearest(distances, *own);
+    if (!n) return Pass::none_passed;
+    const RepairCandidate& single = singles.first[*n];
+    const auto read = screens.values_of(single);
+    if (!read) return Pass::none_passed;
+    CandidateCounts within = counts;
+    within.pairs = pairs_left();
+    return try_pairs(pairs_with(p, single.edits.front(), singles.all(), departing_after(p, single, *read), within));
+  }
+
+  // Phase 5: no one edit repairs it: two edits (pair_candidates says which, in what order).
+  Pass all_pairs() {
+    if (!know_own()) return Pass::trouble;
+    return try_pairs(pair_candidates(p, singles.all(), distances, *own, counts));
+  }
+};
+
+// A pairs' phase between two of the singles': where it confirms nothing, the singles go on as the
+// last singles' phase left them.
+Pass between(Pass singles, Pass pairs) { return open(pairs) ? singles : pairs; }
+
+}  // namespace
+
+SearchOutcome search_in_order(const RepairProgram& p, const CandidateCounts& counts, Confirmations confirmations,
+                              const ValueAgreement& values, Screens& screens) {
+  const std::set<int> departing = departing_lines(p.read, values);
+  Search s{p, counts, screens, confirmations, departing, split_at(single_candidates(p, counts), departing), {}, {}, {}, {}};
+  const Pass first = s.run(s.singles.first, s.left.singles, &s.distances);
+  Pass pass = first;
+  if (open(pass) && s.pairing() && departing.size() >= 2) pass = between(first, s.departures());
+  if (open(pass) && s.pairing() && values.read) pass = between(first, s.hidden_departures());
+  if (pass == Pass::none_passed) pass = s.run(s.singles.rest, s.left.singles, &s.distances);
+  // A single whose screen passed and whose full render did not is a mistake half mended: the
+  // pairs still get confirmations of their own.
+  if (open(pass) && s.pairing()) pass = s.all_pairs();
+  return {pass, std::move(s.found)};
+}
+
+}  // namespace shadelab::repair
