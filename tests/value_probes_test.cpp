@@ -250,5 +250,17 @@ TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
   EXPECT_LE(hidden["candidates"].get<int>(), 20) << "L's singles, then L normalised paired with R's line's";
 }
 
+// A value the homework computes otherwise, which the values found to be another of the formula's
+// vectors at every pixel drawn, is said as that vector: V computed as L, in the student's names.
+TEST(ValueProbesTest, AValueRestoredSaysWhichVectorItHolds) {
+  const std::string right = student_with(kStudentShape);
+  const auto search = searched(typed(right, "vec3 V = normalize(-vPosition);", "vec3 V = normalize(uLightPosition - vPosition);"));
+  ASSERT_TRUE(search.contains("found")) << search.dump();
+  EXPECT_EQ(search["found"]["line"].get<int>(), line_of(right, "vec3 V ="));
+  EXPECT_EQ(search["found"]["text"].get<std::string>(),
+            "`V`, the direction to the eye, is computed as the direction to the light: at every point drawn it holds the homework's L");
+  EXPECT_EQ(search["found"]["label"].get<std::string>(), "V computed as L");
+}
+
 }  // namespace
 }  // namespace shadelab

@@ -110,8 +110,14 @@ constexpr RepairKindInfo kKinds[] = {
      [](const Said& s) { return s.named + " misses a statement the homework has here: it writes " + s.name + " once more than yours does"; },
      [](const Said& s) { return s.symbol + " written once less than the homework writes it"; }},
     {RepairKind::value_restored, "value_restored", F::reference_text, false, false,
-     [](const Said& s) { return s.named + (s.constant_value ? same_everywhere(s) : " is not computed as the homework computes it"); },
      [](const Said& s) {
+       if (s.constant_value) return s.named + same_everywhere(s);
+       if (!s.holds.empty())
+         return s.named + " is computed as " + std::string(s.holds) + ": at every point drawn it holds the homework's " + std::string(s.holds_symbol);
+       return s.named + " is not computed as the homework computes it";
+     },
+     [](const Said& s) {
+       if (!s.holds_symbol.empty() && !s.constant_value) return s.symbol + " computed as " + std::string(s.holds_symbol);
        if (!s.constant_value) return s.symbol + " computed otherwise";
        return s.symbol + (s.stage == shader::Stage::vertex ? " the same for every vertex" : " the same at every point");
      }},

@@ -59,6 +59,9 @@ struct Said {
   shader::Stage stage;
   std::string subject, other, homework_matrix;
   bool constant_value;
+  // value_restored: another of the formula's vectors whose value the student's holds at every
+  // pixel drawn (repair/value_probes.h), its words and its symbol: "the direction to the light", "L".
+  std::string_view holds, holds_symbol;
 };
 
 struct RepairKindInfo {

@@ -5,10 +5,12 @@ namespace shadelab::repair {
 namespace {
 
 // The subject, and where the course names what it is, that too: "`toEye`, the direction to the eye,".
-Said said_of(const RepairEdit& e, std::string_view meaning, std::string_view symbol) {
+// `holds`: the vector of the formula's the subject's value is, where the values said so.
+Said said_of(const RepairEdit& e, std::string_view meaning, std::string_view symbol, const VectorWords::value_type* holds = nullptr) {
   const std::string name = "`" + e.subject + "`";
   return Said{name, meaning.empty() ? name : name + ", " + std::string(meaning) + ",", meaning, symbol.empty() ? name : std::string(symbol),
-              e.stage, e.subject, e.other, e.homework_matrix, e.constant_value};
+              e.stage, e.subject, e.other, e.homework_matrix, e.constant_value, holds ? std::string_view(holds->second) : "",
+              holds ? std::string_view(holds->first) : ""};
 }
 
 // A value restored that amounts to an edit of the student's own is said as that edit.
@@ -25,13 +27,25 @@ const VectorWords::value_type* vector_of(const RepairProgram& p, const RepairEdi
   return found == vectors.end() ? nullptr : &*found;
 }
 
-SaidEdit said_edit(const RepairProgram& p, const RepairEdit& e, RepairShown shown, const VectorWords& vectors) {
+// Where a value restored (said as itself) is one of the formula's vectors and the student's value
+// is another of them at every pixel drawn: `viewDir` computed as the direction to the light. A
+// render drew both; nothing else is said of how it differs.
+const VectorWords::value_type* held_vector(const RepairProgram& p, const RepairEdit& e, const VectorWords& vectors,
+                                           const ValueAgreement& values, const VectorWords::value_type* vector) {
+  if (!vector || e.kind != RepairKind::value_restored || e.said_as || e.constant_value) return nullptr;
+  for (const auto& name : values_it_holds(p.read, e, values))
+    if (const auto found = vectors.find(name); found != vectors.end()) return &*found;
+  return nullptr;
+}
+
+SaidEdit said_edit(const RepairProgram& p, const RepairEdit& e, RepairShown shown, const VectorWords& vectors, const ValueAgreement& values) {
   const StudentStage& stage = p[e.stage];
   const StageReading& read = p.read[e.stage];
   const auto* vector = vector_of(p, e, vectors);
-  SaidEdit out{e.kind, e.stage, std::nullopt, std::nullopt, repair_words(e, vector ? std::string_view(vector->second) : ""),
-               std::nullopt, repair_label(e, vector ? std::string_view(vector->first) : ""),
-               std::string(read.line_of(e))};
+  const auto* holds = held_vector(p, e, vectors, values, vector);
+  SaidEdit out{e.kind, e.stage, std::nullopt, std::nullopt,
+               said_as(e).words(said_of(e, vector ? std::string_view(vector->second) : "", {}, holds)), std::nullopt,
+               said_as(e).label(said_of(e, {}, vector ? std::string_view(vector->first) : "", holds)), std::string(read.line_of(e))};
   if (shown != RepairShown::what) {
     out.file = stage.file->name.empty() ? std::string(to_string(e.stage)) : stage.file->name;
     out.line = stage.source.locate(e.line, 0).file_line;
@@ -47,9 +61,10 @@ std::string repair_words(const RepairEdit& e, std::string_view meaning) { return
 
 std::string repair_label(const RepairEdit& e, std::string_view symbol) { return said_as(e).label(said_of(e, {}, symbol)); }
 
-std::vector<SaidEdit> said_repair(const RepairProgram& p, const std::vector<RepairEdit>& edits, RepairShown shown, const VectorWords& vectors) {
+std::vector<SaidEdit> said_repair(const RepairProgram& p, const std::vector<RepairEdit>& edits, RepairShown shown, const VectorWords& vectors,
+                                  const ValueAgreement& values) {
   std::vector<SaidEdit> out;
-  for (const auto& e : edits) out.push_back(said_edit(p, e, shown, vectors));
+  for (const auto& e : edits) out.push_back(said_edit(p, e, shown, vectors, values));
   return out;
 }
 

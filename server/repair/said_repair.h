@@ -40,7 +40,11 @@ struct SaidEdit {
 };
 
 // Each of `edits` of `p` said as far as `shown` allows; a subject that stands for one of the
-// formula's `vectors` said in its words and counted by its symbol.
-std::vector<SaidEdit> said_repair(const RepairProgram& p, const std::vector<RepairEdit>& edits, RepairShown shown, const VectorWords& vectors);
+// formula's `vectors` said in its words and counted by its symbol. A value restored whose student
+// value `values` (the student's grade's, grade/value_reading.h) found to be another of those
+// vectors at every pixel drawn says so: "`viewDir`, the direction to the eye, is computed as the
+// direction to the light".
+std::vector<SaidEdit> said_repair(const RepairProgram& p, const std::vector<RepairEdit>& edits, RepairShown shown, const VectorWords& vectors,
+                                  const ValueAgreement& values = {});
 
 }  // namespace shadelab::repair

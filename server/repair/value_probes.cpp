@@ -239,4 +239,25 @@ std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& 
   return out;
 }
 
+std::vector<std::string> values_it_holds(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement) {
+  std::vector<std::string> out;
+  if (!agreement.read || edit.stage != shader::Stage::fragment) return out;
+  const StageReading& stage = read[shader::Stage::fragment];
+  const auto student = probed_fragment(stage.student.glsl);
+  const auto reference = probed_fragment(stage.theirs.glsl);
+  if (!student || !reference || agreement.agrees_with.size() != student->probes.size()) return out;
+  std::optional<size_t> write;
+  for (size_t i = 0; i < student->probes.size(); ++i) {
+    const ValueProbe& p = student->probes[i];
+    if (!p.input && !p.end && p.name == edit.subject && p.line == edit.line) write = i;
+  }
+  if (!write || !agreement.compared[*write]) return out;
+  const std::string role = stage.aligned.reference_name(edit.subject, shader::line_of(stage.student.glsl, edit.line));
+  for (const int r : agreement.agrees_with[*write]) {
+    const ValueProbe& q = reference->probes[static_cast<size_t>(r)];
+    if (!q.input && !q.end && q.name != role && std::find(out.begin(), out.end(), q.name) == out.end()) out.push_back(q.name);
+  }
+  return out;
+}
+
 }  // namespace shadelab::repair

@@ -66,4 +66,10 @@ struct ValueAgreement {
 // where the values were not read or say nothing.
 std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement);
 
+// The reference's locals whose value the student's write that `edit` changes (the last write of
+// the edit's subject on its line) holds at every pixel both drew, other than its own counterpart,
+// in the reference's order: `viewDir = normalize(uLightPosition - vPosition)` holds the
+// reference's L. Empty where the values were not read or that write was not probed.
+std::vector<std::string> values_it_holds(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement);
+
 }  // namespace shadelab::repair

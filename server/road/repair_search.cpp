@@ -241,7 +241,7 @@ void search_repair(worker::WorkerPool& pool, const worker::Job& failed, const st
   screens.spent.budget_spent = outcome.pass != Pass::confirmed;
   report.repair_search = std::move(screens.spent);
   if (!outcome.edits.empty())
-    grade::state_repair(repair::said_repair(*program, outcome.edits, shown, vectors), failed.grade.starter_constants,
+    grade::state_repair(repair::said_repair(*program, outcome.edits, shown, vectors, values), failed.grade.starter_constants,
                         program->fragment.file->text, report);
 }
 
