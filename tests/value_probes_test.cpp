@@ -248,6 +248,8 @@ TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
   const auto hidden = searched(typed(unnormalised, "vec3 R = -reflect(L, N);", "vec3 R = reflect(L, N);"));
   EXPECT_EQ(lines_of(hidden), (std::set<int>{line_of(right, "vec3 R ="), line_of(right, "vec3 L =")})) << hidden.dump();
   EXPECT_LE(hidden["candidates"].get<int>(), 20) << "L's singles, then L normalised paired with R's line's";
+  EXPECT_EQ(hidden.value("valuesRead", 0), 1) << "the nearest single's values, read once";
+  EXPECT_FALSE(both.contains("valuesRead")) << "both lines departed: no single's values needed";
 }
 
 // A value the homework computes otherwise, which the values found to be another of the formula's

@@ -108,6 +108,7 @@ SHADELAB_JSON_FIELDS(Repair, field("kind", &Repair::kind, kRepairKinds), field("
 SHADELAB_JSON_FIELDS(RepairSearch, field("found", &RepairSearch::found, When::omitted_when_empty),
                      field("also", &RepairSearch::also, When::omitted_when_empty),
                      field("candidates", &RepairSearch::candidates), field("confirmations", &RepairSearch::confirmations),
+                     field("valuesRead", &RepairSearch::values_read, When::omitted_when_default),
                      field("budgetSpent", &RepairSearch::budget_spent))
 
 SHADELAB_JSON_FIELDS(Report, field("checkpoint", &Report::checkpoint), field("pass", &Report::pass), field("score", &Report::score),

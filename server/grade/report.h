@@ -85,6 +85,9 @@ struct RepairSearch {
   std::optional<Repair> also;  // a repair of two edits: the second
   int candidates = 0;     // edits screened, each its own worker job on a small canvas
   int confirmations = 0;  // screened passes rendered again at the grade's own frames
+  // Candidates whose program's values were read on the small canvas, to say where a second mistake
+  // is (repair/search_order.h); the student's own, read by the verdict, not counted.
+  int values_read = 0;
   bool budget_spent = false;  // every candidate the budget allows was tried and none was confirmed
 };
 

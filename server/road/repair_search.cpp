@@ -185,10 +185,14 @@ struct WorkerScreens final : repair::Screens {
     return Pass::trouble;
   }
 
-  // Read on the screening canvas.
+  // Read on the screening canvas, within the grade's whole deadlines, as the student's own values
+  // were: a screen's share would drop the values where the machine is slower, and the answer
+  // would then depend on the machine.
   std::optional<repair::ValueAgreement> values_of(const repair::RepairCandidate& c) override {
     worker::Job job = candidate_job(failed, c, budget, &probes);
+    job.deadline_share = failed.deadline_share;
     job.grade.read_values = true;
+    ++spent.values_read;
     auto submitted = submit_when_room(pool, worker::to_message(job, mesh));
     if (!submitted) return std::nullopt;
     worker::JobResult done = submitted->get();
