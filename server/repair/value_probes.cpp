@@ -130,7 +130,8 @@ std::vector<ValueVerdict> value_verdicts(const StageReading& stage, const Probed
     const ValueProbe& p = student.probes[i];
     // An input's counterpart is the reference's input of its name; a write's, the write of its
     // role at the same place in that variable's writes.
-    const std::string role = p.input ? p.name : stage.aligned.reference_name(p.name, shader::line_of(stage.student.glsl, p.line));
+    const auto line = p.line >= 1 && static_cast<size_t>(p.line) <= stage.lines.size() ? stage.lines[static_cast<size_t>(p.line) - 1] : std::string_view();
+    const std::string role = p.input ? p.name : stage.aligned.reference_name(p.name, line);
     std::optional<size_t> counterpart;
     for (size_t r = 0; r < reference->probes.size() && !role.empty(); ++r) {
       const ValueProbe& q = reference->probes[r];
@@ -252,7 +253,7 @@ std::vector<std::string> values_it_holds(const ProgramReading& read, const Repai
     if (!p.input && !p.end && p.name == edit.subject && p.line == edit.line) write = i;
   }
   if (!write || !agreement.compared[*write]) return out;
-  const std::string role = stage.aligned.reference_name(edit.subject, shader::line_of(stage.student.glsl, edit.line));
+  const std::string role = stage.aligned.reference_name(edit.subject, stage.line_of(edit));
   for (const int r : agreement.agrees_with[*write]) {
     const ValueProbe& q = reference->probes[static_cast<size_t>(r)];
     if (!q.input && !q.end && q.name != role && std::find(out.begin(), out.end(), q.name) == out.end()) out.push_back(q.name);
