@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -165,6 +167,79 @@ TEST(ValueProbesTest, AValueDepartsAtTheLineItsMistakeIsMadeAt) {
   EXPECT_EQ(departing(typed(right, "normalize(vNormal)", "normalize(vNormal + vec3(0.5))")), (std::set<int>{line_of(right, "vec3 N =")}));
 }
 
+// What turns one value into another, read off the two at every pixel on the CPU: each change of
+// repair/value_change.h found where it holds, and nothing claimed where no one change does.
+TEST(ValueProbesTest, AChangeBetweenTwoValuesIsReadOffTheirPixels) {
+  using repair::ValueChange;
+  std::vector<std::array<float, 3>> values;
+  for (int i = 0; i < 40; ++i) {
+    const float a = static_cast<float>(i) / 39.0f;
+    values.push_back({0.9f * a - 0.3f, 0.2f + 0.5f * a * a, 0.7f - 0.6f * a});  // some below 0, none the others' order
+  }
+  const auto changes = [&](auto f) {
+    std::vector<repair::ValueSample> samples;
+    for (const auto& v : values) samples.push_back({v, f(v)});
+    return repair::changes_between(samples);
+  };
+  using V = std::array<float, 3>;
+  const auto has = [](const std::vector<ValueChange>& c, ValueChange k) { return std::find(c.begin(), c.end(), k) != c.end(); };
+  EXPECT_TRUE(changes([](V v) { return v; }).empty()) << "the same values need no change";
+  EXPECT_EQ(changes([](V v) { return V{-v[0], -v[1], -v[2]}; }), std::vector<ValueChange>{ValueChange::negated});
+  const auto normalised = changes([](V v) {
+    const float n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    return V{v[0] / n, v[1] / n, v[2] / n};
+  });
+  EXPECT_EQ(normalised, std::vector<ValueChange>{ValueChange::normalised});
+  const auto longer = [&] {
+    std::vector<repair::ValueSample> samples;
+    for (const auto& v : values) {
+      const float n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      samples.push_back({V{v[0] / n, v[1] / n, v[2] / n}, V{v[0] * 3, v[1] * 3, v[2] * 3}});
+    }
+    return repair::changes_between(samples);
+  }();
+  EXPECT_TRUE(has(longer, ValueChange::unnormalised)) << "the student normalised what the homework keeps at its length";
+  EXPECT_EQ(changes([](V v) { return V{std::max(v[0], 0.f), std::max(v[1], 0.f), std::max(v[2], 0.f)}; }),
+            std::vector<ValueChange>{ValueChange::clamped});
+  EXPECT_EQ(changes([](V v) { return V{v[0] * 1.0f, v[1] * 0.5f, v[2] * 0.2f}; }), std::vector<ValueChange>{ValueChange::scaled})
+      << "the orange light's colour left out";
+  EXPECT_EQ(changes([](V v) { return V{v[0] + 0.1f, v[1] + 0.1f, v[2] + 0.1f}; }), std::vector<ValueChange>{ValueChange::shifted})
+      << "the ambient term left out";
+  EXPECT_EQ(changes([](V v) { return V{v[2], v[1], v[0]}; }), std::vector<ValueChange>{ValueChange::swizzled});
+  // A cosine (0 to 1) to the homework's power, and to another power.
+  std::vector<repair::ValueSample> cosines;
+  for (int i = 1; i < 40; ++i) {
+    const float c = static_cast<float>(i) / 40.0f;
+    cosines.push_back({{c, c, c}, {std::pow(c, 6.0f), std::pow(c, 6.0f), std::pow(c, 6.0f)}});
+  }
+  EXPECT_TRUE(has(repair::changes_between(cosines), ValueChange::powered));
+  // A value that no one change makes: nothing is claimed.
+  EXPECT_TRUE(changes([](V v) { return V{v[0] * v[0] + 0.3f, v[2], -v[1] * 2}; }).empty());
+  EXPECT_TRUE(repair::changes_between({}).empty()) << "no pixel: nothing known";
+}
+
+// At a line where a value departs, the change its value needs, read on the real driver: R's and
+// V's signs (negated), L's normalisation, the exponent's number. (A clamp or an exponent left out
+// of a local the reference has no counterpart of departs nowhere: the CPU test above reads those.)
+TEST(ValueProbesTest, EachDepartureSaysTheChangeItsValueNeeds) {
+  using repair::ValueChange;
+  const std::string right = student_with(kStudentShape);
+  const auto at = [&](const std::string& fragment, const std::string& line) {
+    const shader::ShaderFile file{"student.frag", fragment};
+    const auto program = repair::repair_program(specular().vertex, file, specular().vertex, specular().fragment, {});
+    EXPECT_TRUE(program.ok());
+    const auto d = program ? repair::departures(program->read, values_of(fragment)) : repair::Departures{};
+    const auto it = d.find(line_of(right, line));
+    EXPECT_NE(it, d.end()) << line << ": departs at " << ::testing::PrintToString(repair::lines_of(d));
+    return it == d.end() ? std::set<ValueChange>{} : it->second;
+  };
+  EXPECT_EQ(at(typed(right, "vec3 R = -reflect(L, N);", "vec3 R = reflect(L, N);"), "vec3 R ="), std::set<ValueChange>{ValueChange::negated});
+  EXPECT_TRUE(at(typed(right, "normalize(uLightPosition - vPosition)", "uLightPosition - vPosition"), "vec3 L =").count(ValueChange::normalised));
+  EXPECT_EQ(at(typed(right, "normalize(-vPosition)", "normalize(vPosition)"), "vec3 V ="), std::set<ValueChange>{ValueChange::negated});
+  EXPECT_TRUE(at(typed(right, "float specularAlpha = 6.0;", "float specularAlpha = 16.0;"), "float specularAlpha").count(ValueChange::scaled))
+      << "a number times another";
+}
+
 // A mistake whose value every later value reads hides a second one from the values: with L not
 // normalised, R with the wrong sign reads a wrong L and departs nowhere. Once L is normalised (the
 // single that draws nearest), R departs at its own line, and a line an edit puts in moves the
@@ -181,7 +256,7 @@ TEST(ValueProbesTest, ASecondMistakeDepartsOnceTheFirstIsMended) {
   const auto singles = repair::single_candidates(*program, {.own = 200, .reference = 200});
   const auto normalised = std::find_if(singles.begin(), singles.end(), [&](const auto& c) { return c.fragment.text == sign; });
   ASSERT_NE(normalised, singles.end()) << "a single normalises L";
-  EXPECT_EQ(repair::departing_after(*program, *normalised, values_of(sign)), (std::set<int>{r_line}));
+  EXPECT_EQ(repair::lines_of(repair::departing_after(*program, *normalised, values_of(sign))), (std::set<int>{r_line}));
   // An edit that puts in a line of its own before the second mistake's (of the program with L
   // right): the lines it says are the student's.
   const shader::ShaderFile sign_file{"student.frag", sign};  // the reading keeps its address
@@ -193,7 +268,7 @@ TEST(ValueProbesTest, ASecondMistakeDepartsOnceTheFirstIsMended) {
   e.with = "    float unread = 1.0;\n";
   const auto inserted = repair::candidate_of(*alone, {e});
   ASSERT_EQ(inserted.fragment.text, sign.substr(0, e.begin) + e.with + sign.substr(e.begin));
-  EXPECT_EQ(repair::departing_after(*alone, inserted, values_of(inserted.fragment.text)), (std::set<int>{r_line}));
+  EXPECT_EQ(repair::lines_of(repair::departing_after(*alone, inserted, values_of(inserted.fragment.text))), (std::set<int>{r_line}));
 }
 
 // The colour summed into the output term by term: a term that leaves out the light's colour

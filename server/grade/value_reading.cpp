@@ -67,13 +67,7 @@ std::optional<Probed> drawn_probes(render::Renderer& renderer, const std::vector
 
 const float* pixel(const image::Image& f, size_t i) { return reinterpret_cast<const float*>(f.bytes.data()) + 4 * i; }
 
-// Within what float arithmetic done otherwise gives (another order, a fused multiply-add): a
-// thousandth of the value, or of 1 below it.
-bool same_value(float a, float b) {
-  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
-  if (std::isinf(a) || std::isinf(b)) return a == b;
-  return std::abs(a - b) <= 1e-3f * std::max(1.0f, std::abs(b));
-}
+using repair::same_value;
 
 bool same_pixel(const float* p, const float* q) { return same_value(p[0], q[0]) && same_value(p[1], q[1]) && same_value(p[2], q[2]); }
 bool ran(const float* p) { return p[3] > 1.5f; }
@@ -105,6 +99,19 @@ Beside beside(const ProbeFrames& a, const ProbeFrames& b, const ProbeFrames& a_e
   return out;
 }
 
+// The pixels both probes drew, `a`'s value beside `b`'s (`out` reused from pair to pair).
+void samples_of(const ProbeFrames& a, const ProbeFrames& b, std::vector<repair::ValueSample>& out) {
+  out.clear();
+  for (size_t f = 0; f < a.size() && f < b.size(); ++f) {
+    if (a[f].type != image::PixelType::f32 || b[f].type != a[f].type || b[f].width != a[f].width || b[f].height != a[f].height) continue;
+    const size_t n = static_cast<size_t>(a[f].width) * static_cast<size_t>(a[f].height);
+    for (size_t i = 0; i < n; ++i) {
+      const float *p = pixel(a[f], i), *q = pixel(b[f], i);
+      if (ran(p) && ran(q)) out.push_back({{p[0], p[1], p[2]}, {q[0], q[1], q[2]}});
+    }
+  }
+}
+
 }  // namespace
 
 repair::ValueAgreement read_values(render::Renderer& renderer, const std::vector<render::RenderRequest>& student,
@@ -116,15 +123,21 @@ repair::ValueAgreement read_values(render::Renderer& renderer, const std::vector
   const auto ours = drawn_probes(renderer, reference, mesh, canvas);
   if (!ours) return out;
   out.read = true;
+  std::vector<repair::ValueSample> samples;
   for (const auto& s : theirs->frames) {
     std::vector<int> with, visibly;
+    std::vector<repair::ValueChangeTo> changed;
     bool compared = false;
     for (size_t r = 0; r < ours->frames.size(); ++r) {
       const Beside b = beside(s, ours->frames[r], theirs->frames.back(), ours->frames.back());
       compared = compared || b.compared;
       if (b.compared && b.same) with.push_back(static_cast<int>(r));
       if (b.differs_visibly) visibly.push_back(static_cast<int>(r));
+      if (!b.compared || b.same) continue;
+      samples_of(s, ours->frames[r], samples);
+      for (const auto change : repair::changes_between(samples)) changed.push_back({static_cast<int>(r), change});
     }
+    out.changes.push_back(std::move(changed));
     out.agrees_with.push_back(std::move(with));
     out.differs_visibly.push_back(std::move(visibly));
     out.compared.push_back(compared);

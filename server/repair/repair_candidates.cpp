@@ -152,14 +152,14 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
   return out;
 }
 
-std::set<int> departing_after(const RepairProgram& p, const RepairCandidate& c, const ValueAgreement& values) {
+Departures departing_after(const RepairProgram& p, const RepairCandidate& c, const ValueAgreement& values) {
   if (c.edits.size() != 1 || p.read.beside_nothing() || !values.read) return {};
   const auto stage = [&](shader::Stage s) { return edited_glsl(p, c.edits, s).value_or(p[s].source.glsl); };
   const std::string vertex = stage(shader::Stage::vertex), fragment = stage(shader::Stage::fragment);
   const ProgramReading edited({vertex, fragment}, {p.read.vertex.theirs.glsl, p.read.fragment.theirs.glsl});
-  std::set<int> out;
-  for (const int line : departing_lines(edited, values))
-    if (const auto before = line_before(p, c.edits.front(), line); before && *before != c.edits.front().line) out.insert(*before);
+  Departures out;
+  for (const auto& [line, changes] : departures(edited, values))
+    if (const auto before = line_before(p, c.edits.front(), line); before && *before != c.edits.front().line) out[*before] = changes;
   return out;
 }
 

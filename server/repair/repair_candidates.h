@@ -112,8 +112,9 @@ std::vector<RepairCandidate> pair_candidates(const RepairProgram& p, const std::
 // still depart from the reference's, less the edit's own line: where a second mistake is, once
 // the first one's error no longer hides it from the values (a wrong L makes every value that reads
 // it differ, and a specular term that leaves out the light's colour then departs nowhere). Empty
-// for a pair, a grade without a reference, or values not read.
-std::set<int> departing_after(const RepairProgram& p, const RepairCandidate& c, const ValueAgreement& values);
+// for a pair, a grade without a reference, or values not read. Each line with the changes its
+// value needs (repair/value_change.h).
+Departures departing_after(const RepairProgram& p, const RepairCandidate& c, const ValueAgreement& values);
 
 // `nearest` (a single's edit) paired with each of `singles` that edits one of the fragment stage's
 // `lines`, in the singles' order, at most `counts.pairs`; none of two edits that touch.

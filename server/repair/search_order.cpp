@@ -26,12 +26,27 @@ struct Singles {
   }
 };
 
-Singles split_at(std::vector<RepairCandidate> singles, const std::set<int>& departing) {
+// How many of `c`'s edits make the change their line's departing value needs (repair/value_change.h).
+int making(const RepairCandidate& c, const Departures& changes) {
+  return static_cast<int>(std::count_if(c.edits.begin(), c.edits.end(), [&](const auto& e) { return makes_departing_change(e, changes); }));
+}
+
+// `candidates` with those whose edits make more of the changes the values need first, each
+// group in its own order: the values chose their edit before any was drawn.
+std::vector<RepairCandidate> changes_first(std::vector<RepairCandidate> candidates, const Departures& changes) {
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [&](const RepairCandidate& a, const RepairCandidate& b) { return making(a, changes) > making(b, changes); });
+  return candidates;
+}
+
+Singles split_at(std::vector<RepairCandidate> singles, const Departures& changes) {
   Singles out;
+  const std::set<int> departing = lines_of(changes);
   for (auto& c : singles) {
     const bool first = std::any_of(c.edits.begin(), c.edits.end(), [&](const auto& e) { return aligns(e) || at(e, departing); });
     (first ? out.first : out.rest).push_back(std::move(c));
   }
+  out.first = changes_first(std::move(out.first), changes);
   return out;
 }
 
@@ -40,12 +55,12 @@ Singles split_at(std::vector<RepairCandidate> singles, const std::set<int>& depa
 // its own line.
 std::vector<RepairCandidate> departure_pairs(const RepairProgram& p, const std::vector<RepairCandidate>& first,
                                              const std::vector<double>& distances, double own, const std::set<int>& departing,
-                                             const CandidateCounts& counts) {
+                                             const Departures& changes, const CandidateCounts& counts) {
   auto pairs = pair_candidates(p, first, distances, own, counts);
   std::erase_if(pairs, [&](const RepairCandidate& c) {
     return c.edits.size() != 2 || !at(c.edits[0], departing) || !at(c.edits[1], departing) || c.edits[0].line == c.edits[1].line;
   });
-  return pairs;
+  return changes_first(std::move(pairs), changes);
 }
 
 // The screened single that drew nearest the reference, nearer than the student's `own` program
@@ -62,12 +77,17 @@ bool tried(const RepairCandidate& c, const std::vector<RepairCandidate>& tried) 
   return std::any_of(tried.begin(), tried.end(), [&](const auto& t) { return t.vertex.text == c.vertex.text && t.fragment.text == c.fragment.text; });
 }
 
+// A pairs' phase between two of the singles': where it confirms nothing, the singles go on as the
+// last singles' phase left them.
+Pass between(Pass singles, Pass pairs) { return open(pairs) ? singles : pairs; }
+
 // One search's state: what it was given, what it tried and what is left of its budget.
 struct Search {
   const RepairProgram& p;
   const CandidateCounts& counts;
   Screens& screens;
   Confirmations left;
+  const Departures changes;
   const std::set<int> departing;
   const Singles singles;
   std::vector<double> distances;       // each screened single's, `singles.first`'s first
@@ -98,10 +118,38 @@ struct Search {
     return pass;
   }
 
+  // Pairs of two of `picked` (singles whose edit makes the change its line's value needs) at two
+  // lines, in `picked`'s order.
+  std::vector<RepairCandidate> pairs_among(const std::vector<RepairCandidate>& picked) const {
+    std::vector<RepairCandidate> out;
+    CandidateCounts within = counts;
+    within.pairs = pairs_left();
+    for (const auto& a : picked) {
+      std::set<int> later;
+      for (const auto& b : picked)
+        if (b.edits.front().line > a.edits.front().line) later.insert(b.edits.front().line);
+      auto with = pairs_with(p, a.edits.front(), picked, later, within);
+      out.insert(out.end(), std::make_move_iterator(with.begin()), std::make_move_iterator(with.end()));
+    }
+    return out;
+  }
+
+  // Phase 1: first the singles the values chose (a prefix of `singles.first`: each edit makes
+  // the change its line's departing value needs), then, where they are at two lines, their pairs,
+  // then the rest of `singles.first`; each screen's distance kept in `singles.first`'s order.
+  Pass chosen_first() {
+    const auto& first = singles.first;
+    const auto chosen = std::find_if(first.begin(), first.end(), [&](const RepairCandidate& c) { return making(c, changes) == 0; });
+    const std::vector<RepairCandidate> picked(first.begin(), chosen), others(chosen, first.end());
+    Pass pass = run(picked, left.singles, &distances);
+    if (pass == Pass::none_passed && pairing()) pass = between(pass, try_pairs(pairs_among(picked)));
+    return open(pass) ? run(others, left.singles, &distances) : pass;
+  }
+
   // Phase 2: two lines where a value departs, a mistake at each.
   Pass departures() {
     if (!know_own()) return Pass::trouble;
-    return try_pairs(departure_pairs(p, singles.first, distances, *own, departing, counts));
+    return try_pairs(departure_pairs(p, singles.first, distances, *own, departing, changes, counts));
   }
 
   // Phase 3: the lines where the nearest single's program still departs.
@@ -114,7 +162,8 @@ struct Search {
     if (!read) return Pass::none_passed;
     CandidateCounts within = counts;
     within.pairs = pairs_left();
-    return try_pairs(pairs_with(p, single.edits.front(), singles.all(), departing_after(p, single, *read), within));
+    const Departures after = departing_after(p, single, *read);
+    return try_pairs(pairs_with(p, single.edits.front(), changes_first(singles.all(), after), lines_of(after), within));
   }
 
   // Phase 5: no one edit repairs it: two edits (pair_candidates says which, in what order).
@@ -124,19 +173,15 @@ struct Search {
   }
 };
 
-// A pairs' phase between two of the singles': where it confirms nothing, the singles go on as the
-// last singles' phase left them.
-Pass between(Pass singles, Pass pairs) { return open(pairs) ? singles : pairs; }
-
 }  // namespace
 
 SearchOutcome search_in_order(const RepairProgram& p, const CandidateCounts& counts, Confirmations confirmations,
                               const ValueAgreement& values, Screens& screens) {
-  const std::set<int> departing = departing_lines(p.read, values);
-  Search s{p, counts, screens, confirmations, departing, split_at(single_candidates(p, counts), departing), {}, {}, {}, {}};
-  const Pass first = s.run(s.singles.first, s.left.singles, &s.distances);
+  const Departures changes = departures(p.read, values);
+  Search s{p, counts, screens, confirmations, changes, lines_of(changes), split_at(single_candidates(p, counts), changes), {}, {}, {}, {}};
+  const Pass first = s.chosen_first();
   Pass pass = first;
-  if (open(pass) && s.pairing() && departing.size() >= 2) pass = between(first, s.departures());
+  if (open(pass) && s.pairing() && s.departing.size() >= 2) pass = between(first, s.departures());
   if (open(pass) && s.pairing() && values.read) pass = between(first, s.hidden_departures());
   if (pass == Pass::none_passed) pass = s.run(s.singles.rest, s.left.singles, &s.distances);
   // A single whose screen passed and whose full render did not is a mistake half mended: the

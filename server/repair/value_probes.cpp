@@ -119,13 +119,19 @@ std::string with_insertions(std::string_view glsl, std::vector<Insertion> at) {
 // another, or without a counterpart to tell.
 enum class ValueVerdict { same, differs, unknown };
 
-std::vector<ValueVerdict> value_verdicts(const StageReading& stage, const ProbedStage& student, const ValueAgreement& agreement) {
+// A verdict, and the reference probe it was read against (none where there is none).
+struct Verdict {
+  ValueVerdict verdict = ValueVerdict::unknown;
+  std::optional<size_t> counterpart;
+};
+
+std::vector<Verdict> value_verdicts(const StageReading& stage, const ProbedStage& student, const ValueAgreement& agreement) {
   const auto reference = probed_fragment(stage.theirs.glsl);
   const size_t n = student.probes.size();
   if (!agreement.read || !reference || n == 0 || agreement.agrees_with.size() != n || agreement.differs_visibly.size() != n ||
       agreement.compared.size() != n)
     return {};
-  std::vector<ValueVerdict> out;
+  std::vector<Verdict> out;
   for (size_t i = 0; i < student.probes.size(); ++i) {
     const ValueProbe& p = student.probes[i];
     // An input's counterpart is the reference's input of its name; a write's, the write of its
@@ -145,13 +151,13 @@ std::vector<ValueVerdict> value_verdicts(const StageReading& stage, const Probed
     const bool output = !p.input && p.name == student.probes.back().name;
     if (output && !counterpart && p.last) counterpart = reference->probes.size() - 1;
     if (output && !counterpart && !p.end && agreement.compared[i] && !agreement.agrees_with[i].empty()) {
-      out.push_back(ValueVerdict::same);
+      out.push_back({ValueVerdict::same, std::nullopt});
       continue;
     }
     const auto holds = [&](const std::vector<int>& list) { return std::find(list.begin(), list.end(), static_cast<int>(*counterpart)) != list.end(); };
-    if (p.end || !counterpart || !agreement.compared[i]) out.push_back(ValueVerdict::unknown);
-    else if (holds(agreement.agrees_with[i])) out.push_back(ValueVerdict::same);
-    else out.push_back(holds(agreement.differs_visibly[i]) ? ValueVerdict::differs : ValueVerdict::unknown);
+    if (p.end || !counterpart || !agreement.compared[i]) out.push_back({ValueVerdict::unknown, std::nullopt});
+    else if (holds(agreement.agrees_with[i])) out.push_back({ValueVerdict::same, counterpart});
+    else out.push_back({holds(agreement.differs_visibly[i]) ? ValueVerdict::differs : ValueVerdict::unknown, counterpart});
   }
   return out;
 }
@@ -219,8 +225,8 @@ std::optional<ProbedStage> probed_fragment(std::string_view glsl) {
   return probed;
 }
 
-std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement) {
-  std::set<int> out;
+Departures departures(const ProgramReading& read, const ValueAgreement& agreement) {
+  Departures out;
   if (!agreement.read) return out;
   const StageReading& stage = read[shader::Stage::fragment];
   const auto student = probed_fragment(stage.student.glsl);
@@ -234,10 +240,30 @@ std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& 
       const auto it = holds.find(name);
       return it != holds.end() && it->second == ValueVerdict::same;
     };
-    if (!p.input && verdicts[i] == ValueVerdict::differs && std::all_of(p.reads.begin(), p.reads.end(), same)) out.insert(p.line);
-    holds[p.name] = verdicts[i];
+    const Verdict& v = verdicts[i];
+    if (!p.input && v.verdict == ValueVerdict::differs && std::all_of(p.reads.begin(), p.reads.end(), same)) {
+      auto& changes = out[p.line];
+      if (i < agreement.changes.size())
+        for (const auto& c : agreement.changes[i])
+          if (static_cast<size_t>(c.reference) == *v.counterpart) changes.insert(c.change);
+    }
+    holds[p.name] = v.verdict;
   }
   return out;
+}
+
+std::set<int> lines_of(const Departures& d) {
+  std::set<int> out;
+  for (const auto& [line, changes] : d) out.insert(line);
+  return out;
+}
+
+std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement) { return lines_of(departures(read, agreement)); }
+
+bool makes_departing_change(const RepairEdit& e, const Departures& at) {
+  const auto it = at.find(e.line);
+  if (e.stage != shader::Stage::fragment || it == at.end()) return false;
+  return std::any_of(it->second.begin(), it->second.end(), [&](ValueChange c) { return makes(e.kind, c); });
 }
 
 std::vector<std::string> values_it_holds(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement) {

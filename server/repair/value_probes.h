@@ -11,6 +11,7 @@
 // reference's: `vec3 L = uLightPos - vPosition;` (the normalisation left out) equals the
 // reference's `toLight`, and is still a wrong L.
 #include <array>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "repair/repair_edit.h"
+#include "repair/value_change.h"
 
 namespace shadelab::repair {
 
@@ -56,6 +58,9 @@ struct ValueAgreement {
   bool read = false;  // both stages were probed and drawn
   std::vector<std::vector<int>> agrees_with, differs_visibly;
   std::vector<bool> compared;
+  // For each of the student's probes, how it differs from each reference probe it was compared
+  // with and is not the same as (repair/value_change.h), where a change turns it into that one.
+  std::vector<std::vector<ValueChangeTo>> changes;
 };
 
 // The lines of the student's fragment stage where a value first goes wrong: a write whose value
@@ -65,6 +70,16 @@ struct ValueAgreement {
 // with; the k-th write with the k-th, a last with a last). Empty
 // where the values were not read or say nothing.
 std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement);
+
+// Each line where a value first departs (as departing_lines), with the changes that turn the
+// student's value written there into its counterpart's (none known: an empty set).
+using Departures = std::map<int, std::set<ValueChange>>;
+Departures departures(const ProgramReading& read, const ValueAgreement& agreement);
+std::set<int> lines_of(const Departures& d);
+
+// Whether `e` makes a change its line's departing value needs (none where its line departs
+// with no change known, or does not depart).
+bool makes_departing_change(const RepairEdit& e, const Departures& at);
 
 // The reference's locals whose value the student's write that `edit` changes (the last write of
 // the edit's subject on its line) holds at every pixel both drew, other than its own counterpart,

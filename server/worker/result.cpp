@@ -40,9 +40,11 @@ SHADELAB_JSON_FIELDS(ImageVerdict, field("pass", &ImageVerdict::pass), field("me
 
 namespace shadelab::repair {
 
+SHADELAB_JSON_FIELDS(ValueChangeTo, field("reference", &ValueChangeTo::reference),
+                     field("change", &ValueChangeTo::change, json_fields::Names{kValueChangeNames}))
 SHADELAB_JSON_FIELDS(ValueAgreement, field("read", &ValueAgreement::read), field("agreesWith", &ValueAgreement::agrees_with),
                      field("differsVisibly", &ValueAgreement::differs_visibly),
-                     field("compared", &ValueAgreement::compared))
+                     field("compared", &ValueAgreement::compared), field("changes", &ValueAgreement::changes, When::default_when_missing))
 
 }  // namespace shadelab::repair
 

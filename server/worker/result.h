@@ -135,6 +135,7 @@ SHADELAB_JSON_DECLARE(ImageVerdict);
 }  // namespace shadelab::grade
 
 namespace shadelab::repair {
+SHADELAB_JSON_DECLARE(ValueChangeTo);
 SHADELAB_JSON_DECLARE(ValueAgreement);
 }  // namespace shadelab::repair
 
