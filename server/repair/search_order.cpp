@@ -94,6 +94,7 @@ struct Search {
   std::vector<RepairCandidate> early;  // the pairs phases 2 and 3 tried
   std::optional<double> own;
   std::vector<RepairEdit> found;       // the confirmed candidate's edits
+  std::set<size_t> values_read;        // the singles (of `singles.first`) whose values were read
 
   bool pairing() const { return counts.pairs > 0 && left.pairs > 0; }
   int pairs_left() const { return std::max(0, counts.pairs - static_cast<int>(early.size())); }
@@ -136,13 +137,16 @@ struct Search {
 
   // Phase 1: first the singles the values chose (a prefix of `singles.first`: each edit makes
   // the change its line's departing value needs), then, where they are at two lines, their pairs,
-  // then the rest of `singles.first`; each screen's distance kept in `singles.first`'s order.
+  // then the nearest of them with the lines where its own values still depart (phase 3 for the
+  // chosen alone), then the rest of `singles.first`; each screen's distance kept in
+  // `singles.first`'s order.
   Pass chosen_first() {
     const auto& first = singles.first;
     const auto chosen = std::find_if(first.begin(), first.end(), [&](const RepairCandidate& c) { return making(c, changes) == 0; });
     const std::vector<RepairCandidate> picked(first.begin(), chosen), others(chosen, first.end());
     Pass pass = run(picked, left.singles, &distances);
     if (pass == Pass::none_passed && pairing()) pass = between(pass, try_pairs(pairs_among(picked)));
+    if (pass == Pass::none_passed && pairing() && !picked.empty()) pass = between(pass, hidden_departures());
     return open(pass) ? run(others, left.singles, &distances) : pass;
   }
 
@@ -152,11 +156,12 @@ struct Search {
     return try_pairs(departure_pairs(p, singles.first, distances, *own, departing, changes, counts));
   }
 
-  // Phase 3: the lines where the nearest single's program still departs.
+  // Phase 3: the lines where the nearest single screened so far still departs in its own
+  // program's values (each single's values read once).
   Pass hidden_departures() {
     if (!know_own()) return Pass::trouble;
     const auto n = nearest(distances, *own);
-    if (!n) return Pass::none_passed;
+    if (!n || !values_read.insert(*n).second) return Pass::none_passed;
     const RepairCandidate& single = singles.first[*n];
     const auto read = screens.values_of(single);
     if (!read) return Pass::none_passed;
@@ -178,7 +183,7 @@ struct Search {
 SearchOutcome search_in_order(const RepairProgram& p, const CandidateCounts& counts, Confirmations confirmations,
                               const ValueAgreement& values, Screens& screens) {
   const Departures changes = departures(p.read, values);
-  Search s{p, counts, screens, confirmations, changes, lines_of(changes), split_at(single_candidates(p, counts), changes), {}, {}, {}, {}};
+  Search s{p, counts, screens, confirmations, changes, lines_of(changes), split_at(single_candidates(p, counts), changes), {}, {}, {}, {}, {}};
   const Pass first = s.chosen_first();
   Pass pass = first;
   if (open(pass) && s.pairing() && s.departing.size() >= 2) pass = between(first, s.departures());

@@ -7,7 +7,8 @@
 // The phases, each only while nothing is confirmed:
 // 1. the singles that align their line with the reference or edit a line where a value departs,
 //    those whose edit makes the change the values say that line needs (repair/value_change.h)
-//    first, and where these are at two lines, their pairs before the other singles;
+//    first, and where these are at two lines, their pairs, then phase 3 for them alone, before
+//    the other singles;
 // 2. where two lines depart, the pairs of those singles at the two lines;
 // 3. the single of phase 1 that drew nearest the reference, paired with each single at a line
 //    where its own program's values still depart (a second mistake the first one's error hid);
