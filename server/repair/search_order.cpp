@@ -91,7 +91,7 @@ struct Search {
   const std::set<int> departing;
   const Singles singles;
   std::vector<double> distances;       // each screened single's, `singles.first`'s first
-  std::vector<RepairCandidate> early;  // the pairs phases 2 and 3 tried
+  std::vector<RepairCandidate> early;  // the pairs phases 1 to 3 tried
   std::optional<double> own;
   std::vector<RepairEdit> found;       // the confirmed candidate's edits
   std::set<size_t> values_read;        // the singles (of `singles.first`) whose values were read
@@ -146,7 +146,7 @@ struct Search {
     const std::vector<RepairCandidate> picked(first.begin(), chosen), others(chosen, first.end());
     Pass pass = run(picked, left.singles, &distances);
     if (pass == Pass::none_passed && pairing()) pass = between(pass, try_pairs(pairs_among(picked)));
-    if (pass == Pass::none_passed && pairing() && !picked.empty()) pass = between(pass, hidden_departures());
+    if (pass == Pass::none_passed && pairing() && !picked.empty()) pass = between(pass, hidden_departures(Seconds::chosen));
     return open(pass) ? run(others, left.singles, &distances) : pass;
   }
 
@@ -156,9 +156,14 @@ struct Search {
     return try_pairs(departure_pairs(p, singles.first, distances, *own, departing, changes, counts));
   }
 
+  // Which singles phase 3 pairs with the nearest: every one at a line where its program still
+  // departs, or (where the values chose the nearest) only those that make the change that line's
+  // value needs: a nearest chosen wrongly must not spend the pairs on every edit of its lines.
+  enum class Seconds { all, chosen };
+
   // Phase 3: the lines where the nearest single screened so far still departs in its own
   // program's values (each single's values read once).
-  Pass hidden_departures() {
+  Pass hidden_departures(Seconds seconds = Seconds::all) {
     if (!know_own()) return Pass::trouble;
     const auto n = nearest(distances, *own);
     if (!n || !values_read.insert(*n).second) return Pass::none_passed;
@@ -168,7 +173,9 @@ struct Search {
     CandidateCounts within = counts;
     within.pairs = pairs_left();
     const Departures after = departing_after(p, single, *read);
-    return try_pairs(pairs_with(p, single.edits.front(), changes_first(singles.all(), after), lines_of(after), within));
+    std::vector<RepairCandidate> with = changes_first(singles.all(), after);
+    if (seconds == Seconds::chosen) std::erase_if(with, [&](const RepairCandidate& c) { return making(c, after) == 0; });
+    return try_pairs(pairs_with(p, single.edits.front(), with, lines_of(after), within));
   }
 
   // Phase 5: no one edit repairs it: two edits (pair_candidates says which, in what order).
