@@ -1,6 +1,7 @@
 #include "repair/search_order.h"
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 namespace shadelab::repair {
@@ -94,7 +95,8 @@ struct Search {
   std::vector<RepairCandidate> early;  // the pairs phases 1 to 3 tried
   std::optional<double> own;
   std::vector<RepairEdit> found;       // the confirmed candidate's edits
-  std::set<size_t> values_read;        // the singles (of `singles.first`) whose values were read
+  // Where each single (of `singles.first`) whose values were read still departs: read once.
+  std::map<size_t, Departures> departing_after_read;
 
   bool pairing() const { return counts.pairs > 0 && left.pairs > 0; }
   int pairs_left() const { return std::max(0, counts.pairs - static_cast<int>(early.size())); }
@@ -162,17 +164,20 @@ struct Search {
   enum class Seconds { all, chosen };
 
   // Phase 3: the lines where the nearest single screened so far still departs in its own
-  // program's values (each single's values read once).
+  // program's values (each single's values read once, its pairs not tried twice).
   Pass hidden_departures(Seconds seconds = Seconds::all) {
     if (!know_own()) return Pass::trouble;
     const auto n = nearest(distances, *own);
-    if (!n || !values_read.insert(*n).second) return Pass::none_passed;
+    if (!n) return Pass::none_passed;
     const RepairCandidate& single = singles.first[*n];
-    const auto read = screens.values_of(single);
-    if (!read) return Pass::none_passed;
+    if (!departing_after_read.count(*n)) {
+      const auto read = screens.values_of(single);
+      departing_after_read[*n] = read ? departing_after(p, single, *read) : Departures{};
+    }
+    const Departures& after = departing_after_read[*n];
+    if (after.empty()) return Pass::none_passed;
     CandidateCounts within = counts;
     within.pairs = pairs_left();
-    const Departures after = departing_after(p, single, *read);
     std::vector<RepairCandidate> with = changes_first(singles.all(), after);
     if (seconds == Seconds::chosen) std::erase_if(with, [&](const RepairCandidate& c) { return making(c, after) == 0; });
     return try_pairs(pairs_with(p, single.edits.front(), with, lines_of(after), within));
