@@ -147,7 +147,7 @@ std::set<int> departing(const std::string& fragment) {
   const shader::ShaderFile file{"student.frag", fragment};
   const auto program = repair::repair_program(specular().vertex, file, specular().vertex, specular().fragment, {});
   EXPECT_TRUE(program.ok());
-  return program ? repair::departing_lines(program->read, values_of(fragment)) : std::set<int>{};
+  return program ? repair::lines_of(repair::departures(program->read, values_of(fragment))) : std::set<int>{};
 }
 
 TEST(ValueProbesTest, AValueDepartsAtTheLineItsMistakeIsMadeAt) {

@@ -258,8 +258,6 @@ std::set<int> lines_of(const Departures& d) {
   return out;
 }
 
-std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement) { return lines_of(departures(read, agreement)); }
-
 bool makes_departing_change(const RepairEdit& e, const Departures& at) {
   const auto it = at.find(e.line);
   if (e.stage != shader::Stage::fragment || it == at.end()) return false;

@@ -63,18 +63,16 @@ struct ValueAgreement {
   std::vector<std::vector<ValueChangeTo>> changes;
 };
 
-// The lines of the student's fragment stage where a value first goes wrong: a write whose value
-// differs from its counterpart's while every local and input it reads holds its counterpart's
-// value (issue 79: "a write departs where its inputs are aligned and its value is not"): the
-// counterpart is the reference's variable of the same role (the same local, or the one it aligns
-// with; the k-th write with the k-th, a last with a last). Empty
-// where the values were not read or say nothing.
-std::set<int> departing_lines(const ProgramReading& read, const ValueAgreement& agreement);
-
-// Each line where a value first departs (as departing_lines), with the changes that turn the
-// student's value written there into its counterpart's (none known: an empty set).
+// The lines of the student's fragment stage where a value first goes wrong, each with the changes
+// that turn the student's value written there into its counterpart's (none known: an empty set).
+// A write departs where its value differs from its counterpart's while every local and input it
+// reads holds its counterpart's value (issue 79: "a write departs where its inputs are aligned and
+// its value is not"): the counterpart is the reference's variable of the same role (the same local,
+// or the one it aligns with; the k-th write with the k-th, a last with a last). Empty where the
+// values were not read or say nothing.
 using Departures = std::map<int, std::set<ValueChange>>;
 Departures departures(const ProgramReading& read, const ValueAgreement& agreement);
+// The departing lines alone.
 std::set<int> lines_of(const Departures& d);
 
 // Whether `e` makes a change its line's departing value needs (none where its line departs
