@@ -269,6 +269,20 @@ TEST(RepairEditsTest, AStudentsOwnNamesForTheLocalsAlignWithTheReferences) {
   EXPECT_TRUE(view_negated) << "the view vector's own line is negated";
 }
 
+// Two locals whose declarations both read as none of the reference's still align: by a use where
+// each stands beside the other (`dot(viewDir, reflectDir)` as `dot(V, R)`), then the one local of
+// its type each program leaves.
+TEST(RepairEditsTest, TwoLocalsWhoseDeclarationsBothChangedAlignByTheirUse) {
+  const std::string reference = glsl_of("specular", shader::Stage::fragment);
+  const std::string student =
+      typed(typed(typed(reference, "vec3 V = normalize(-vPosition);", "vec3 viewDir = normalize(vPosition);"), "vec3 R = reflect(-L, N);",
+                  "vec3 reflectDir = normalize(L + viewDir);"),
+            "dot(V, R)", "dot(viewDir, reflectDir)");
+  const repair::AlignedLines lines(student, reference);
+  EXPECT_EQ(lines.reference_name("viewDir", ""), "V");
+  EXPECT_EQ(lines.reference_name("reflectDir", ""), "R");
+}
+
 // The reference's name for a student's local, which a repair's words say in the homework's terms:
 // an aligned name, a name both declare, one a mended declaration aligns; none for a uniform or an
 // expression.

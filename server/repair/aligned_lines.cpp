@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
+#include <set>
 
+#include "repair/stage_names.h"
 #include "shader/glsl_lines.h"
 
 namespace shadelab::repair {
@@ -41,6 +44,21 @@ std::vector<std::vector<std::string>> line_tokens(const StageTokens& s) {
 
 bool is_identifier(const std::string& s) { return !s.empty() && shader::identifier_start(s.front()); }
 
+// The calls a local is read as an argument of (`dot` for `dot(V, R)`; "" for none).
+std::set<std::string, std::less<>> calls_reading(const StageTokens& s, const std::string& name) {
+  std::set<std::string, std::less<>> out;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.is(i, name) && read_at(s, i)) out.emplace(s.enclosing_call(i));
+  return out;
+}
+
+// Whether two locals are read alike: as an argument of one call in both programs, or outside any
+// in both (`spec * uSpecularColor` is no `pow(..., specularAlpha)`).
+bool read_alike(const StageTokens& s, const std::string& own, const StageTokens& r, const std::string& theirs) {
+  const auto mine = calls_reading(s, own), their = calls_reading(r, theirs);
+  return std::any_of(mine.begin(), mine.end(), [&](const std::string& call) { return their.contains(call); });
+}
+
 }  // namespace
 
 AlignedLines::AlignedLines(std::string_view student_glsl, std::string_view reference_glsl)
@@ -76,7 +94,32 @@ AlignedLines::AlignedLines(const StageTokens& student, const StageTokens& refere
         break;  // one at a time: the next reads its uses with this one aligned
       }
     }
+    if (!more) more = align_lone_local(student, reference, align);
   }
+}
+
+// Where no declaration and no use aligns any more: the one local of a type each program leaves
+// unaligned, where each leaves exactly one and both are read as an argument of one call. The
+// student's `vec3 reflectDir = normalize(lightDir + viewDir);` is the reference's R written
+// otherwise: its declaration reads as none of the reference's, and no use of it aligns.
+bool AlignedLines::align_lone_local(const StageTokens& student, const StageTokens& reference,
+                                    const std::function<bool(std::pair<std::string, std::string>)>& align) const {
+  const TypedNames own = declared_types(student), theirs = declared_types(reference);
+  const auto lone = [](const std::set<std::string, std::less<>>& declared, const TypedNames& types, const auto& unaligned, const std::string& type) {
+    std::vector<std::string> out;
+    for (const auto& name : declared)
+      if (const auto t = types.find(name); t != types.end() && t->second == type && unaligned(name)) out.push_back(name);
+    return out;
+  };
+  std::set<std::string> types;
+  for (const auto& name : names_.reference_declares)
+    if (const auto t = theirs.find(name); t != theirs.end()) types.insert(t->second);
+  for (const auto& type : types) {
+    const auto s = lone(names_.student_declares, own, [&](const std::string& n) { return student_unaligned(n); }, type);
+    const auto r = lone(names_.reference_declares, theirs, [&](const std::string& n) { return reference_unaligned(n); }, type);
+    if (s.size() == 1 && r.size() == 1 && read_alike(student, s.front(), reference, r.front()) && align({s.front(), r.front()})) return true;
+  }
+  return false;
 }
 
 bool AlignedLines::reads_as_reference(std::string_view line) const {
@@ -114,9 +157,18 @@ std::string AlignedLines::stands_for(std::string_view name) const {
 bool AlignedLines::alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at) const {
   constexpr size_t kAround = 2;
   if (at < kAround || reference_at < kAround || at + kAround >= student.size() || reference_at + kAround >= reference.size()) return false;
+  const auto alike = [&](const std::string& s, const std::string& r) { return same_token(s, r) || (student_unaligned(s) && reference_unaligned(r)); };
   for (size_t k = 1; k <= kAround; ++k)
-    if (!same_token(student[at - k], reference[reference_at - k]) || !same_token(student[at + k], reference[reference_at + k])) return false;
+    if (!alike(student[at - k], reference[reference_at - k]) || !alike(student[at + k], reference[reference_at + k])) return false;
   return true;
+}
+
+bool AlignedLines::student_unaligned(const std::string& s) const {
+  return names_.student_declares.contains(s) && !names_.reference_declares.contains(s) && !names_.to_reference.contains(s);
+}
+
+bool AlignedLines::reference_unaligned(const std::string& r) const {
+  return names_.reference_declares.contains(r) && !names_.student_declares.contains(r) && !names_.from_reference.contains(r);
 }
 
 bool AlignedLines::same_token(const std::string& s, const std::string& r) const {

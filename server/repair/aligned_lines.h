@@ -7,10 +7,12 @@
 // input, a function, a name both programs declare or a name never declared alike is read as
 // written: it aligns only with itself (`vec3 V = normalize(uLightPosition - vPosition);` is a
 // wrong V, never the reference's L).
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "repair/stage_tokens.h"
@@ -50,8 +52,16 @@ class AlignedLines {
   // either side, names aligned) read alike, where those places agree on one: `dot(toEye,
   // mirrored)` against `dot(V, R)`, mirrored aligned with R.
   std::string stands_for(std::string_view name) const;
+  // A neighbour two locals neither program has aligned yet counts as alike: `dot(viewDir,
+  // reflectDir)` against `dot(V, R)` where both lines declaring them were changed (V from the eye,
+  // the half vector): each stands for its place, and the places must still agree on one.
   bool alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at) const;
   bool same_token(const std::string& student, const std::string& reference) const;
+  // A local one program declares that no declaration, use or lone pairing has aligned yet.
+  bool student_unaligned(const std::string& student) const;
+  bool reference_unaligned(const std::string& reference) const;
+  bool align_lone_local(const StageTokens& student, const StageTokens& reference,
+                        const std::function<bool(std::pair<std::string, std::string>)>& align) const;
 
   std::vector<Tokens> reference_lines_, student_lines_;
   Names names_;
