@@ -238,6 +238,8 @@ TEST(ValueProbesTest, EachDepartureSaysTheChangeItsValueNeeds) {
   EXPECT_EQ(at(typed(right, "normalize(-vPosition)", "normalize(vPosition)"), "vec3 V ="), std::set<ValueChange>{ValueChange::negated});
   EXPECT_TRUE(at(typed(right, "float specularAlpha = 6.0;", "float specularAlpha = 16.0;"), "float specularAlpha").count(ValueChange::scaled))
       << "a number times another";
+  EXPECT_EQ(at(typed(right, "vec3 V = normalize(-vPosition);", "vec3 V = L;"), "vec3 V ="), std::set<ValueChange>{ValueChange::replaced})
+      << "no one change of V's, but another of the reference's values: only V put back makes it";
 }
 
 // A mistake whose value every later value reads hides a second one from the values: with L not
@@ -328,6 +330,40 @@ TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
   EXPECT_LE(hidden["candidates"].get<int>(), 6) << "L normalised, then paired with R's line's sign: not every single first";
   EXPECT_EQ(hidden.value("valuesRead", 0), 1) << "the nearest single's values, read once";
   EXPECT_FALSE(both.contains("valuesRead")) << "both lines departed: no single's values needed";
+}
+
+// A tutorial's names (`viewDir`, `reflectDir`), with both lines that declare them changed: V from
+// the eye, or computed as L, beside the half vector where the homework reflects. Neither
+// declaration reads as the reference's, so the names align by their use (`dot(viewDir,
+// reflectDir)` as `dot(V, R)`); then V departs with the change it needs (a sign; another of the
+// reference's values), and the chosen single's own values show R departing, whose value is put
+// back: both lines within a few candidates, where the search spent its whole budget (140 and 150
+// candidates) and found none.
+TEST(ValueProbesTest, APairThatChangesBothNamedLinesIsRepairedAtBoth) {
+  const char* tutorial =
+      "void main(void) {\n"
+      "    float specularAlpha = 6.0;\n"
+      "    vec3 norm = normalize(vNormal);\n"
+      "    vec3 lightDir = normalize(uLightPosition - vPosition);\n"
+      "    float diff = max(dot(norm, lightDir), 0.0);\n"
+      "    vec4 color = uAmbientColor + diff * uDiffuseColor * uLightColor;\n"
+      "    if (diff > 0.0) {\n"
+      "        vec3 viewDir = normalize(-vPosition);\n"
+      "        vec3 reflectDir = reflect(-lightDir, norm);\n"
+      "        float spec = pow(max(dot(viewDir, reflectDir), 0.0), specularAlpha);\n"
+      "        color += spec * uSpecularColor * uLightColor;\n"
+      "    }\n"
+      "    fragColor = color;\n"
+      "}\n";
+  const std::string right = student_with(tutorial);
+  const std::string half = typed(right, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)");
+  const std::set<int> both{line_of(right, "vec3 viewDir ="), line_of(right, "vec3 reflectDir =")};
+  const auto from_eye = searched(typed(half, "normalize(-vPosition)", "normalize(vPosition)"));
+  EXPECT_EQ(lines_of(from_eye), both) << from_eye.dump();
+  EXPECT_LE(from_eye["candidates"].get<int>(), 4) << "V's sign chosen, then R put back beside it";
+  const auto as_light = searched(typed(half, "vec3 viewDir = normalize(-vPosition);", "vec3 viewDir = lightDir;"));
+  EXPECT_EQ(lines_of(as_light), both) << as_light.dump();
+  EXPECT_LE(as_light["candidates"].get<int>(), 4) << "V put back, then R beside it";
 }
 
 // A value the homework computes otherwise, which the values found to be another of the formula's

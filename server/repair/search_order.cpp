@@ -1,6 +1,7 @@
 #include "repair/search_order.h"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -30,6 +31,14 @@ struct Singles {
 // How many of `c`'s edits make the change their line's departing value needs (repair/value_change.h).
 int making(const RepairCandidate& c, const Departures& changes) {
   return static_cast<int>(std::count_if(c.edits.begin(), c.edits.end(), [&](const auto& e) { return makes_departing_change(e, changes); }));
+}
+
+// Whether `c` restores the reference's value at a line whose value departs in no one change the
+// values could name (`normalize(L + V)` for `reflect(-L, N)`): no edit makes that change but the
+// value put back whole.
+bool restores_unknown_change(const RepairCandidate& c, const Departures& changes) {
+  return c.edits.size() == 1 && c.edits.front().kind == RepairKind::value_restored && c.edits.front().stage == shader::Stage::fragment &&
+         changes.contains(c.edits.front().line) && changes.at(c.edits.front().line).empty();
 }
 
 // `candidates` with those whose edits make more of the changes the values need first, each
@@ -167,7 +176,10 @@ struct Search {
   // program's values (each single's values read once, its pairs not tried twice).
   Pass hidden_departures(Seconds seconds = Seconds::all) {
     if (!know_own()) return Pass::trouble;
-    const auto n = nearest(distances, *own);
+    // The values chose each of `chosen`'s singles: its value is its counterpart's after the edit,
+    // however far it draws (V's sign mended beside the half vector draws further from the
+    // reference than the student's own program does).
+    const auto n = nearest(distances, seconds == Seconds::chosen ? std::numeric_limits<double>::infinity() : *own);
     if (!n) return Pass::none_passed;
     const RepairCandidate& single = singles.first[*n];
     if (!departing_after_read.count(*n)) {
@@ -179,7 +191,8 @@ struct Search {
     CandidateCounts within = counts;
     within.pairs = pairs_left();
     std::vector<RepairCandidate> with = changes_first(singles.all(), after);
-    if (seconds == Seconds::chosen) std::erase_if(with, [&](const RepairCandidate& c) { return making(c, after) == 0; });
+    if (seconds == Seconds::chosen)
+      std::erase_if(with, [&](const RepairCandidate& c) { return making(c, after) == 0 && !restores_unknown_change(c, after); });
     return try_pairs(pairs_with(p, single.edits.front(), with, lines_of(after), within));
   }
 

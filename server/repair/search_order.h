@@ -7,8 +7,9 @@
 // The phases, each only while nothing is confirmed:
 // 1. the singles that align their line with the reference or edit a line where a value departs,
 //    those whose edit makes the change the values say that line needs (repair/value_change.h)
-//    first, and where these are at two lines, their pairs, then phase 3 for them alone, before
-//    the other singles;
+//    first, and where these are at two lines, their pairs, then phase 3 for them alone (the
+//    nearest of them however far it draws, paired with the edits making the changes its values
+//    still need, or putting back a value no one change makes), before the other singles;
 // 2. where two lines depart, the pairs of those singles at the two lines;
 // 3. the single of phase 1 that drew nearest the reference, paired with each single at a line
 //    where its own program's values still depart (a second mistake the first one's error hid);

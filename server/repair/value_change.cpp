@@ -27,12 +27,13 @@ constexpr RepairKind kScaling[] = {K::factor_added, K::factor_removed, K::name_r
 constexpr RepairKind kShifting[] = {K::term_added, K::term_removed, K::value_added, K::write_restored, K::operator_swapped};
 constexpr RepairKind kPowering[] = {K::exponent_added, K::literal_refit, K::name_replaced};
 constexpr RepairKind kSwizzling[] = {K::swizzle_removed};
+constexpr RepairKind kReplacing[] = {K::value_restored};
 
 // One row a change, in the enum's order.
 constexpr ChangeRow kChanges[] = {
     {ValueChange::negated, kNegating},   {ValueChange::normalised, kNormalising}, {ValueChange::unnormalised, kUnnormalising},
     {ValueChange::clamped, kClamping},   {ValueChange::scaled, kScaling},         {ValueChange::shifted, kShifting},
-    {ValueChange::powered, kPowering},   {ValueChange::swizzled, kSwizzling},
+    {ValueChange::powered, kPowering},   {ValueChange::swizzled, kSwizzling},     {ValueChange::replaced, kReplacing},
 };
 static_assert(std::size(kChanges) == std::size(kValueChangeNames));
 
@@ -111,6 +112,8 @@ bool holds(ValueChange change, std::span<const ValueSample> samples) {
         return everywhere(samples, [&](const Rgb& v) { return Rgb{v[o[0]], v[o[1]], v[o[2]]}; });
       });
     }
+    case ValueChange::replaced:
+      return false;  // two values, not one changed: read off the agreement (repair::departures)
   }
   return false;
 }

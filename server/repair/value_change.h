@@ -25,15 +25,16 @@ enum class ValueChange {
   shifted,       // s plus a constant: a term left out or put in
   powered,       // s to a constant power: an exponent left out or changed
   swizzled,      // s's channels in another order
+  replaced,      // s is another of the reference's values (`V` computed as `L`): only the value put back makes it
 };
 inline constexpr EnumName<ValueChange> kValueChangeNames[] = {
     {ValueChange::negated, "negated"}, {ValueChange::normalised, "normalised"}, {ValueChange::unnormalised, "unnormalised"},
     {ValueChange::clamped, "clamped"}, {ValueChange::scaled, "scaled"},         {ValueChange::shifted, "shifted"},
-    {ValueChange::powered, "powered"}, {ValueChange::swizzled, "swizzled"},
+    {ValueChange::powered, "powered"}, {ValueChange::swizzled, "swizzled"},         {ValueChange::replaced, "replaced"},
 };
 
 // The kinds of edit that make `change` at the line they edit (a value restored whole can make any
-// change, and is in none: it keeps its place in the search's order).
+// change, and is in no row but `replaced`'s: elsewhere it keeps its place in the search's order).
 std::span<const RepairKind> kinds_making(ValueChange change);
 bool makes(RepairKind kind, ValueChange change);
 

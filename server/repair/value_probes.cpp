@@ -162,6 +162,16 @@ std::vector<Verdict> value_verdicts(const StageReading& stage, const ProbedStage
   return out;
 }
 
+// Whether a value is, at every pixel both drew, one the reference writes other than its counterpart
+// (`V` computed as `L`): no one change of the counterpart's says that, but the value is known.
+bool holds_another_write(const ProbedStage& reference, const std::vector<int>& agrees_with, size_t counterpart) {
+  return std::any_of(agrees_with.begin(), agrees_with.end(), [&](int r) {
+    if (r < 0 || static_cast<size_t>(r) >= reference.probes.size() || static_cast<size_t>(r) == counterpart) return false;
+    const ValueProbe& q = reference.probes[static_cast<size_t>(r)];
+    return !q.input && !q.end;
+  });
+}
+
 }  // namespace
 
 std::optional<ProbedStage> probed_fragment(std::string_view glsl) {
@@ -230,7 +240,8 @@ Departures departures(const ProgramReading& read, const ValueAgreement& agreemen
   if (!agreement.read) return out;
   const StageReading& stage = read[shader::Stage::fragment];
   const auto student = probed_fragment(stage.student.glsl);
-  if (!student) return out;
+  const auto reference = probed_fragment(stage.theirs.glsl);
+  if (!student || !reference) return out;
   const auto verdicts = value_verdicts(stage, *student, agreement);
   if (verdicts.empty()) return out;
   std::map<std::string, ValueVerdict, std::less<>> holds;  // each local's and input's value as it stands
@@ -246,6 +257,7 @@ Departures departures(const ProgramReading& read, const ValueAgreement& agreemen
       if (i < agreement.changes.size())
         for (const auto& c : agreement.changes[i])
           if (static_cast<size_t>(c.reference) == *v.counterpart) changes.insert(c.change);
+      if (changes.empty() && holds_another_write(*reference, agreement.agrees_with[i], *v.counterpart)) changes.insert(ValueChange::replaced);
     }
     holds[p.name] = v.verdict;
   }
