@@ -364,6 +364,19 @@ TEST(ValueProbesTest, APairThatChangesBothNamedLinesIsRepairedAtBoth) {
   const auto as_light = searched(typed(half, "vec3 viewDir = normalize(-vPosition);", "vec3 viewDir = lightDir;"));
   EXPECT_EQ(lines_of(as_light), both) << as_light.dump();
   EXPECT_LE(as_light["candidates"].get<int>(), 4) << "V put back, then R beside it";
+  // The names aligned by their order in dot(): what each is, is said only where the values show it.
+  const auto said = [](const nlohmann::json& search, const std::string& part) { return search[part]["text"].get<std::string>(); };
+  EXPECT_EQ(said(from_eye, "also"), "`viewDir`, the direction to the eye, has the wrong sign") << "V negated: the values show it is V";
+  EXPECT_EQ(said(from_eye, "found"), "`reflectDir` is not computed as the homework computes it") << "the half vector is no one change of R";
+  EXPECT_EQ(said(as_light, "found"), "`viewDir` is computed as the direction to the light: at every point drawn it holds the homework's L");
+  // Written the other way round, dot(reflectDir, viewDir) aligns them the wrong way round: the
+  // lines are still both, and no vector is named for either.
+  const auto swapped = searched(typed(typed(half, "dot(viewDir, reflectDir)", "dot(reflectDir, viewDir)"), "normalize(-vPosition)", "normalize(vPosition)"));
+  EXPECT_EQ(lines_of(swapped), both) << swapped.dump();
+  for (const auto* part : {"found", "also"})
+    if (swapped.contains(part))
+      for (const auto* vector : {"the direction to the eye", "reflected about the normal"})
+        EXPECT_EQ(said(swapped, part).find(vector), std::string::npos) << said(swapped, part);
 }
 
 // A value the homework computes otherwise, which the values found to be another of the formula's

@@ -89,7 +89,9 @@ AlignedLines::AlignedLines(const StageTokens& student, const StageTokens& refere
     if (more) continue;
     for (const auto& name : names_.student_declares) {
       if (names_.to_reference.contains(name) || names_.reference_declares.contains(name)) continue;
-      if (std::string theirs = stands_for(name); !theirs.empty() && align({name, std::move(theirs)})) {
+      bool guess = false;
+      if (std::string theirs = stands_for(name, &guess); !theirs.empty() && align({name, std::move(theirs)})) {
+        if (guess) guessed_.insert(name);
         more = true;
         break;  // one at a time: the next reads its uses with this one aligned
       }
@@ -103,7 +105,7 @@ AlignedLines::AlignedLines(const StageTokens& student, const StageTokens& refere
 // student's `vec3 reflectDir = normalize(lightDir + viewDir);` is the reference's R written
 // otherwise: its declaration reads as none of the reference's, and no use of it aligns.
 bool AlignedLines::align_lone_local(const StageTokens& student, const StageTokens& reference,
-                                    const std::function<bool(std::pair<std::string, std::string>)>& align) const {
+                                    const std::function<bool(std::pair<std::string, std::string>)>& align) {
   const TypedNames own = declared_types(student), theirs = declared_types(reference);
   const auto lone = [](const std::set<std::string, std::less<>>& declared, const TypedNames& types, const auto& unaligned, const std::string& type) {
     std::vector<std::string> out;
@@ -117,7 +119,10 @@ bool AlignedLines::align_lone_local(const StageTokens& student, const StageToken
   for (const auto& type : types) {
     const auto s = lone(names_.student_declares, own, [&](const std::string& n) { return student_unaligned(n); }, type);
     const auto r = lone(names_.reference_declares, theirs, [&](const std::string& n) { return reference_unaligned(n); }, type);
-    if (s.size() == 1 && r.size() == 1 && read_alike(student, s.front(), reference, r.front()) && align({s.front(), r.front()})) return true;
+    if (s.size() == 1 && r.size() == 1 && read_alike(student, s.front(), reference, r.front()) && align({s.front(), r.front()})) {
+      if (!guessed_.empty()) guessed_.insert(s.front());  // the one left beside a guess is one too
+      return true;
+    }
   }
   return false;
 }
@@ -127,17 +132,19 @@ bool AlignedLines::reads_as_reference(std::string_view line) const {
   return reads_as_reference(tokens(line), declared);
 }
 
-std::string AlignedLines::reference_name(std::string_view name, std::string_view line) const {
+std::string AlignedLines::reference_name(std::string_view name, std::string_view line, bool* guessed) const {
+  if (guessed) *guessed = guessed_.contains(name);
   if (const auto to = names_.to_reference.find(name); to != names_.to_reference.end()) return to->second;
   if (names_.student_declares.contains(name) && names_.reference_declares.contains(name)) return std::string(name);
   std::pair<std::string, std::string> declared;
   if (reads_as_reference(tokens(line), declared) && declared.first == name) return declared.second;
   // Only a local the student declares stands in for one: a uniform or an input is what it is.
-  return names_.student_declares.contains(name) ? stands_for(name) : std::string();
+  return names_.student_declares.contains(name) ? stands_for(name, guessed) : std::string();
 }
 
-std::string AlignedLines::stands_for(std::string_view name) const {
+std::string AlignedLines::stands_for(std::string_view name, bool* guessed) const {
   std::string found;
+  bool guess = false;
   for (const Tokens& s : student_lines_)
     for (size_t i = 0; i < s.size(); ++i) {
       if (s[i] != name) continue;
@@ -146,18 +153,26 @@ std::string AlignedLines::stands_for(std::string_view name) const {
           const std::string& local = r[j];
           if (!names_.reference_declares.contains(local) || names_.from_reference.contains(local) || names_.student_declares.contains(local))
             continue;
-          if (!alike_around(s, i, r, j)) continue;
+          bool beside_unaligned = false;
+          if (!alike_around(s, i, r, j, beside_unaligned)) continue;
           if (!found.empty() && found != local) return {};  // two places disagree: the grader cannot tell which
           found = local;
+          guess = guess || beside_unaligned;
         }
     }
+  if (guessed && !found.empty()) *guessed = *guessed || guess;
   return found;
 }
 
-bool AlignedLines::alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at) const {
+bool AlignedLines::alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at, bool& beside_unaligned) const {
   constexpr size_t kAround = 2;
   if (at < kAround || reference_at < kAround || at + kAround >= student.size() || reference_at + kAround >= reference.size()) return false;
-  const auto alike = [&](const std::string& s, const std::string& r) { return same_token(s, r) || (student_unaligned(s) && reference_unaligned(r)); };
+  const auto alike = [&](const std::string& s, const std::string& r) {
+    if (same_token(s, r)) return true;
+    const bool both = student_unaligned(s) && reference_unaligned(r);
+    beside_unaligned = beside_unaligned || both;
+    return both;
+  };
   for (size_t k = 1; k <= kAround; ++k)
     if (!alike(student[at - k], reference[reference_at - k]) || !alike(student[at + k], reference[reference_at + k])) return false;
   return true;

@@ -32,8 +32,11 @@ class AlignedLines {
   // The reference's name for the student's local `name`: the one it aligns with, itself where both
   // programs declare it, the one `line` (an edit's line, which may mend its declaration) aligns
   // it with, or else the one it stands in for where the student uses it (`stands_for`); empty
-  // where none does or the places disagree.
-  std::string reference_name(std::string_view name, std::string_view line) const;
+  // where none does or the places disagree. `guessed`, where given, says whether the answer rests
+  // on a use beside a local neither program had aligned (`dot(a, b)` as `dot(V, R)`: the order
+  // alone says which is which) or on the one left beside such a guess: good enough to order a
+  // search, whose renders confirm it, never to say what the student's local is.
+  std::string reference_name(std::string_view name, std::string_view line, bool* guessed = nullptr) const;
 
  private:
   using Tokens = std::vector<std::string>;
@@ -51,20 +54,21 @@ class AlignedLines {
   // student writes it, the reference's local at the place of a line whose tokens around it (two
   // either side, names aligned) read alike, where those places agree on one: `dot(toEye,
   // mirrored)` against `dot(V, R)`, mirrored aligned with R.
-  std::string stands_for(std::string_view name) const;
-  // A neighbour two locals neither program has aligned yet counts as alike: `dot(viewDir,
-  // reflectDir)` against `dot(V, R)` where both lines declaring them were changed (V from the eye,
-  // the half vector): each stands for its place, and the places must still agree on one.
-  bool alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at) const;
+  std::string stands_for(std::string_view name, bool* guessed = nullptr) const;
+  // A neighbour two locals neither program has aligned yet counts as alike (`beside_unaligned`):
+  // `dot(viewDir, reflectDir)` against `dot(V, R)` where both lines declaring them were changed (V
+  // from the eye, the half vector): each stands for its place, and the places must still agree.
+  bool alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at, bool& beside_unaligned) const;
   bool same_token(const std::string& student, const std::string& reference) const;
   // A local one program declares that no declaration, use or lone pairing has aligned yet.
   bool student_unaligned(const std::string& student) const;
   bool reference_unaligned(const std::string& reference) const;
   bool align_lone_local(const StageTokens& student, const StageTokens& reference,
-                        const std::function<bool(std::pair<std::string, std::string>)>& align) const;
+                        const std::function<bool(std::pair<std::string, std::string>)>& align);
 
   std::vector<Tokens> reference_lines_, student_lines_;
   Names names_;
+  std::set<std::string, std::less<>> guessed_;  // the student's locals aligned by a guess (reference_name)
 };
 
 }  // namespace shadelab::repair

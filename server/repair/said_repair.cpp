@@ -19,10 +19,11 @@ const RepairKindInfo& said_as(const RepairEdit& e) { return info(e.said_as.value
 // Which of the homework formula's `vectors` the edit's subject is, where it is a local of the
 // student's fragment stage that stands for one of the reference fragment stage's (by the student's
 // own name or the one aligned with it): the formula's name for it ("L") and its words; none else.
-const VectorWords::value_type* vector_of(const RepairProgram& p, const RepairEdit& e, const VectorWords& vectors) {
+// `guessed`: the alignment rests on a guess (repair::AlignedLines::reference_name).
+const VectorWords::value_type* vector_of(const RepairProgram& p, const RepairEdit& e, const VectorWords& vectors, bool& guessed) {
   if (vectors.empty() || e.stage != shader::Stage::fragment || p.read.beside_nothing()) return nullptr;
   const StageReading& fragment = p.read.fragment;
-  const std::string name = fragment.aligned.reference_name(e.subject, fragment.edited_line(e));
+  const std::string name = fragment.aligned.reference_name(e.subject, fragment.edited_line(e), &guessed);
   const auto found = vectors.find(name);
   return found == vectors.end() ? nullptr : &*found;
 }
@@ -41,8 +42,12 @@ const VectorWords::value_type* held_vector(const RepairProgram& p, const RepairE
 SaidEdit said_edit(const RepairProgram& p, const RepairEdit& e, RepairShown shown, const VectorWords& vectors, const ValueAgreement& values) {
   const StudentStage& stage = p[e.stage];
   const StageReading& read = p.read[e.stage];
-  const auto* vector = vector_of(p, e, vectors);
-  const auto* holds = held_vector(p, e, vectors, values, vector);
+  bool guessed = false;
+  const auto* role = vector_of(p, e, vectors, guessed);
+  // A vector aligned by a guess (its order in `dot(a, b)`) is said only where the values show it:
+  // a student whose two vectors the grader cannot tell apart by their text is never told one is the other.
+  const auto* vector = role && (!guessed || value_stands_for(p.read, e, values, role->first)) ? role : nullptr;
+  const auto* holds = held_vector(p, e, vectors, values, role);
   SaidEdit out{e.kind, e.stage, std::nullopt, std::nullopt,
                said_as(e).words(said_of(e, vector ? std::string_view(vector->second) : "", {}, holds)), std::nullopt,
                said_as(e).label(said_of(e, {}, vector ? std::string_view(vector->first) : "", holds)), std::string(read.line_of(e))};

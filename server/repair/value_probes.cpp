@@ -276,25 +276,57 @@ bool makes_departing_change(const RepairEdit& e, const Departures& at) {
   return std::any_of(it->second.begin(), it->second.end(), [&](ValueChange c) { return makes(e.kind, c); });
 }
 
-std::vector<std::string> values_it_holds(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement) {
-  std::vector<std::string> out;
-  if (!agreement.read || edit.stage != shader::Stage::fragment) return out;
-  const StageReading& stage = read[shader::Stage::fragment];
-  const auto student = probed_fragment(stage.student.glsl);
-  const auto reference = probed_fragment(stage.theirs.glsl);
-  if (!student || !reference || agreement.agrees_with.size() != student->probes.size()) return out;
+// Both stages' probes, and the student's probe of the write `edit` changes (the last write of its
+// subject on its line), where the values were read and compared it.
+struct EditedWrite {
+  ProbedStage student, reference;
+  size_t write = 0;
+};
+std::optional<EditedWrite> edited_write(const StageReading& stage, const RepairEdit& edit, const ValueAgreement& agreement) {
+  if (!agreement.read || edit.stage != shader::Stage::fragment) return std::nullopt;
+  auto student = probed_fragment(stage.student.glsl);
+  auto reference = probed_fragment(stage.theirs.glsl);
+  if (!student || !reference || agreement.agrees_with.size() != student->probes.size() ||
+      agreement.compared.size() != student->probes.size())
+    return std::nullopt;
   std::optional<size_t> write;
   for (size_t i = 0; i < student->probes.size(); ++i) {
     const ValueProbe& p = student->probes[i];
     if (!p.input && !p.end && p.name == edit.subject && p.line == edit.line) write = i;
   }
-  if (!write || !agreement.compared[*write]) return out;
+  if (!write || !agreement.compared[*write]) return std::nullopt;
+  return EditedWrite{std::move(*student), std::move(*reference), *write};
+}
+
+std::vector<std::string> values_it_holds(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement) {
+  std::vector<std::string> out;
+  const StageReading& stage = read[shader::Stage::fragment];
+  const auto found = edited_write(stage, edit, agreement);
+  if (!found) return out;
+  const auto& [student, reference, write] = *found;
   const std::string role = stage.aligned.reference_name(edit.subject, stage.line_of(edit));
-  for (const int r : agreement.agrees_with[*write]) {
-    const ValueProbe& q = reference->probes[static_cast<size_t>(r)];
+  for (const int r : agreement.agrees_with[write]) {
+    if (r < 0 || static_cast<size_t>(r) >= reference.probes.size()) continue;
+    const ValueProbe& q = reference.probes[static_cast<size_t>(r)];
     if (!q.input && !q.end && q.name != role && std::find(out.begin(), out.end(), q.name) == out.end()) out.push_back(q.name);
   }
   return out;
+}
+
+bool value_stands_for(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement, std::string_view role) {
+  const auto found = edited_write(read[shader::Stage::fragment], edit, agreement);
+  if (!found) return false;
+  const auto& [student, reference, write] = *found;
+  const auto is_role = [&](int r) {
+    if (r < 0 || static_cast<size_t>(r) >= reference.probes.size()) return false;
+    const ValueProbe& q = reference.probes[static_cast<size_t>(r)];
+    return !q.input && !q.end && q.name == role;
+  };
+  const auto& agrees = agreement.agrees_with[write];
+  if (std::any_of(agrees.begin(), agrees.end(), is_role)) return true;
+  if (write >= agreement.changes.size()) return false;
+  const auto& changes = agreement.changes[write];
+  return std::any_of(changes.begin(), changes.end(), [&](const ValueChangeTo& c) { return is_role(c.reference); });
 }
 
 }  // namespace shadelab::repair

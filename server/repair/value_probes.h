@@ -85,4 +85,9 @@ bool makes_departing_change(const RepairEdit& e, const Departures& at);
 // reference's L. Empty where the values were not read or that write was not probed.
 std::vector<std::string> values_it_holds(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement);
 
+// Whether the student's write that `edit` changes holds the reference's local `role` at every
+// pixel both drew, or one change of it (repair/value_change.h): `viewDir = normalize(vPosition)`
+// is V negated, and so stands for V whatever the names say. False where the values were not read.
+bool value_stands_for(const ProgramReading& read, const RepairEdit& edit, const ValueAgreement& agreement, std::string_view role);
+
 }  // namespace shadelab::repair
