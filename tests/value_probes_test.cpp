@@ -373,10 +373,11 @@ TEST(ValueProbesTest, APairThatChangesBothNamedLinesIsRepairedAtBoth) {
   // lines are still both, and no vector is named for either.
   const auto swapped = searched(typed(typed(half, "dot(viewDir, reflectDir)", "dot(reflectDir, viewDir)"), "normalize(-vPosition)", "normalize(vPosition)"));
   EXPECT_EQ(lines_of(swapped), both) << swapped.dump();
-  for (const auto* part : {"found", "also"})
-    if (swapped.contains(part))
-      for (const auto* vector : {"the direction to the eye", "reflected about the normal"})
-        EXPECT_EQ(said(swapped, part).find(vector), std::string::npos) << said(swapped, part);
+  for (const auto* part : {"found", "also"}) {
+    if (!swapped.contains(part)) continue;
+    for (const auto* vector : {"the direction to the eye", "reflected about the normal"})
+      EXPECT_EQ(said(swapped, part).find(vector), std::string::npos) << said(swapped, part);
+  }
 }
 
 // A value the homework computes otherwise, which the values found to be another of the formula's

@@ -80,23 +80,26 @@ AlignedLines::AlignedLines(const StageTokens& student, const StageTokens& refere
     names_.from_reference.emplace(names.second, names.first);
     return true;
   };
+  // Surer ways first: a guess (a use beside a local neither has aligned) only where none of them
+  // aligns any more, one at a time, and the surer ways again after it.
+  const auto by_use = [&](Neighbours neighbours) {
+    for (const auto& name : names_.student_declares) {
+      if (names_.to_reference.contains(name) || names_.reference_declares.contains(name)) continue;
+      bool guess = false;
+      if (std::string theirs = stands_for(name, &guess, neighbours); !theirs.empty() && align({name, std::move(theirs)})) {
+        if (guess) guessed_.insert(name);
+        return true;  // one at a time: the next reads its uses with this one aligned
+      }
+    }
+    return false;
+  };
   for (bool more = true; more;) {
     more = false;
     for (const Tokens& line : student_lines_) {
       std::pair<std::string, std::string> declared;
       if (reads_as_reference(line, declared) && !declared.first.empty()) more = align(declared) || more;
     }
-    if (more) continue;
-    for (const auto& name : names_.student_declares) {
-      if (names_.to_reference.contains(name) || names_.reference_declares.contains(name)) continue;
-      bool guess = false;
-      if (std::string theirs = stands_for(name, &guess); !theirs.empty() && align({name, std::move(theirs)})) {
-        if (guess) guessed_.insert(name);
-        more = true;
-        break;  // one at a time: the next reads its uses with this one aligned
-      }
-    }
-    if (!more) more = align_lone_local(student, reference, align);
+    more = more || by_use(Neighbours::aligned) || align_lone_local(student, reference, align) || by_use(Neighbours::unaligned_too);
   }
 }
 
@@ -139,10 +142,10 @@ std::string AlignedLines::reference_name(std::string_view name, std::string_view
   std::pair<std::string, std::string> declared;
   if (reads_as_reference(tokens(line), declared) && declared.first == name) return declared.second;
   // Only a local the student declares stands in for one: a uniform or an input is what it is.
-  return names_.student_declares.contains(name) ? stands_for(name, guessed) : std::string();
+  return names_.student_declares.contains(name) ? stands_for(name, guessed, Neighbours::aligned) : std::string();
 }
 
-std::string AlignedLines::stands_for(std::string_view name, bool* guessed) const {
+std::string AlignedLines::stands_for(std::string_view name, bool* guessed, Neighbours neighbours) const {
   std::string found;
   bool guess = false;
   for (const Tokens& s : student_lines_)
@@ -154,7 +157,7 @@ std::string AlignedLines::stands_for(std::string_view name, bool* guessed) const
           if (!names_.reference_declares.contains(local) || names_.from_reference.contains(local) || names_.student_declares.contains(local))
             continue;
           bool beside_unaligned = false;
-          if (!alike_around(s, i, r, j, beside_unaligned)) continue;
+          if (!alike_around(s, i, r, j, neighbours, beside_unaligned)) continue;
           if (!found.empty() && found != local) return {};  // two places disagree: the grader cannot tell which
           found = local;
           guess = guess || beside_unaligned;
@@ -164,12 +167,13 @@ std::string AlignedLines::stands_for(std::string_view name, bool* guessed) const
   return found;
 }
 
-bool AlignedLines::alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at, bool& beside_unaligned) const {
+bool AlignedLines::alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at, Neighbours neighbours,
+                                bool& beside_unaligned) const {
   constexpr size_t kAround = 2;
   if (at < kAround || reference_at < kAround || at + kAround >= student.size() || reference_at + kAround >= reference.size()) return false;
   const auto alike = [&](const std::string& s, const std::string& r) {
     if (same_token(s, r)) return true;
-    const bool both = student_unaligned(s) && reference_unaligned(r);
+    const bool both = neighbours == Neighbours::unaligned_too && student_unaligned(s) && reference_unaligned(r);
     beside_unaligned = beside_unaligned || both;
     return both;
   };

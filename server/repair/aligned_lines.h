@@ -54,11 +54,13 @@ class AlignedLines {
   // student writes it, the reference's local at the place of a line whose tokens around it (two
   // either side, names aligned) read alike, where those places agree on one: `dot(toEye,
   // mirrored)` against `dot(V, R)`, mirrored aligned with R.
-  std::string stands_for(std::string_view name, bool* guessed = nullptr) const;
-  // A neighbour two locals neither program has aligned yet counts as alike (`beside_unaligned`):
-  // `dot(viewDir, reflectDir)` against `dot(V, R)` where both lines declaring them were changed (V
-  // from the eye, the half vector): each stands for its place, and the places must still agree.
-  bool alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at, bool& beside_unaligned) const;
+  // With `unaligned_too`, a neighbour two locals neither program has aligned yet counts as alike
+  // (`beside_unaligned`, a guess): `dot(viewDir, reflectDir)` against `dot(V, R)` where both lines
+  // declaring them were changed (V from the eye, the half vector); the places must still agree.
+  enum class Neighbours { aligned, unaligned_too };
+  std::string stands_for(std::string_view name, bool* guessed, Neighbours neighbours) const;
+  bool alike_around(const Tokens& student, size_t at, const Tokens& reference, size_t reference_at, Neighbours neighbours,
+                    bool& beside_unaligned) const;
   bool same_token(const std::string& student, const std::string& reference) const;
   // A local one program declares that no declaration, use or lone pairing has aligned yet.
   bool student_unaligned(const std::string& student) const;
