@@ -23,6 +23,7 @@
 #include "shader/glsl_lines.h"
 #include "support/run_command.h"
 #include "support/test_support.h"
+#include "support/tutorial_program.h"
 
 namespace shadelab {
 namespace {
@@ -340,22 +341,7 @@ TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
 // back: both lines within a few candidates, where the search spent its whole budget (140 and 150
 // candidates) and found none.
 TEST(ValueProbesTest, APairThatChangesBothNamedLinesIsRepairedAtBoth) {
-  const char* tutorial =
-      "void main(void) {\n"
-      "    float specularAlpha = 6.0;\n"
-      "    vec3 norm = normalize(vNormal);\n"
-      "    vec3 lightDir = normalize(uLightPosition - vPosition);\n"
-      "    float diff = max(dot(norm, lightDir), 0.0);\n"
-      "    vec4 color = uAmbientColor + diff * uDiffuseColor * uLightColor;\n"
-      "    if (diff > 0.0) {\n"
-      "        vec3 viewDir = normalize(-vPosition);\n"
-      "        vec3 reflectDir = reflect(-lightDir, norm);\n"
-      "        float spec = pow(max(dot(viewDir, reflectDir), 0.0), specularAlpha);\n"
-      "        color += spec * uSpecularColor * uLightColor;\n"
-      "    }\n"
-      "    fragColor = color;\n"
-      "}\n";
-  const std::string right = student_with(tutorial);
+  const std::string right = student_with(testkit::kTutorialSpecularMain);
   const std::string half = typed(right, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)");
   const std::set<int> both{line_of(right, "vec3 viewDir ="), line_of(right, "vec3 reflectDir =")};
   const auto from_eye = searched(typed(half, "normalize(-vPosition)", "normalize(vPosition)"));
