@@ -27,7 +27,9 @@ constexpr RepairKind kScaling[] = {K::factor_added, K::factor_removed, K::name_r
 constexpr RepairKind kShifting[] = {K::term_added, K::term_removed, K::value_added, K::write_restored, K::operator_swapped};
 constexpr RepairKind kPowering[] = {K::exponent_added, K::literal_refit, K::name_replaced};
 constexpr RepairKind kSwizzling[] = {K::swizzle_removed};
-constexpr RepairKind kReplacing[] = {K::value_restored};
+// Another of the reference's values: the name read in place of the right one (`reflect(-L, L)`),
+// or the value computed otherwise, put back whole.
+constexpr RepairKind kReplacing[] = {K::name_replaced, K::value_restored};
 
 // One row a change, in the enum's order.
 constexpr ChangeRow kChanges[] = {

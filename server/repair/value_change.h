@@ -25,7 +25,7 @@ enum class ValueChange {
   shifted,       // s plus a constant: a term left out or put in
   powered,       // s to a constant power: an exponent left out or changed
   swizzled,      // s's channels in another order
-  replaced,      // s is another of the reference's values (`V` computed as `L`): only the value put back makes it
+  replaced,      // s is another of the reference's values (`V` computed as `L`, `reflect(-L, L)`): a name or the value put back
 };
 inline constexpr EnumName<ValueChange> kValueChangeNames[] = {
     {ValueChange::negated, "negated"}, {ValueChange::normalised, "normalised"}, {ValueChange::unnormalised, "unnormalised"},
