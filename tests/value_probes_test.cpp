@@ -338,8 +338,8 @@ TEST(ValueProbesTest, APairIsRepairedFromTheLinesWhereItsValuesDepart) {
 // declaration reads as the reference's, so the names align by their use (`dot(viewDir,
 // reflectDir)` as `dot(V, R)`); then V departs with the change it needs (a sign; another of the
 // reference's values), and the chosen single's own values show R departing, whose value is put
-// back: both lines within a few candidates, where the search spent its whole budget (140 and 150
-// candidates) and found none.
+// back: both lines within a few candidates (2 and 7), where the search spent its whole budget (140
+// and 150 candidates) and found none.
 TEST(ValueProbesTest, APairThatChangesBothNamedLinesIsRepairedAtBoth) {
   const std::string right = student_with(testkit::kTutorialSpecularMain);
   const std::string half = typed(right, "reflect(-lightDir, norm)", "normalize(lightDir + viewDir)");
@@ -349,7 +349,7 @@ TEST(ValueProbesTest, APairThatChangesBothNamedLinesIsRepairedAtBoth) {
   EXPECT_LE(from_eye["candidates"].get<int>(), 4) << "V's sign chosen, then R put back beside it";
   const auto as_light = searched(typed(half, "vec3 viewDir = normalize(-vPosition);", "vec3 viewDir = lightDir;"));
   EXPECT_EQ(lines_of(as_light), both) << as_light.dump();
-  EXPECT_LE(as_light["candidates"].get<int>(), 4) << "V put back, then R beside it";
+  EXPECT_LE(as_light["candidates"].get<int>(), 8) << "V's name replaced (the student's own edit, tried first) or V put back, then R beside it";
   // The names aligned by their order in dot(): what each is, is said only where the values show it.
   const auto said = [](const nlohmann::json& search, const std::string& part) { return search[part]["text"].get<std::string>(); };
   EXPECT_EQ(said(from_eye, "also"), "`viewDir`, the direction to the eye, has the wrong sign") << "V negated: the values show it is V";
